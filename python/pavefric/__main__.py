@@ -1,0 +1,80 @@
+"""Command line of the Python layer: ``python -m pavefric COMMAND ...``.
+
+Commands:
+  run SCENE.nml [-o OUT.nc] [--plot PNG]   run a scene (same core as the program)
+  plot OUT.nc [OUT.nc ...] -o PNG           friction against speed
+  surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def main(argv: list[str] | None = None) -> int:
+    from . import __version__
+
+    parser = argparse.ArgumentParser(prog="python -m pavefric",
+                                     description="pavefric: pavement friction (Kane et al. 2017)")
+    parser.add_argument("--version", action="version", version=f"pavefric {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p_run = sub.add_parser("run", help="run a scene namelist and write NetCDF")
+    p_run.add_argument("scene")
+    p_run.add_argument("-o", "--output", default=None, help="NetCDF output path")
+    p_run.add_argument("--plot", default=None, help="also write a PNG of mu against speed")
+
+    p_plot = sub.add_parser("plot", help="plot mu against speed from NetCDF outputs")
+    p_plot.add_argument("files", nargs="+")
+    p_plot.add_argument("-o", "--output", required=True, help="PNG path")
+    p_plot.add_argument("--title", default=None)
+
+    p_surf = sub.add_parser("surface", help="write a seeded CTM-like profile (mm, one column)")
+    p_surf.add_argument("-o", "--output", required=True)
+    p_surf.add_argument("--seed", type=int, default=0)
+    p_surf.add_argument("--rms-mm", type=float, default=0.5)
+    p_surf.add_argument("--exponent", type=float, default=2.0)
+    p_surf.add_argument("--wavelength-min-mm", type=float, default=2.0)
+    p_surf.add_argument("--wavelength-max-mm", type=float, default=50.0)
+    p_surf.add_argument("--skew", type=float, default=0.0)
+    p_surf.add_argument("--points", type=int, default=1024)
+    p_surf.add_argument("--dx-mm", type=float, default=0.87)
+
+    args = parser.parse_args(argv)
+    from .core import PavefricError
+
+    try:
+        if args.command == "run":
+            from .core import run
+            from .plot import plot_mu_speed
+
+            out = run(args.scene, args.output)
+            print(f"wrote {out}")
+            if args.plot:
+                print(f"wrote {plot_mu_speed([out], args.plot)}")
+        elif args.command == "plot":
+            from .plot import plot_mu_speed
+
+            print(f"wrote {plot_mu_speed(args.files, args.output, title=args.title)}")
+        elif args.command == "surface":
+            from .surfaces import spectral_profile, write_profile
+
+            z = spectral_profile(args.points, args.dx_mm * 1e-3, rms=args.rms_mm * 1e-3,
+                                 exponent=args.exponent,
+                                 wavelength_min=args.wavelength_min_mm * 1e-3,
+                                 wavelength_max=args.wavelength_max_mm * 1e-3, skew=args.skew,
+                                 seed=args.seed)
+            header = (f"pavefric synthetic profile: spectral_profile(n={args.points}, "
+                      f"dx={args.dx_mm} mm, rms={args.rms_mm} mm, exponent={args.exponent}, "
+                      f"wavelengths {args.wavelength_min_mm}-{args.wavelength_max_mm} mm, "
+                      f"skew={args.skew}, seed={args.seed})")
+            write_profile(args.output, z, header)
+            print(f"wrote {args.output}")
+    except PavefricError as exc:
+        print(f"pavefric: error: {exc}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,228 @@
+"""Thin wrappers over the Fortran core (the f2py extension ``_core``).
+
+Nothing here computes friction: every number comes from the Fortran core, so
+``simulate`` gives the same numbers as the ``pavefric`` program, bit for bit.
+This module only converts arguments, sizes output arrays, and turns the
+core's status and message into a Python exception.
+"""
+from __future__ import annotations
+
+import functools
+import os
+import shlex
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+
+from . import _core
+
+__all__ = [
+    "PavefricError",
+    "defaults",
+    "simulate",
+    "run",
+    "open_dataset",
+    "read_profile",
+    "Profile",
+    "layout",
+]
+
+
+class PavefricError(ValueError):
+    """Bad input or a failed run; the message names the group, variable and value."""
+
+
+def _text(raw: Any) -> str:
+    if isinstance(raw, bytes):
+        raw = raw.decode("utf-8", "replace")
+    elif isinstance(raw, np.ndarray):
+        raw = raw.tobytes().decode("utf-8", "replace")
+    return str(raw).rstrip("\x00 ").strip()
+
+
+def _check(status: int, message: Any) -> None:
+    if int(status) != 0:
+        raise PavefricError(_text(message))
+
+
+# The model's parameters: Python keyword -> namelist group and variable.
+PARAMETERS: dict[str, tuple[str, str]] = {
+    "mu_loc": ("surface", "mu_loc"),
+    "length": ("pad", "length"),
+    "width": ("pad", "width"),
+    "thickness": ("pad", "thickness"),
+    "load": ("pad", "load"),
+    "shape": ("pad", "shape"),
+    "radius": ("pad", "radius"),
+    "stiffness": ("rubber", "stiffness"),
+    "viscosity": ("rubber", "viscosity"),
+    "depth": ("water", "depth"),
+    "water_viscosity": ("water", "viscosity"),
+    "alpha": ("water", "alpha"),
+    "beta": ("water", "beta"),
+    "theta_max_deg": ("numerics", "theta_max_deg"),
+    "substeps": ("numerics", "substeps"),
+    "elements_per_sample": ("numerics", "elements_per_sample"),
+    "position_stride": ("numerics", "position_stride"),
+    "wet_tolerance": ("numerics", "wet_tolerance"),
+}
+
+
+@functools.lru_cache(maxsize=1)
+def _core_defaults() -> dict[str, Any]:
+    out = _core.pf_defaults()
+    names = ["mu_loc", "length", "width", "thickness", "load", "radius", "stiffness",
+             "viscosity", "depth", "water_viscosity", "alpha", "beta", "theta_max_deg",
+             "substeps", "elements_per_sample", "position_stride", "wet_tolerance",
+             "ctm_dx", "version"]
+    values = dict(zip(names, out))
+    values["version"] = _text(values["version"])
+    for key in ("substeps", "elements_per_sample", "position_stride"):
+        values[key] = int(values[key])
+    for key in names:
+        if key not in ("version", "substeps", "elements_per_sample", "position_stride"):
+            values[key] = float(values[key])
+    values["shape"] = "flat"
+    return values
+
+
+def defaults() -> dict[str, Any]:
+    """The model's default parameters, read from the Fortran core (SI units)."""
+    values = dict(_core_defaults())
+    values.pop("version")
+    values.pop("ctm_dx")
+    return values
+
+
+def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> tuple[int, int]:
+    """(pad elements, averaged positions) of a profile; 0 positions if the pad does not fit."""
+    p = _parameters(parameters)
+    n_el, n_pos = _core.pf_layout(int(n_points), float(dx), int(bool(closed)), p["length"],
+                                  p["elements_per_sample"], p["substeps"], p["position_stride"])
+    return int(n_el), int(n_pos)
+
+
+def _parameters(given: dict[str, Any]) -> dict[str, Any]:
+    unknown = sorted(set(given) - set(PARAMETERS))
+    if unknown:
+        raise TypeError(f"unknown parameter(s) {', '.join(unknown)}; known: "
+                        f"{', '.join(PARAMETERS)}")
+    p = defaults()
+    p.update(given)
+    return p
+
+
+def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] | float, *,
+             closed: bool = True, series: bool = False, **parameters: Any):
+    """Run the friction model on a profile and return an ``xarray.Dataset``.
+
+    Parameters
+    ----------
+    heights_m : profile heights in metres, at uniform spacing ``dx`` (m).
+    speeds_kmh : sliding speeds in km/h.
+    closed : a closed Circular Track Meter circle (True) or an open profile.
+    series : also return per-position ``mu_inst``, ``hydro_load``,
+        ``penetration`` and ``contact_elements``.
+    **parameters : the namelist's variables (SI units); ``viscosity`` is the
+        rubber's C, ``water_viscosity`` the water's eta. See ``defaults()``
+        and docs/inputs.md.
+
+    The variables and attributes are those of the program's NetCDF output.
+    """
+    import xarray as xr
+
+    p = _parameters(parameters)
+    z = np.ascontiguousarray(np.asarray(heights_m, dtype=np.float64).ravel())
+    speeds = np.ascontiguousarray(np.atleast_1d(np.asarray(speeds_kmh, dtype=np.float64)).ravel())
+    if z.size == 0:
+        raise PavefricError("&surface profile_file: the profile holds no heights")
+    npos = 1
+    if series:
+        _, npos = layout(z.size, dx, closed, **{k: p[k] for k in
+                         ("length", "elements_per_sample", "substeps", "position_stride")})
+        npos = max(npos, 1)
+    out = _core.pf_simulate(
+        z, float(dx), int(bool(closed)), speeds,
+        float(p["mu_loc"]), float(p["length"]), float(p["width"]), float(p["thickness"]),
+        float(p["load"]), str(p["shape"]), float(p["radius"]), float(p["stiffness"]),
+        float(p["viscosity"]), float(p["depth"]), float(p["water_viscosity"]),
+        float(p["alpha"]), float(p["beta"]), float(p["theta_max_deg"]), int(p["substeps"]),
+        int(p["elements_per_sample"]), int(p["position_stride"]), float(p["wet_tolerance"]),
+        int(bool(series)), npos)
+    (mu, hyd, wet, resid, mwh, comp, ncl, nbe, vis, bea, position, mu_inst, hload, pen, ce,
+     n_el, n_pos, n_spin, effects, status, message) = out
+    _check(status, message)
+    coords = {"speed": ("speed", speeds / 3.6, {"units": "m s-1",
+                                                "long_name": "sliding speed of the pad"}),
+              "speed_kmh": ("speed", speeds, {"units": "km h-1",
+                                              "long_name": "sliding speed of the pad"})}
+    data = {
+        "mu": ("speed", mu.copy()),
+        "n_clamped": ("speed", ncl.copy()),
+        "hydroplaning_fraction": ("speed", hyd.copy()),
+        "wet_fraction": ("speed", wet.copy()),
+        "max_balance_residual": ("speed", resid.copy()),
+        "mean_hydro_load": ("speed", mwh.copy()),
+        "max_compression": ("speed", comp.copy()),
+        "bearing_evaluations": ("speed", nbe.copy()),
+        "viscous_memory_ran": ("speed", vis.astype(np.int8)),
+        "bearing_ran": ("speed", bea.astype(np.int8)),
+    }
+    if series:
+        coords["position"] = ("position", position.copy(), {"units": "m"})
+        for name, arr in (("mu_inst", mu_inst), ("hydro_load", hload), ("penetration", pen),
+                          ("contact_elements", ce)):
+            data[name] = (("speed", "position"), np.ascontiguousarray(arr.T))
+    attrs = {
+        "effects": _text(effects),
+        "pavefric_version": _core_defaults()["version"],
+        "pad_elements": int(n_el),
+        "averaged_positions": int(n_pos),
+        "spinup_positions": int(n_spin),
+        "profile_points": int(z.size),
+        "profile_dx": float(dx),
+        "profile_closed": int(bool(closed)),
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def run(path: str | os.PathLike, output: str | os.PathLike | None = None) -> Path:
+    """Run the scene namelist at ``path`` as the program does; return the output path."""
+    command = "pavefric.run(" + shlex.quote(str(path)) + (
+        f", output={shlex.quote(str(output))})" if output else ")")
+    if Path(sys.argv[0]).name == "__main__.py":
+        command = "python -m pavefric " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    out_path, status, message = _core.pf_run_scene(str(path), str(output or ""), command)
+    _check(status, message)
+    return Path(_text(out_path))
+
+
+def open_dataset(path: str | os.PathLike):
+    """Read a pavefric NetCDF output into memory as an ``xarray.Dataset``."""
+    import xarray as xr
+
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
+
+
+@dataclass
+class Profile:
+    """A profile as the core reads it: heights (m), spacing (m) if the file had
+    distances (else None), and the file it came from."""
+
+    heights: np.ndarray
+    dx: float | None
+    path: str
+
+
+def read_profile(path: str | os.PathLike, height_unit: str = "mm") -> Profile:
+    """Read a plain-text profile (one column of heights, or distance and height)
+    with the core's reader; heights are returned in metres."""
+    np_, dx, has_x, status, message = _core.pf_profile_info(str(path), height_unit)
+    _check(status, message)
+    z, status, message = _core.pf_read_profile(str(path), height_unit, int(np_))
+    _check(status, message)
+    return Profile(heights=z.copy(), dx=float(dx) if has_x else None, path=str(path))

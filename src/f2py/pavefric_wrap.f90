@@ -1,0 +1,218 @@
+!> The f2py boundary: plain subroutines with explicit-shape C-typed arrays,
+!> explicit sizes, a status and a message. No derived types, allocatables or
+!> module state cross it; nothing here can stop the Python process.
+!> (real(c_double), not real(wp): f2py maps kind parameters it does not know
+!> to C float and returns wrong numbers in silence.)
+
+!> Default parameters of the model, as the namelist has them.
+subroutine pf_defaults(mu_loc, length, width, thickness, load, radius, stiffness, viscosity, &
+      & depth, water_viscosity, alpha, beta, theta_max_deg, substeps, elements_per_sample, &
+      & position_stride, wet_tolerance, ctm_dx_out, version)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_model, only: model_type
+   use pavefric_run, only: ctm_dx
+   use pavefric_kinds, only: pavefric_version
+   implicit none
+   real(c_double), intent(out) :: mu_loc, length, width, thickness, load, radius, stiffness
+   real(c_double), intent(out) :: viscosity, depth, water_viscosity, alpha, beta, theta_max_deg
+   real(c_double), intent(out) :: wet_tolerance, ctm_dx_out
+   integer(c_int), intent(out) :: substeps, elements_per_sample, position_stride
+   character(len=32), intent(out) :: version
+   type(model_type) :: m
+   mu_loc = m%mu_loc; length = m%length; width = m%width; thickness = m%thickness
+   load = m%load; radius = m%radius; stiffness = m%stiffness; viscosity = m%viscosity
+   depth = m%depth; water_viscosity = m%water_viscosity; alpha = m%alpha; beta = m%beta
+   theta_max_deg = m%theta_max_deg; substeps = m%substeps
+   elements_per_sample = m%elements_per_sample; position_stride = m%position_stride
+   wet_tolerance = m%wet_tolerance; ctm_dx_out = ctm_dx
+   version = pavefric_version
+end subroutine pf_defaults
+
+!> Pad elements and averaged positions of a scene (to size the series).
+subroutine pf_layout(np, dx, closed, length, elements_per_sample, substeps, position_stride, &
+      & n_elements, n_positions)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_model, only: model_type
+   use pavefric_simulate, only: pad_elements, averaged_positions
+   implicit none
+   integer(c_int), intent(in) :: np, closed, elements_per_sample, substeps, position_stride
+   real(c_double), intent(in) :: dx, length
+   integer(c_int), intent(out) :: n_elements, n_positions
+   type(model_type) :: m
+   m%length = length
+   m%elements_per_sample = max(1, elements_per_sample)
+   m%substeps = max(1, substeps)
+   m%position_stride = max(1, position_stride)
+   n_elements = 0
+   n_positions = 0
+   if (.not. (dx > 0.0_c_double) .or. .not. (length > 0.0_c_double)) return
+   if (length / dx * m%elements_per_sample > 2.0e9_c_double) return
+   n_elements = pad_elements(m, dx)
+   n_positions = averaged_positions(m, np, dx, closed /= 0)
+end subroutine pf_layout
+
+!> Run the model on heights z (m); see pavefric.simulate for the arguments.
+subroutine pf_simulate(np, z, dx, closed, ns, speeds_kmh, mu_loc, length, width, thickness, &
+      & load, pad_shape, radius, stiffness, viscosity, depth, water_viscosity, alpha, beta, &
+      & theta_max_deg, substeps, elements_per_sample, position_stride, wet_tolerance, &
+      & want_series, npos, mu, hydroplaning_fraction, wet_fraction, max_balance_residual, &
+      & mean_hydro_load, max_compression, n_clamped, bearing_evaluations, viscous_memory_ran, &
+      & bearing_ran, position, mu_inst, hydro_load, penetration, contact_elements, n_elements, &
+      & n_positions, n_spinup, effects, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int, c_int64_t
+   use pavefric_model, only: model_type
+   use pavefric_simulate, only: sim_result_type, simulate, effects_text
+   use pavefric_error, only: error_type
+   implicit none
+   integer(c_int), intent(in) :: np, ns, closed, substeps, elements_per_sample, position_stride
+   integer(c_int), intent(in) :: want_series, npos
+   real(c_double), intent(in) :: z(np), dx, speeds_kmh(ns), mu_loc, length, width, thickness
+   real(c_double), intent(in) :: load, radius, stiffness, viscosity, depth, water_viscosity
+   real(c_double), intent(in) :: alpha, beta, theta_max_deg, wet_tolerance
+   character(len=*), intent(in) :: pad_shape
+   real(c_double), intent(out) :: mu(ns), hydroplaning_fraction(ns), wet_fraction(ns)
+   real(c_double), intent(out) :: max_balance_residual(ns), mean_hydro_load(ns)
+   real(c_double), intent(out) :: max_compression(ns)
+   integer(c_int64_t), intent(out) :: n_clamped(ns), bearing_evaluations(ns)
+   integer(c_int), intent(out) :: viscous_memory_ran(ns), bearing_ran(ns)
+   real(c_double), intent(out) :: position(npos), mu_inst(npos, ns), hydro_load(npos, ns)
+   real(c_double), intent(out) :: penetration(npos, ns)
+   integer(c_int), intent(out) :: contact_elements(npos, ns)
+   integer(c_int), intent(out) :: n_elements, n_positions, n_spinup, status
+   character(len=256), intent(out) :: effects
+   character(len=2048), intent(out) :: message
+   type(model_type) :: m
+   type(sim_result_type) :: res
+   type(error_type), allocatable :: error
+
+   status = 0
+   message = ""
+   effects = ""
+   mu = 0; hydroplaning_fraction = 0; wet_fraction = 0; max_balance_residual = 0
+   mean_hydro_load = 0; max_compression = 0; n_clamped = 0; bearing_evaluations = 0
+   viscous_memory_ran = 0; bearing_ran = 0; position = 0; mu_inst = 0; hydro_load = 0
+   penetration = 0; contact_elements = 0; n_elements = 0; n_positions = 0; n_spinup = 0
+   m%mu_loc = mu_loc; m%length = length; m%width = width; m%thickness = thickness
+   m%load = load; m%shape = pad_shape; m%radius = radius; m%stiffness = stiffness
+   m%viscosity = viscosity; m%depth = depth; m%water_viscosity = water_viscosity
+   m%alpha = alpha; m%beta = beta; m%theta_max_deg = theta_max_deg; m%substeps = substeps
+   m%elements_per_sample = elements_per_sample; m%position_stride = position_stride
+   m%wet_tolerance = wet_tolerance
+
+   call simulate(m, z, dx, closed /= 0, speeds_kmh, want_series /= 0, res, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   if (want_series /= 0 .and. npos /= res%n_positions) then
+      status = 2
+      message = "internal: series sized for a different number of positions"
+      return
+   end if
+   mu = res%mu
+   hydroplaning_fraction = res%hydroplaning_fraction
+   wet_fraction = res%wet_fraction
+   max_balance_residual = res%max_balance_residual
+   mean_hydro_load = res%mean_hydro_load
+   max_compression = res%max_compression
+   n_clamped = res%n_clamped
+   bearing_evaluations = res%bearing_evaluations
+   viscous_memory_ran = merge(1, 0, res%viscous_memory_ran)
+   bearing_ran = merge(1, 0, res%bearing_ran)
+   n_elements = res%n_elements
+   n_positions = res%n_positions
+   n_spinup = res%n_spinup
+   effects = effects_text(res)
+   if (want_series /= 0) then
+      position = res%position
+      mu_inst = res%mu_inst
+      hydro_load = res%hydro_load
+      penetration = res%penetration
+      contact_elements = res%contact_elements
+   end if
+end subroutine pf_simulate
+
+!> Run a scene file and write its NetCDF output, as the program does.
+subroutine pf_run_scene(path, output, command, out_path, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_run, only: run_scene
+   use pavefric_simulate, only: sim_result_type
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, output, command
+   character(len=4096), intent(out) :: out_path
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(sim_result_type) :: res
+   type(error_type), allocatable :: error
+   character(len=:), allocatable :: written
+   status = 0
+   message = ""
+   out_path = ""
+   call run_scene(path, output, command, written, res, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   out_path = written
+end subroutine pf_run_scene
+
+!> Number of points and spacing of a plain-text profile (first pass).
+subroutine pf_profile_info(path, height_unit, np, dx, has_x, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_profile, only: profile_type, read_profile_text, unit_factor
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, height_unit
+   integer(c_int), intent(out) :: np, has_x, status
+   real(c_double), intent(out) :: dx
+   character(len=2048), intent(out) :: message
+   type(profile_type) :: prof
+   type(error_type), allocatable :: error
+   np = 0; dx = 0; has_x = 0; status = 0; message = ""
+   if (unit_factor(height_unit) <= 0) then
+      status = 1
+      message = "&surface height_unit = '" // trim(height_unit) // "': unknown (expected 'mm', " // &
+         & "'um' or 'm')"
+      return
+   end if
+   call read_profile_text(path, unit_factor(height_unit), prof, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   np = size(prof%z)
+   dx = prof%dx
+   has_x = merge(1, 0, prof%has_x)
+end subroutine pf_profile_info
+
+!> Heights (m) of a plain-text profile of np points (second pass).
+subroutine pf_read_profile(path, height_unit, np, z, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_profile, only: profile_type, read_profile_text, unit_factor
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, height_unit
+   integer(c_int), intent(in) :: np
+   real(c_double), intent(out) :: z(np)
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(profile_type) :: prof
+   type(error_type), allocatable :: error
+   z = 0; status = 0; message = ""
+   call read_profile_text(path, unit_factor(height_unit), prof, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   if (size(prof%z) /= np) then
+      status = 2
+      message = "'" // trim(path) // "' changed while it was read"
+      return
+   end if
+   z = prof%z
+end subroutine pf_read_profile

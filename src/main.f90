@@ -1,0 +1,94 @@
+!> The pavefric program: `pavefric SCENE.nml [-o OUT.nc]`. No Python needed.
+program pavefric_main
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use pavefric, only: pavefric_version, error_type, sim_result_type, run_scene, effects_text
+   implicit none
+   type(sim_result_type) :: res
+   type(error_type), allocatable :: error
+   character(len=:), allocatable :: scene_path, out_override, out_path, arg, command
+   integer :: i, nargs, j
+
+   nargs = command_argument_count()
+   scene_path = ""
+   out_override = ""
+   command = "pavefric"
+   i = 1
+   do while (i <= nargs)
+      call get_arg(i, arg)
+      command = command // " " // arg
+      select case (arg)
+      case ("-h", "--help")
+         call usage(output_unit)
+         stop
+      case ("-V", "--version")
+         write(output_unit, '(a)') "pavefric " // pavefric_version
+         stop
+      case ("-o", "--output")
+         if (i == nargs) call fail("option " // arg // " needs a file name")
+         i = i + 1
+         call get_arg(i, out_override)
+         command = command // " " // out_override
+      case default
+         if (arg(1:1) == "-" .and. len(arg) > 1) call fail("unknown option '" // arg // &
+            & "' (see pavefric --help)")
+         if (len(scene_path) > 0) call fail("more than one scene file given ('" // scene_path // &
+            & "', '" // arg // "')")
+         scene_path = arg
+      end select
+      i = i + 1
+   end do
+   if (len(scene_path) == 0) then
+      call usage(error_unit)
+      error stop 2
+   end if
+
+   call run_scene(scene_path, out_override, command, out_path, res, error)
+   if (allocated(error)) call fail(error%message)
+
+   write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
+      & out_path
+   write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &
+      & ", averaged positions: ", res%n_positions, ", effects: " // effects_text(res)
+   write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
+   do j = 1, size(res%mu)
+      write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
+         & res%wet_fraction(j), res%hydroplaning_fraction(j)
+   end do
+
+contains
+
+   subroutine get_arg(k, value)
+      integer, intent(in) :: k
+      character(len=:), allocatable, intent(out) :: value
+      integer :: n
+      call get_command_argument(k, length=n)
+      allocate(character(len=n) :: value)
+      call get_command_argument(k, value)
+   end subroutine get_arg
+
+   subroutine fail(message)
+      character(len=*), intent(in) :: message
+      write(error_unit, '(a)') "pavefric: error: " // message
+      error stop 1
+   end subroutine fail
+
+   subroutine usage(unit)
+      integer, intent(in) :: unit
+      write(unit, '(a)') &
+         & "usage: pavefric SCENE.nml [-o OUT.nc]", &
+         & "", &
+         & "Predict tyre-rubber/pavement friction (Kane et al. 2017) from a texture", &
+         & "profile, dry and wet, at the speeds of the scene's &operation speeds_kmh.", &
+         & "", &
+         & "  SCENE.nml          scene namelist (groups &surface &pad &rubber &water", &
+         & "                     &operation &numerics &output; see docs/inputs.md)", &
+         & "  -o, --output FILE  NetCDF output (default: &output file, else", &
+         & "                     outputs/<scene name>.nc)", &
+         & "  -h, --help         this help", &
+         & "  -V, --version      the version", &
+         & "", &
+         & "Exit status: 0 on success, 1 on bad input or a failed run (one line on", &
+         & "stderr names the group, variable and value), 2 on bad usage."
+   end subroutine usage
+
+end program pavefric_main

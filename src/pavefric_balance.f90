@@ -1,0 +1,177 @@
+!> The pad's load balance, sum_i F_i(delta) + Wh(delta) = W (Eq. 9 with the
+!> hydrodynamic block of Fig. 4).
+!>
+!> Work is done in shifted coordinates: d_i = c_i - min(c) >= 0 (so min d = 0
+!> exactly) and x = delta - min(c). Element i pushes with F_i = kel max(0, x - d_i),
+!> kel = l dx_el K_eff. The unknown is x; rounding is then relative to the
+!> penetration beyond the first contact, not to the profile's absolute height.
+module pavefric_balance
+   use pavefric_kinds, only: wp
+   use pavefric_bearing, only: hydro_load
+   implicit none
+   private
+
+   public :: dry_root, mean_gap, wet_root, wet_state_type
+
+   !> Newton-from-above iterations before the exact sort-and-scan fallback.
+   integer, parameter :: max_newton_dry = 24
+   !> Safeguarded-Newton iterations of the wet root (bisection bounds it to
+   !> about 60 on a double bracket; this is a last resort).
+   integer, parameter :: max_iter_wet = 200
+
+   !> The wet root's extra outputs.
+   type :: wet_state_type
+      !> Load carried by the bearing at the root (N).
+      real(wp) :: hydro_load = 0.0_wp
+      !> Bearing evaluations spent.
+      integer :: evaluations = 0
+   end type wet_state_type
+
+   interface
+      !> LAPACK's sort (increasing with id = 'I'); it has no side effects.
+      pure subroutine dlasrt(id, n, d, info)
+         import :: wp
+         character, intent(in) :: id
+         integer, intent(in) :: n
+         real(wp), intent(inout) :: d(*)
+         integer, intent(out) :: info
+      end subroutine dlasrt
+   end interface
+
+contains
+
+   !> Exact root of sum_i max(0, x - d_i) = s (s = W / kel > 0, min d = 0):
+   !> the "water-filling" level. Newton's method started above the root on
+   !> this convex piecewise-linear function is monotone and stops exactly
+   !> once its active set no longer shrinks: x = (s + sum_active d) / m, the
+   !> closed form on the final linear piece. No iteration tolerance is
+   !> involved. A pathological spread that needs many steps falls back to
+   !> the same closed form found by sorting (LAPACK dlasrt).
+   pure subroutine dry_root(d, s, x, work)
+      real(wp), intent(in) :: d(:), s
+      real(wp), intent(out) :: x
+      !> Workspace of size(d), only touched by the fallback.
+      real(wp), intent(inout) :: work(:)
+      real(wp) :: sum_active, x_new
+      integer :: m, m_new, i, it, n
+      n = size(d)
+      x = s                    ! root <= s, because min d = 0
+      m = n + 1
+      do it = 1, max_newton_dry
+         sum_active = 0.0_wp
+         m_new = 0
+         do i = 1, n
+            if (d(i) < x) then
+               sum_active = sum_active + d(i)
+               m_new = m_new + 1
+            end if
+         end do
+         if (m_new >= m) return          ! active set fixed: x is the root
+         x_new = (s + sum_active) / real(m_new, wp)
+         m = m_new
+         if (x_new >= x) return          ! rounding floor reached
+         x = x_new
+      end do
+      call sorted_root(d, s, x, work)
+   end subroutine dry_root
+
+   !> The same root by sorting d and scanning the pieces.
+   pure subroutine sorted_root(d, s, x, work)
+      real(wp), intent(in) :: d(:), s
+      real(wp), intent(out) :: x
+      real(wp), intent(inout) :: work(:)
+      real(wp) :: partial
+      integer :: m, n, info
+      n = size(d)
+      work(1:n) = d
+      call dlasrt('I', n, work, info)
+      partial = 0.0_wp
+      do m = 1, n
+         partial = partial + work(m)
+         x = (s + partial) / real(m, wp)
+         if (m == n) exit
+         if (x <= work(m+1)) exit
+      end do
+   end subroutine sorted_root
+
+   !> Mean gap under the pad, (1/N) sum max(0, d_i - x): the water volume per
+   !> unit width trapped under the deformed pad divided by its length.
+   pure function mean_gap(d, x) result(h_m)
+      real(wp), intent(in) :: d(:), x
+      real(wp) :: h_m
+      integer :: i
+      h_m = 0.0_wp
+      do i = 1, size(d)
+         h_m = h_m + max(0.0_wp, d(i) - x)
+      end do
+      h_m = h_m / real(size(d), wp)
+   end function mean_gap
+
+   !> Root of f(x) = kel sum max(0, x - d_i) + Wh(h_m(x)) - W on [lo, x_dry],
+   !> where f(lo) = -W (no contact, film thicker than Hin: Wh = 0) and
+   !> f(x_dry) = Wh >= 0. Both terms are non-decreasing in x, so the root is
+   !> unique. Newton with the analytic derivative, safeguarded by bisection
+   !> whenever a step leaves the bracket or does not halve |f|.
+   pure subroutine wet_root(d, kel, load, prefactor, h_in, x_dry, tol, x, state)
+      real(wp), intent(in) :: d(:), kel, load, prefactor, h_in, x_dry, tol
+      real(wp), intent(out) :: x
+      type(wet_state_type), intent(out) :: state
+      real(wp) :: lo, hi, f, df, f_old, x_new, wh
+      logical :: use_newton
+      integer :: it
+      lo = min(0.0_wp, sum(d) / real(size(d), wp) - h_in)
+      hi = x_dry
+      x = hi
+      call evaluate(x, f, df, wh)
+      state%evaluations = state%evaluations + 1
+      f_old = huge(1.0_wp)
+      do it = 1, max_iter_wet
+         if (abs(f) <= tol * load) exit
+         if (f > 0.0_wp) then
+            hi = x
+         else
+            lo = x
+         end if
+         if (hi - lo <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo), abs(hi))) exit
+         ! Newton if its step stays inside the bracket and the last one at
+         ! least halved |f|; bisection otherwise.
+         use_newton = df > 0.0_wp .and. df < huge(1.0_wp) .and. abs(f) <= 0.5_wp * f_old
+         if (use_newton) then
+            x_new = x - f / df
+            use_newton = x_new > lo .and. x_new < hi
+         end if
+         if (.not. use_newton) x_new = 0.5_wp * (lo + hi)
+         f_old = abs(f)
+         x = x_new
+         call evaluate(x, f, df, wh)
+         state%evaluations = state%evaluations + 1
+      end do
+      state%hydro_load = wh
+   contains
+      pure subroutine evaluate(xe, fe, dfe, whe)
+         real(wp), intent(in) :: xe
+         real(wp), intent(out) :: fe, dfe, whe
+         real(wp) :: pushed, gap, dwh
+         integer :: i, n_contact, n_gap
+         pushed = 0.0_wp
+         gap = 0.0_wp
+         n_contact = 0
+         n_gap = 0
+         do i = 1, size(d)
+            if (d(i) < xe) then
+               pushed = pushed + (xe - d(i))
+               n_contact = n_contact + 1
+            else if (d(i) > xe) then
+               gap = gap + (d(i) - xe)
+               n_gap = n_gap + 1
+            end if
+         end do
+         gap = gap / real(size(d), wp)
+         call hydro_load(prefactor, h_in, gap, whe, dwh)
+         fe = kel * pushed + whe - load
+         ! dh_m/dx = -n_gap/N
+         dfe = kel * real(n_contact, wp) - dwh * real(n_gap, wp) / real(size(d), wp)
+      end subroutine evaluate
+   end subroutine wet_root
+
+end module pavefric_balance

@@ -1,0 +1,83 @@
+!> The hydrodynamic pseudo-bearing of Kane et al. (2017), Eqs. 13-15.
+!>
+!> Wh = alpha 6 eta V**beta l L**2 / Hout**2 * B(a),  a = Hin/Hout,
+!> B(a) = [ln a - 2(a-1)/(a+1)] / (a-1)**2.
+!> Written as Wh = P / Hin**2 * g(a) with g(a) = a**2 B(a), which stays finite
+!> as Hout -> 0 for as long as a does, and expanded in e = a - 1 near a = 1,
+!> where the bracket cancels catastrophically.
+module pavefric_bearing
+   use pavefric_kinds, only: wp
+   implicit none
+   private
+
+   public :: bearing_prefactor, hydro_load, bracket_over_e2, series_threshold
+
+   !> Below this e = a - 1 the series is used (closed-form relative error
+   !> there is about 12 eps / e**2 = 4e-14; the series' truncation is < 1e-18).
+   real(wp), parameter :: series_threshold = 0.25_wp
+   integer, parameter :: n_terms = 32
+   integer :: n_
+   !> Coefficients of B(e) = sum_{n>=3} c_n e**(n-2), c_n = (-1)**(n+1) (1/n - 2**(1-n)).
+   real(wp), parameter :: coef(3:n_terms+2) = [( real((-1)**(n_+1), wp) &
+      & * (1.0_wp/real(n_, wp) - 2.0_wp**(1-n_)), n_ = 3, n_terms+2 )]
+
+contains
+
+   !> P = alpha 6 eta V**beta l L**2 (Eq. 15's prefactor), SI units.
+   pure function bearing_prefactor(alpha, beta, eta, speed, width, length) result(p)
+      real(wp), intent(in) :: alpha, beta, eta, speed, width, length
+      real(wp) :: p
+      p = alpha * 6.0_wp * eta * speed**beta * width * length**2
+   end function bearing_prefactor
+
+   !> B(a) = [ln a - 2(a-1)/(a+1)]/(a-1)**2 and dB/da, given e = a - 1 >= 0.
+   pure subroutine bracket_over_e2(e, b, db)
+      real(wp), intent(in) :: e
+      real(wp), intent(out) :: b, db
+      real(wp) :: a, p
+      integer :: n
+      if (e < series_threshold) then
+         ! Horner on the series and its derivative.
+         b = coef(n_terms+2)
+         db = real(n_terms, wp) * coef(n_terms+2)
+         do n = n_terms+1, 3, -1
+            b = b * e + coef(n)
+            if (n >= 4) db = db * e + real(n-2, wp) * coef(n)
+         end do
+      else
+         a = 1.0_wp + e
+         p = log(a) - 2.0_wp * e / (a + 1.0_wp)
+         b = p / e**2
+         db = 1.0_wp / (a * (a + 1.0_wp)**2) - 2.0_wp * p / e**3
+      end if
+   end subroutine bracket_over_e2
+
+   !> Load carried by the film (Eq. 15) and its derivative with respect to
+   !> the outlet film h_out. Zero when h_out >= h_in (no wedge); the largest
+   !> finite real when h_out is 0 or so small that a overflows (a film cannot
+   !> be squeezed to zero thickness).
+   pure subroutine hydro_load(prefactor, h_in, h_out, wh, dwh_dhout)
+      real(wp), intent(in) :: prefactor, h_in, h_out
+      real(wp), intent(out) :: wh, dwh_dhout
+      real(wp) :: e, a, b, db, g, dg
+      if (h_out >= h_in) then
+         wh = 0.0_wp
+         dwh_dhout = 0.0_wp
+         return
+      end if
+      if (h_out <= h_in * 1.0e-250_wp) then
+         wh = huge(1.0_wp)
+         dwh_dhout = -huge(1.0_wp)
+         return
+      end if
+      e = (h_in - h_out) / h_out          ! = a - 1, without the rounding of a
+      a = 1.0_wp + e
+      call bracket_over_e2(e, b, db)
+      g = a * a * b                       ! g(a) = a**2 B(a)
+      dg = 2.0_wp * a * b + a * a * db
+      wh = prefactor / h_in**2 * g
+      ! da/dHout = -a**2/Hin
+      dwh_dhout = -prefactor / h_in**3 * dg * a * a
+   end subroutine hydro_load
+
+end module pavefric_bearing

@@ -1,0 +1,51 @@
+!> Facet angles of the profile and the local friction on them (Eqs. 5, 6, 10).
+module pavefric_facet
+   use pavefric_kinds, only: wp, pi
+   implicit none
+   private
+
+   public :: facet_friction
+
+contains
+
+   !> For each sample k: tan(theta_k), theta_k = alpha_k + atan(mu_loc), with
+   !> alpha_k = atan((z(k+1) - z(k-1)) / (2 dx)) (central difference; wraps on a
+   !> closed profile, one-sided at the ends of an open one), theta clamped to
+   !> [-theta_max, theta_max]; `clamped(k)` says whether the clamp acted.
+   !> FF = F tan(theta) equals F (sin a + mu cos a)/(cos a - mu sin a) (Eq. 10).
+   pure subroutine facet_friction(z, dx, closed, mu_loc, theta_max_deg, tan_theta, clamped)
+      real(wp), intent(in) :: z(:), dx, mu_loc, theta_max_deg
+      logical, intent(in) :: closed
+      real(wp), intent(out) :: tan_theta(:)
+      logical, intent(out) :: clamped(:)
+      real(wp) :: slope, theta, theta_max, phi
+      integer :: k, n
+      n = size(z)
+      theta_max = theta_max_deg * pi / 180.0_wp
+      phi = atan(mu_loc)
+      do k = 1, n
+         if (n == 1) then
+            slope = 0.0_wp
+         else if (k == 1) then
+            if (closed) then
+               slope = (z(2) - z(n)) / (2.0_wp * dx)
+            else
+               slope = (z(2) - z(1)) / dx
+            end if
+         else if (k == n) then
+            if (closed) then
+               slope = (z(1) - z(n-1)) / (2.0_wp * dx)
+            else
+               slope = (z(n) - z(n-1)) / dx
+            end if
+         else
+            slope = (z(k+1) - z(k-1)) / (2.0_wp * dx)
+         end if
+         theta = atan(slope) + phi
+         clamped(k) = abs(theta) > theta_max
+         theta = max(-theta_max, min(theta_max, theta))
+         tan_theta(k) = tan(theta)
+      end do
+   end subroutine facet_friction
+
+end module pavefric_facet

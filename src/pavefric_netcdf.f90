@@ -1,0 +1,199 @@
+!> NetCDF-4 output of a scene's results, with CF-1.10 metadata. Every
+!> netCDF call goes through `check`, which adds context to nf90_strerror.
+!> The file is written under a temporary name and renamed on success, so a
+!> failed run leaves no half-written output.
+module pavefric_netcdf
+   use netcdf
+   use pavefric_kinds, only: wp, pavefric_version
+   use pavefric_error, only: error_type, fatal_error
+   use pavefric_simulate, only: sim_result_type, effects_text
+   use pavefric_fsys, only: rename_file, remove_file, process_id
+   use pavefric_format, only: to_str
+   implicit none
+   private
+
+   public :: write_results, output_metadata_type, temporary_name
+
+   !> Text that describes where the results came from.
+   type :: output_metadata_type
+      character(len=:), allocatable :: title, history, input_namelist, profile_file
+      real(wp) :: dx = 0.0_wp
+      integer :: profile_points = 0
+      logical :: closed = .true.
+   end type output_metadata_type
+
+contains
+
+   !> The temporary name a final path is first written under.
+   function temporary_name(path) result(tmp)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: tmp
+      tmp = path // ".tmp" // to_str(process_id())
+   end function temporary_name
+
+   !> Write `res` to `path` (NetCDF-4), via a temporary file and a rename.
+   subroutine write_results(path, res, meta, error)
+      character(len=*), intent(in) :: path
+      type(sim_result_type), intent(in) :: res
+      type(output_metadata_type), intent(in) :: meta
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: tmp
+      logical :: ok
+      tmp = temporary_name(path)
+      call write_file(tmp, res, meta, error)
+      if (allocated(error)) then
+         ok = remove_file(tmp)
+         return
+      end if
+      if (.not. rename_file(tmp, path)) then
+         ok = remove_file(tmp)
+         call fatal_error(error, "&output file = '" // path // "': cannot rename the finished " // &
+            & "temporary file onto it")
+      end if
+   end subroutine write_results
+
+   subroutine write_file(path, res, meta, error)
+      character(len=*), intent(in) :: path
+      type(sim_result_type), intent(in) :: res
+      type(output_metadata_type), intent(in) :: meta
+      type(error_type), allocatable, intent(out) :: error
+      integer :: ncid, d_speed, d_pos, stat
+      integer :: v_speed, v_kmh, v_mu, v_ncl, v_hyd, v_wet, v_res, v_mwh, v_comp, v_nbe
+      integer :: v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce
+      logical :: series
+
+      series = allocated(res%mu_inst)
+      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), ncid)
+      if (stat /= nf90_noerr) then
+         call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
+            & trim(nf90_strerror(stat)) // ")")
+         return
+      end if
+
+      call check(nf90_def_dim(ncid, "speed", size(res%speed), d_speed), "dimension speed")
+      if (allocated(error)) goto 99
+      call def(ncid, "speed", nf90_double, [d_speed], "m s-1", "sliding speed of the pad", v_speed)
+      if (allocated(error)) goto 99
+      call check(nf90_put_att(ncid, v_speed, "axis", "X"), "speed axis")
+      call def(ncid, "speed_kmh", nf90_double, [d_speed], "km h-1", "sliding speed of the pad", &
+         & v_kmh)
+      call def(ncid, "mu", nf90_double, [d_speed], "1", &
+         & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
+      call def(ncid, "n_clamped", nf90_int64, [d_speed], "1", &
+         & "contacts on facets clamped at theta_max, summed over averaged positions", v_ncl)
+      call def(ncid, "hydroplaning_fraction", nf90_double, [d_speed], "1", &
+         & "share of averaged positions where no element touched the profile", v_hyd)
+      call def(ncid, "wet_fraction", nf90_double, [d_speed], "1", &
+         & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
+      call def(ncid, "max_balance_residual", nf90_double, [d_speed], "1", &
+         & "largest |sum F + Wh - W| / W over averaged positions", v_res)
+      call def(ncid, "mean_hydro_load", nf90_double, [d_speed], "N", &
+         & "load carried by the hydrodynamic bearing, averaged over positions", v_mwh)
+      call def(ncid, "max_compression", nf90_double, [d_speed], "m", &
+         & "largest compression of a rubber element (compare with the pad thickness)", v_comp)
+      call def(ncid, "bearing_evaluations", nf90_int64, [d_speed], "1", &
+         & "evaluations of the bearing load formula (0: the bearing did not run)", v_nbe)
+      call def(ncid, "viscous_memory_ran", nf90_byte, [d_speed], "", &
+         & "whether the rubber elements carried viscous memory", v_vis)
+      call def(ncid, "bearing_ran", nf90_byte, [d_speed], "", &
+         & "whether the hydrodynamic bearing took part in the load balance", v_bea)
+      if (allocated(error)) goto 99
+      call flags(v_vis)
+      call flags(v_bea)
+      if (series) then
+         call check(nf90_def_dim(ncid, "position", res%n_positions, d_pos), "dimension position")
+         call def(ncid, "position", nf90_double, [d_pos], "m", &
+            & "distance slid from the first averaged position", v_pos)
+         call def(ncid, "mu_inst", nf90_double, [d_pos, d_speed], "1", &
+            & "instantaneous friction coefficient (Kane et al. 2017, Eq. 11)", v_mui)
+         call def(ncid, "hydro_load", nf90_double, [d_pos, d_speed], "N", &
+            & "load carried by the hydrodynamic bearing (Eq. 15)", v_hl)
+         call def(ncid, "penetration", nf90_double, [d_pos, d_speed], "m", &
+            & "global penetration delta of the pad (Eq. 4)", v_pen)
+         call def(ncid, "contact_elements", nf90_int, [d_pos, d_speed], "1", &
+            & "pad elements in contact with the profile", v_ce)
+      end if
+      if (allocated(error)) goto 99
+
+      call gatt("Conventions", "CF-1.10")
+      call gatt("title", meta%title)
+      call gatt("source", "pavefric " // pavefric_version)
+      call gatt("pavefric_version", pavefric_version)
+      call gatt("references", "Kane, Do, Cerezo, Rado & Khelifi (2017), Contribution to " // &
+         & "pavement friction modelling: an introduction of the wetting effect, " // &
+         & "Int. J. Pavement Eng., doi:10.1080/10298436.2017.1369776")
+      call gatt("history", meta%history)
+      call gatt("effects", effects_text(res))
+      call gatt("profile_file", meta%profile_file)
+      call gatt("input_namelist", meta%input_namelist)
+      call check(nf90_put_att(ncid, nf90_global, "profile_points", meta%profile_points), "att")
+      call check(nf90_put_att(ncid, nf90_global, "profile_dx", meta%dx), "att")
+      call check(nf90_put_att(ncid, nf90_global, "profile_closed", merge(1, 0, meta%closed)), &
+         & "att")
+      call check(nf90_put_att(ncid, nf90_global, "pad_elements", res%n_elements), "att")
+      call check(nf90_put_att(ncid, nf90_global, "averaged_positions", res%n_positions), "att")
+      call check(nf90_put_att(ncid, nf90_global, "spinup_positions", res%n_spinup), "att")
+      if (allocated(error)) goto 99
+      call check(nf90_enddef(ncid), "end of definitions")
+      if (allocated(error)) goto 99
+
+      call check(nf90_put_var(ncid, v_speed, res%speed), "speed")
+      call check(nf90_put_var(ncid, v_kmh, res%speed_kmh), "speed_kmh")
+      call check(nf90_put_var(ncid, v_mu, res%mu), "mu")
+      call check(nf90_put_var(ncid, v_ncl, res%n_clamped), "n_clamped")
+      call check(nf90_put_var(ncid, v_hyd, res%hydroplaning_fraction), "hydroplaning_fraction")
+      call check(nf90_put_var(ncid, v_wet, res%wet_fraction), "wet_fraction")
+      call check(nf90_put_var(ncid, v_res, res%max_balance_residual), "max_balance_residual")
+      call check(nf90_put_var(ncid, v_mwh, res%mean_hydro_load), "mean_hydro_load")
+      call check(nf90_put_var(ncid, v_comp, res%max_compression), "max_compression")
+      call check(nf90_put_var(ncid, v_nbe, res%bearing_evaluations), "bearing_evaluations")
+      call check(nf90_put_var(ncid, v_vis, merge(1, 0, res%viscous_memory_ran)), "flags")
+      call check(nf90_put_var(ncid, v_bea, merge(1, 0, res%bearing_ran)), "flags")
+      if (series) then
+         call check(nf90_put_var(ncid, v_pos, res%position), "position")
+         call check(nf90_put_var(ncid, v_mui, res%mu_inst), "mu_inst")
+         call check(nf90_put_var(ncid, v_hl, res%hydro_load), "hydro_load")
+         call check(nf90_put_var(ncid, v_pen, res%penetration), "penetration")
+         call check(nf90_put_var(ncid, v_ce, res%contact_elements), "contact_elements")
+      end if
+99    continue
+      stat = nf90_close(ncid)
+      if (.not. allocated(error) .and. stat /= nf90_noerr) &
+         & call fatal_error(error, "&output file: closing '" // path // "' failed (" // &
+         & trim(nf90_strerror(stat)) // ")")
+
+   contains
+
+      subroutine check(status, what)
+         integer, intent(in) :: status
+         character(len=*), intent(in) :: what
+         if (allocated(error)) return
+         if (status /= nf90_noerr) call fatal_error(error, "&output file: writing " // what // &
+            & " to '" // path // "' failed (" // trim(nf90_strerror(status)) // ")")
+      end subroutine check
+
+      subroutine def(nc, name, xtype, dims, units, long_name, varid)
+         integer, intent(in) :: nc, xtype, dims(:)
+         character(len=*), intent(in) :: name, units, long_name
+         integer, intent(out) :: varid
+         varid = -1
+         if (allocated(error)) return
+         call check(nf90_def_var(nc, name, xtype, dims, varid), "variable " // name)
+         if (len(units) > 0) call check(nf90_put_att(nc, varid, "units", units), name // " units")
+         call check(nf90_put_att(nc, varid, "long_name", long_name), name // " long_name")
+      end subroutine def
+
+      subroutine flags(varid)
+         integer, intent(in) :: varid
+         call check(nf90_put_att(ncid, varid, "flag_values", [0_1, 1_1]), "flag_values")
+         call check(nf90_put_att(ncid, varid, "flag_meanings", "no yes"), "flag_meanings")
+      end subroutine flags
+
+      subroutine gatt(name, text)
+         character(len=*), intent(in) :: name, text
+         call check(nf90_put_att(ncid, nf90_global, name, text), "attribute " // name)
+      end subroutine gatt
+
+   end subroutine write_file
+
+end module pavefric_netcdf
