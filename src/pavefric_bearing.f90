@@ -34,16 +34,18 @@ contains
    pure subroutine bracket_over_e2(e, b, db)
       real(wp), intent(in) :: e
       real(wp), intent(out) :: b, db
-      real(wp) :: a, p
+      real(wp) :: a, p, sr, dsr
       integer :: n
       if (e < series_threshold) then
-         ! Horner on the series and its derivative.
-         b = coef(n_terms+2)
-         db = real(n_terms, wp) * coef(n_terms+2)
+         ! B = e S(e), S = sum_{n>=3} c_n e**(n-3): Horner on S and dS/de.
+         sr = coef(n_terms+2)
+         dsr = 0.0_wp
          do n = n_terms+1, 3, -1
-            b = b * e + coef(n)
-            if (n >= 4) db = db * e + real(n-2, wp) * coef(n)
+            dsr = dsr * e + sr
+            sr = sr * e + coef(n)
          end do
+         b = e * sr
+         db = sr + e * dsr
       else
          a = 1.0_wp + e
          p = log(a) - 2.0_wp * e / (a + 1.0_wp)

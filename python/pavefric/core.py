@@ -28,6 +28,7 @@ __all__ = [
     "read_profile",
     "Profile",
     "layout",
+    "hydro_load",
 ]
 
 
@@ -187,6 +188,14 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         "profile_closed": int(bool(closed)),
     }
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def hydro_load(h_out, h_in: float, prefactor: float = 1.0):
+    """Bearing load Wh (N) of Eq. 15 for outlet films ``h_out`` (m), inlet film
+    ``h_in`` (m) and prefactor alpha 6 eta V**beta l L**2; returns (Wh, dWh/dHout)."""
+    h = np.ascontiguousarray(np.atleast_1d(np.asarray(h_out, dtype=np.float64)))
+    wh, dwh = _core.pf_hydro_load(float(prefactor), float(h_in), h)
+    return wh, dwh
 
 
 def run(path: str | os.PathLike, output: str | os.PathLike | None = None) -> Path:

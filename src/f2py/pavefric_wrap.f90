@@ -216,3 +216,17 @@ subroutine pf_read_profile(path, height_unit, np, z, status, message)
    end if
    z = prof%z
 end subroutine pf_read_profile
+
+!> The bearing load (Eq. 15) and its derivative for arrays of outlet films.
+subroutine pf_hydro_load(n, prefactor, h_in, h_out, wh, dwh_dhout)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_bearing, only: hydro_load
+   implicit none
+   integer(c_int), intent(in) :: n
+   real(c_double), intent(in) :: prefactor, h_in, h_out(n)
+   real(c_double), intent(out) :: wh(n), dwh_dhout(n)
+   integer :: i
+   do i = 1, n
+      call hydro_load(prefactor, h_in, h_out(i), wh(i), dwh_dhout(i))
+   end do
+end subroutine pf_hydro_load

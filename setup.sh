@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# pavefric set-up: system packages, a Python virtual environment, the build.
+#
+#   bash setup.sh demo   set up, run the default scenes (dry and wet), write
+#                        outputs/ctm_dry.nc, outputs/ctm_wet.nc, outputs/ctm_mu_speed.png
+#   bash setup.sh test   set up and run the whole test suite
+#   bash setup.sh        set up only
+#
+# System packages come from apt-get when run as root (or with passwordless
+# sudo); otherwise the script names what is missing and stops. Python packages
+# go into .venv with pip. PYTHON chooses the interpreter (default python3).
+set -euo pipefail
+cd "$(dirname "$0")"
+PYTHON=${PYTHON:-python3}
+VENV=.venv
+
+log() { printf 'setup: %s\n' "$*" >&2; }
+
+missing_system() {
+  local miss=()
+  command -v gfortran >/dev/null 2>&1 || miss+=(gfortran)
+  command -v pkg-config >/dev/null 2>&1 || miss+=(pkg-config)
+  if command -v pkg-config >/dev/null 2>&1; then
+    pkg-config --exists netcdf-fortran 2>/dev/null || miss+=(libnetcdff-dev)
+    pkg-config --exists lapack 2>/dev/null || ls /usr/lib/*/liblapack.so >/dev/null 2>&1 \
+      || miss+=(liblapack-dev)
+  else
+    miss+=(libnetcdff-dev liblapack-dev)
+  fi
+  command -v ncdump >/dev/null 2>&1 || miss+=(netcdf-bin)
+  if ! command -v "$PYTHON" >/dev/null 2>&1; then
+    miss+=(python3 python3-dev python3-venv)
+  else
+    "$PYTHON" -c 'import ensurepip, venv' >/dev/null 2>&1 || miss+=(python3-venv)
+    "$PYTHON" -c 'import os, sysconfig; assert os.path.exists(os.path.join(sysconfig.get_paths()["include"], "Python.h"))' \
+      >/dev/null 2>&1 || miss+=(python3-dev)
+  fi
+  echo "${miss[@]:-}"
+}
+
+install_system() {
+  local miss
+  miss=$(missing_system)
+  [ -z "$miss" ] && return 0
+  local sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+      sudo="sudo -n"
+    else
+      log "missing system packages: $miss"
+      log "install them (Debian/Ubuntu: sudo apt-get install $miss) and run again"
+      exit 1
+    fi
+  fi
+  if ! command -v apt-get >/dev/null 2>&1; then
+    log "missing system packages: $miss (no apt-get here: install gfortran, netCDF-Fortran, LAPACK by hand)"
+    exit 1
+  fi
+  log "installing system packages: $miss"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq $miss >/dev/null
+  miss=$(missing_system)
+  if [ -n "$miss" ]; then
+    log "still missing after apt-get: $miss"
+    exit 1
+  fi
+}
+
+install_python() {
+  if [ ! -x "$VENV/bin/python" ]; then
+    log "creating $VENV"
+    # system site packages: reuse what the machine already has (numpy, meson...)
+    "$PYTHON" -m venv --system-site-packages "$VENV"
+  fi
+  log "installing Python packages"
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
+    "numpy>=1.26" "meson>=1.1" "meson-python>=0.15" ninja \
+    "xarray>=2023.1" "netCDF4>=1.6" "matplotlib>=3.6" "f90nml>=1.4" \
+    "pytest>=7" "hypothesis>=6"
+  log "building and installing pavefric (Fortran core, program, Python extension)"
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-build-isolation \
+    --force-reinstall --no-deps .
+}
+
+install_system
+install_python
+
+case "${1:-}" in
+  demo)
+    mkdir -p outputs
+    "$VENV/bin/pavefric" inputs/ctm_dry.nml -o outputs/ctm_dry.nc
+    "$VENV/bin/pavefric" inputs/ctm_wet.nml -o outputs/ctm_wet.nc
+    "$VENV/bin/python" -m pavefric plot outputs/ctm_dry.nc outputs/ctm_wet.nc \
+      -o outputs/ctm_mu_speed.png --title "CTM-like medium texture, mu_loc = 0.6"
+    ;;
+  test)
+    shift
+    "$VENV/bin/python" -m pytest -q tests "$@"
+    ;;
+  "")
+    log "ready: $VENV/bin/pavefric and $VENV/bin/python -m pavefric"
+    ;;
+  *)
+    log "unknown command '$1' (expected demo, test or nothing)"
+    exit 2
+    ;;
+esac

@@ -1,0 +1,70 @@
+"""Shared fixtures: profiles, scene files, and the installed program."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE))  # the NumPy reference lives beside the tests
+
+DX = 0.87e-3
+
+
+def program() -> str:
+    exe = Path(sys.executable).parent / "pavefric"
+    if not exe.exists():
+        pytest.fail(f"the pavefric program is not installed beside {sys.executable}")
+    return str(exe)
+
+
+def run_program(*args: str, cwd: str | os.PathLike | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([program(), *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, timeout=600)
+
+
+@pytest.fixture(scope="session")
+def profile_m() -> np.ndarray:
+    """A CTM-like closed profile (m): 1024 points at 0.87 mm."""
+    from pavefric.surfaces import spectral_profile
+
+    return spectral_profile(1024, DX, rms=0.5e-3, skew=-0.3, seed=7)
+
+
+@pytest.fixture(scope="session")
+def short_profile_m() -> np.ndarray:
+    """A short profile for the slow reference (200 points)."""
+    from pavefric.surfaces import spectral_profile
+
+    return spectral_profile(200, DX, rms=0.6e-3, seed=11)
+
+
+def write_scene(directory: Path, name: str = "scene", *, profile: np.ndarray | None = None,
+                groups: dict[str, str] | None = None, profile_text: str | None = None) -> Path:
+    """A scene file in `directory`; `groups` maps group name -> body text,
+    replacing the default body of that group."""
+    directory.mkdir(parents=True, exist_ok=True)
+    prof = directory / f"{name}_profile.txt"
+    if profile_text is not None:
+        prof.write_text(profile_text)
+    else:
+        z = profile if profile is not None else np.sin(np.arange(256) * 0.3) * 0.5e-3
+        prof.write_text("height_mm\n" + "\n".join(f"{1e3 * v:.9f}" for v in z) + "\n")
+    body = {
+        "surface": f"profile_file = '{prof.name}', mu_loc = 0.5",
+        "pad": "length = 0.020",
+        "rubber": "stiffness = 1.4e8, viscosity = 100.0",
+        "water": "depth = 0.0",
+        "operation": "speeds_kmh = 20, 60",
+        "output": "series = .false.",
+    }
+    body.update(groups or {})
+    text = "\n".join(f"&{g}\n  {b}\n/" for g, b in body.items() if b is not None) + "\n"
+    path = directory / f"{name}.nml"
+    path.write_text(text)
+    return path
