@@ -146,8 +146,33 @@ contains
          call evaluate(x, f, df, wh)
          state%evaluations = state%evaluations + 1
       end do
+      if (abs(f) > tol * load) then
+         ! The bracket closed on adjacent doubles without |f| reaching the
+         ! tolerance. This happens only as the film closes: Eq. 15 grows like
+         ! ln(1/Hout), so f is continuous but so steep (slope ~ 1/Hout) that
+         ! the root falls between two doubles, or lies at a film thinner than
+         ! any double (then f jumps to the largest real at Hout = 0). Take the
+         ! upper end and let the film carry what the rubber does not: the
+         ! intermediate value of Wh between the two ends, balanced exactly.
+         if (f < 0.0_wp) then
+            x = hi
+            call evaluate(x, f, df, wh)
+            state%evaluations = state%evaluations + 1
+         end if
+         wh = max(0.0_wp, load - kel * pushed_at(x))
+      end if
       state%hydro_load = wh
    contains
+      pure function pushed_at(xe) result(pushed)
+         real(wp), intent(in) :: xe
+         real(wp) :: pushed
+         integer :: i
+         pushed = 0.0_wp
+         do i = 1, size(d)
+            pushed = pushed + max(0.0_wp, xe - d(i))
+         end do
+      end function pushed_at
+
       pure subroutine evaluate(xe, fe, dfe, whe)
          real(wp), intent(in) :: xe
          real(wp), intent(out) :: fe, dfe, whe
