@@ -39,7 +39,7 @@ program pavefric_main
    end do
    if (len(scene_path) == 0) then
       call usage(error_unit)
-      error stop 2
+      stop 2, quiet=.true.
    end if
 
    call run_scene(scene_path, out_override, command, out_path, res, error)
@@ -69,7 +69,7 @@ contains
    subroutine fail(message)
       character(len=*), intent(in) :: message
       write(error_unit, '(a)') "pavefric: error: " // message
-      error stop 1
+      stop 1, quiet=.true.
    end subroutine fail
 
    subroutine usage(unit)

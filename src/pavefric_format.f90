@@ -17,53 +17,68 @@ module pavefric_format
 
 contains
 
-   !> A real as text with enough digits to identify it (G0 editing).
+   !> A real as its shortest text that reads back to the same value, in the
+   !> style of C's %g: fixed notation for exponents -5..5 (0.02, 120,
+   !> -0.00087), scientific otherwise (1.4e8, 1e-9).
    pure function real_to_str(x) result(s)
       real(wp), intent(in) :: x
       character(len=:), allocatable :: s
       character(len=40) :: buf
+      character(len=12) :: fmt
+      character(len=:), allocatable :: digits
+      real(wp) :: back
+      integer :: p, ios, epos, expo, ndig
       if (ieee_is_nan(x)) then
          s = "NaN"
+         return
       else if (abs(x) > huge(x)) then
-         if (x > 0) then
-            s = "Infinity"
+         s = "Infinity"
+         if (x < 0.0_wp) s = "-Infinity"
+         return
+      else if (x == 0.0_wp) then
+         s = "0"
+         return
+      end if
+      do p = 1, 17
+         write(fmt, '(a, i0, a)') "(es30.", p - 1, "e3)"
+         write(buf, fmt) x
+         read(buf, *, iostat=ios) back
+         if (ios == 0 .and. back == x) exit
+      end do
+      buf = adjustl(buf)
+      epos = scan(buf, "Ee")
+      read(buf(epos+1:), *) expo
+      ! mantissa digits without sign and point, trailing zeros removed
+      digits = ""
+      do p = 1, epos - 1
+         if (verify(buf(p:p), "0123456789") == 0) digits = digits // buf(p:p)
+      end do
+      ndig = len(digits)
+      do while (ndig > 1)
+         if (digits(ndig:ndig) /= "0") exit
+         ndig = ndig - 1
+      end do
+      digits = digits(1:ndig)
+      if (expo >= -5 .and. expo <= 5) then
+         if (expo >= 0) then
+            if (ndig <= expo + 1) then
+               s = digits // repeat("0", expo + 1 - ndig)
+            else
+               s = digits(1:expo+1) // "." // digits(expo+2:)
+            end if
          else
-            s = "-Infinity"
+            s = "0." // repeat("0", -expo - 1) // digits
          end if
       else
-         write(buf, '(es23.16e3)') x
-         s = trim(adjustl(buf))
-         call strip_mantissa_zeros(s)
+         if (ndig == 1) then
+            s = digits
+         else
+            s = digits(1:1) // "." // digits(2:)
+         end if
+         s = s // "e" // int_to_str(expo)
       end if
+      if (x < 0.0_wp) s = "-" // s
    end function real_to_str
-
-   !> Remove trailing zeros of the mantissa: 1.5000E+002 -> 1.5E+002.
-   pure subroutine strip_mantissa_zeros(s)
-      character(len=:), allocatable, intent(inout) :: s
-      integer :: epos, last
-      epos = scan(s, "Ee")
-      if (epos <= 1) return
-      last = epos - 1
-      do while (last > 1)
-         if (s(last:last) /= "0") exit
-         last = last - 1
-      end do
-      if (s(last:last) == ".") last = last - 1
-      s = s(1:last) // "e" // exponent_text(s(epos+1:))
-   end subroutine strip_mantissa_zeros
-
-   !> "+002" -> "2", "-003" -> "-3".
-   pure function exponent_text(e) result(t)
-      character(len=*), intent(in) :: e
-      character(len=:), allocatable :: t
-      integer :: ev, ios
-      read(e, *, iostat=ios) ev
-      if (ios /= 0) then
-         t = e
-      else
-         t = int_to_str(ev)
-      end if
-   end function exponent_text
 
    !> A default integer as text.
    pure function int_to_str(i) result(s)
