@@ -41,35 +41,40 @@ module pavefric_balance
 contains
 
    !> Exact root of sum_i max(0, x - d_i) = s (s = W / kel > 0, min d = 0):
-   !> the "water-filling" level. Newton's method started above the root on
-   !> this convex piecewise-linear function is monotone and stops exactly
-   !> once its active set no longer shrinks: x = (s + sum_active d) / m, the
-   !> closed form on the final linear piece. No iteration tolerance is
-   !> involved. A pathological spread that needs many steps falls back to
-   !> the same closed form found by sorting (LAPACK dlasrt).
-   pure subroutine dry_root(d, s, x, work)
+   !> the "water-filling" level, by Newton's method on this convex
+   !> piecewise-linear function. From a guess x0 below the root, one Newton
+   !> step lands above it; from above, Newton descends monotonically and its
+   !> active set {d_i < x} only shrinks. Either way it stops when the active
+   !> set repeats: x = (s + sum_active d) / m is then the closed form on its
+   !> own linear piece, i.e. the root, whatever the guess. No iteration
+   !> tolerance is involved. A pathological spread that needs many steps
+   !> falls back to the same closed form found by sorting (LAPACK dlasrt).
+   pure subroutine dry_root(d, s, x0, x, work)
       real(wp), intent(in) :: d(:), s
+      !> Starting guess (the previous position's root is a good one); a guess
+      !> that is not > 0 starts from s, an upper bound because min d = 0.
+      real(wp), intent(in) :: x0
       real(wp), intent(out) :: x
       !> Workspace of size(d), only touched by the fallback.
       real(wp), intent(inout) :: work(:)
       real(wp) :: sum_active, x_new
-      integer :: m, m_new, i, it, n
+      integer :: m, m_prev, i, it, n
       n = size(d)
-      x = s                    ! root <= s, because min d = 0
-      m = n + 1
+      x = s
+      if (x0 > 0.0_wp .and. x0 < s) x = x0
+      m_prev = -1
       do it = 1, max_newton_dry
          sum_active = 0.0_wp
-         m_new = 0
+         m = 0
          do i = 1, n
-            if (d(i) < x) then
-               sum_active = sum_active + d(i)
-               m_new = m_new + 1
-            end if
+            sum_active = sum_active + merge(d(i), 0.0_wp, d(i) < x)
+            m = m + merge(1, 0, d(i) < x)
          end do
-         if (m_new >= m) return          ! active set fixed: x is the root
-         x_new = (s + sum_active) / real(m_new, wp)
-         m = m_new
-         if (x_new >= x) return          ! rounding floor reached
+         if (m == m_prev) return         ! active set repeats: x is the root
+         x_new = (s + sum_active) / real(m, wp)
+         ! from above, a non-decreasing step means rounding has stalled
+         if (it > 1 .and. m < m_prev .and. x_new >= x) return
+         m_prev = m
          x = x_new
       end do
       call sorted_root(d, s, x, work)

@@ -275,7 +275,7 @@ contains
       type(kv_step_type) :: kv
       type(wet_state_type) :: wet
       real(wp), allocatable :: c(:), d(:), u(:), u_free(:), work(:)
-      real(wp) :: kel, s_load, cmin, x, x_dry, wh, h_m, prefactor, push, sum_f, sum_ft, u_new
+      real(wp) :: kel, s_load, cmin, x, x_dry, x_guess, delta_prev, wh, h_m, prefactor, push, sum_f, sum_ft
       real(wp) :: mu_sum, resid_max, wh_sum, u_max, mu_j, resid
       integer(i8) :: n_clamped, n_eval
       integer :: t, k1, k, i, n, n_contact, n_nocontact, n_wet, n_clamp_j
@@ -299,6 +299,7 @@ contains
          u = 0.0_wp
       end if
 
+      delta_prev = -huge(1.0_wp)
       mu_sum = 0.0_wp
       wh_sum = 0.0_wp
       resid_max = 0.0_wp
@@ -315,20 +316,23 @@ contains
          end if
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
+         cmin = huge(1.0_wp)
          if (kv%memory) then
             do i = 1, n
                u_free(i) = kv%relax * u(i)
                c(i) = geo%h(i) - geo%z(k1 + (i-1) * geo%spacing) + u_free(i)
+               cmin = min(cmin, c(i))
             end do
          else
             do i = 1, n
                c(i) = geo%h(i) - geo%z(k1 + (i-1) * geo%spacing)
+               cmin = min(cmin, c(i))
             end do
          end if
-         cmin = minval(c)
          d = c - cmin
-
-         call dry_root(d, s_load, x_dry, work)
+         ! warm start from the previous position's penetration
+         x_guess = delta_prev - cmin
+         call dry_root(d, s_load, x_guess, x_dry, work)
          x = x_dry
          wh = 0.0_wp
          if (bearing_on) then
@@ -345,23 +349,29 @@ contains
          sum_ft = 0.0_wp
          n_contact = 0
          n_clamp_j = 0
-         do i = 1, n
-            push = max(0.0_wp, x - d(i))
-            if (push > 0.0_wp) then
+         if (kv%memory) then
+            do i = 1, n
                k = k1 + (i-1) * geo%spacing
+               push = max(0.0_wp, x - d(i))
                sum_f = sum_f + push
                sum_ft = sum_ft + push * geo%tan_theta(k)     ! Eq. 10
-               n_contact = n_contact + 1
-               if (geo%clamped(k)) n_clamp_j = n_clamp_j + 1
-            end if
-            if (kv%memory) then
-               u_new = u_free(i) + push                      ! max(g_i, u_free_i)
-               u(i) = u_new
-            else
-               u_new = push
-            end if
-            u_max = max(u_max, u_new)
-         end do
+               n_contact = n_contact + merge(1, 0, push > 0.0_wp)
+               n_clamp_j = n_clamp_j + merge(1, 0, push > 0.0_wp .and. geo%clamped(k))
+               u(i) = u_free(i) + push                       ! max(g_i, u_free_i)
+               u_max = max(u_max, u(i))
+            end do
+         else
+            do i = 1, n
+               k = k1 + (i-1) * geo%spacing
+               push = max(0.0_wp, x - d(i))
+               sum_f = sum_f + push
+               sum_ft = sum_ft + push * geo%tan_theta(k)     ! Eq. 10
+               n_contact = n_contact + merge(1, 0, push > 0.0_wp)
+               n_clamp_j = n_clamp_j + merge(1, 0, push > 0.0_wp .and. geo%clamped(k))
+               u_max = max(u_max, push)
+            end do
+         end if
+         delta_prev = cmin + x
          if (t < 0) cycle                                    ! spin-up
 
          sum_f = kel * sum_f

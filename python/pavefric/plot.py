@@ -36,7 +36,7 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
     ax.set_ylabel("friction coefficient $\\mu$")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(loc="lower left")
     if title:
         ax.set_title(title)
     fig.tight_layout()
