@@ -2,6 +2,7 @@
 program pavefric_main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use pavefric, only: pavefric_version, error_type, sim_result_type, run_scene, effects_text
+   use pavefric_format, only: to_str
    implicit none
    type(sim_result_type) :: res
    type(error_type), allocatable :: error
@@ -45,6 +46,12 @@ program pavefric_main
    call run_scene(scene_path, out_override, command, out_path, res, error)
    if (allocated(error)) call fail(error%message)
 
+   do j = 1, size(res%mu)
+      if (res%max_compression(j) > res%thickness) write(error_unit, '(a)') "pavefric: warning: " // &
+         & "an element is compressed by " // to_str(res%max_compression(j)) // " m at " // &
+         & to_str(res%speed_kmh(j)) // " km/h, beyond the rubber thickness (&pad thickness = " // &
+         & to_str(res%thickness) // " m); the linear model has no floor there"
+   end do
    write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
       & out_path
    write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &

@@ -62,7 +62,9 @@ contains
       real(wp), intent(in) :: prefactor, h_in, h_out
       real(wp), intent(out) :: wh, dwh_dhout
       real(wp) :: e, a, b, db, g, dg
-      if (h_out >= h_in) then
+      ! No wedge, or a bearing with no strength (alpha = 0 or V = 0): no load,
+      ! even as the film closes.
+      if (h_out >= h_in .or. prefactor <= 0.0_wp) then
          wh = 0.0_wp
          dwh_dhout = 0.0_wp
          return

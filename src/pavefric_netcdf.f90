@@ -59,7 +59,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       integer :: ncid, d_speed, d_pos, stat
       integer :: v_speed, v_kmh, v_mu, v_ncl, v_hyd, v_wet, v_res, v_mwh, v_comp, v_nbe
-      integer :: v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce
+      integer :: v_mem, v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce
       logical :: series
 
       series = allocated(res%mu_inst)
@@ -93,6 +93,8 @@ contains
          & "largest compression of a rubber element (compare with the pad thickness)", v_comp)
       call def(ncid, "bearing_evaluations", nf90_int64, [d_speed], "1", &
          & "evaluations of the bearing load formula (0: the bearing did not run)", v_nbe)
+      call def(ncid, "memory_updates", nf90_int64, [d_speed], "1", &
+         & "element-steps that updated viscous memory (0: no viscous memory kept)", v_mem)
       call def(ncid, "viscous_memory_ran", nf90_byte, [d_speed], "", &
          & "whether the rubber elements carried viscous memory", v_vis)
       call def(ncid, "bearing_ran", nf90_byte, [d_speed], "", &
@@ -147,6 +149,7 @@ contains
       call check(nf90_put_var(ncid, v_mwh, res%mean_hydro_load), "mean_hydro_load")
       call check(nf90_put_var(ncid, v_comp, res%max_compression), "max_compression")
       call check(nf90_put_var(ncid, v_nbe, res%bearing_evaluations), "bearing_evaluations")
+      call check(nf90_put_var(ncid, v_mem, res%memory_updates), "memory_updates")
       call check(nf90_put_var(ncid, v_vis, merge(1, 0, res%viscous_memory_ran)), "flags")
       call check(nf90_put_var(ncid, v_bea, merge(1, 0, res%bearing_ran)), "flags")
       if (series) then

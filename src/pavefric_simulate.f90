@@ -24,6 +24,8 @@ module pavefric_simulate
       integer :: n_positions = 0
       !> Spin-up positions before averaging (closed profiles).
       integer :: n_spinup = 0
+      !> The rubber thickness (m), to compare max_compression with.
+      real(wp) :: thickness = 0.0_wp
       !> Speeds (m s-1) and (km h-1).
       real(wp), allocatable :: speed(:), speed_kmh(:)
       !> Mean friction coefficient over the profile (Eq. 12).
@@ -42,6 +44,8 @@ module pavefric_simulate
       integer(i8), allocatable :: n_clamped(:)
       !> Evaluations of the bearing formula (0 when it did not run).
       integer(i8), allocatable :: bearing_evaluations(:)
+      !> Element-steps that updated viscous memory (0 for an elastic scene).
+      integer(i8), allocatable :: memory_updates(:)
       !> Whether the elements carried viscous memory at this speed.
       logical, allocatable :: viscous_memory_ran(:)
       !> Whether the hydrodynamic bearing was part of the balance at this speed.
@@ -58,7 +62,7 @@ module pavefric_simulate
    type :: speed_summary_type
       real(wp) :: mu = 0, hydroplaning_fraction = 0, wet_fraction = 0
       real(wp) :: max_balance_residual = 0, mean_hydro_load = 0, max_compression = 0
-      integer(i8) :: n_clamped = 0, bearing_evaluations = 0
+      integer(i8) :: n_clamped = 0, bearing_evaluations = 0, memory_updates = 0
       logical :: viscous_memory_ran = .false., bearing_ran = .false.
    end type speed_summary_type
 
@@ -125,11 +129,13 @@ contains
       res%n_elements = geo%n_el
       res%n_positions = geo%n_avg
       res%n_spinup = geo%n_spin
+      res%thickness = m%thickness
       res%speed_kmh = speeds_kmh
       res%speed = speeds_kmh * kmh_to_ms
       allocate(res%mu(ns), res%hydroplaning_fraction(ns), res%wet_fraction(ns), &
          & res%max_balance_residual(ns), res%mean_hydro_load(ns), res%max_compression(ns), &
-         & res%n_clamped(ns), res%bearing_evaluations(ns), res%viscous_memory_ran(ns), &
+         & res%n_clamped(ns), res%bearing_evaluations(ns), res%memory_updates(ns), &
+         & res%viscous_memory_ran(ns), &
          & res%bearing_ran(ns))
       if (want_series) then
          allocate(res%mu_inst(geo%n_avg, ns), res%hydro_load(geo%n_avg, ns), &
@@ -156,6 +162,7 @@ contains
          res%max_compression(j) = summary%max_compression
          res%n_clamped(j) = summary%n_clamped
          res%bearing_evaluations(j) = summary%bearing_evaluations
+         res%memory_updates(j) = summary%memory_updates
          res%viscous_memory_ran(j) = summary%viscous_memory_ran
          res%bearing_ran(j) = summary%bearing_ran
       end do
@@ -399,6 +406,7 @@ contains
       out%max_compression = u_max
       out%n_clamped = n_clamped
       out%bearing_evaluations = n_eval
+      if (kv%memory) out%memory_updates = int(n, i8) * int(geo%n_avg + geo%n_spin, i8)
       out%viscous_memory_ran = kv%memory
       out%bearing_ran = bearing_on
    end subroutine slide

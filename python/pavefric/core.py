@@ -153,7 +153,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         float(p["alpha"]), float(p["beta"]), float(p["theta_max_deg"]), int(p["substeps"]),
         int(p["elements_per_sample"]), int(p["position_stride"]), float(p["wet_tolerance"]),
         int(bool(series)), npos)
-    (mu, hyd, wet, resid, mwh, comp, ncl, nbe, vis, bea, position, mu_inst, hload, pen, ce,
+    (mu, hyd, wet, resid, mwh, comp, ncl, nbe, nmem, vis, bea, position, mu_inst, hload, pen, ce,
      n_el, n_pos, n_spin, effects, status, message) = out
     _check(status, message)
     coords = {"speed": ("speed", speeds / 3.6, {"units": "m s-1",
@@ -169,6 +169,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         "mean_hydro_load": ("speed", mwh.copy()),
         "max_compression": ("speed", comp.copy()),
         "bearing_evaluations": ("speed", nbe.copy()),
+        "memory_updates": ("speed", nmem.copy()),
         "viscous_memory_ran": ("speed", vis.astype(np.int8)),
         "bearing_ran": ("speed", bea.astype(np.int8)),
     }

@@ -56,7 +56,8 @@ subroutine pf_simulate(np, z, dx, closed, ns, speeds_kmh, mu_loc, length, width,
       & load, pad_shape, radius, stiffness, viscosity, depth, water_viscosity, alpha, beta, &
       & theta_max_deg, substeps, elements_per_sample, position_stride, wet_tolerance, &
       & want_series, npos, mu, hydroplaning_fraction, wet_fraction, max_balance_residual, &
-      & mean_hydro_load, max_compression, n_clamped, bearing_evaluations, viscous_memory_ran, &
+      & mean_hydro_load, max_compression, n_clamped, bearing_evaluations, memory_updates, &
+      & viscous_memory_ran, &
       & bearing_ran, position, mu_inst, hydro_load, penetration, contact_elements, n_elements, &
       & n_positions, n_spinup, effects, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int, c_int64_t
@@ -73,7 +74,7 @@ subroutine pf_simulate(np, z, dx, closed, ns, speeds_kmh, mu_loc, length, width,
    real(c_double), intent(out) :: mu(ns), hydroplaning_fraction(ns), wet_fraction(ns)
    real(c_double), intent(out) :: max_balance_residual(ns), mean_hydro_load(ns)
    real(c_double), intent(out) :: max_compression(ns)
-   integer(c_int64_t), intent(out) :: n_clamped(ns), bearing_evaluations(ns)
+   integer(c_int64_t), intent(out) :: n_clamped(ns), bearing_evaluations(ns), memory_updates(ns)
    integer(c_int), intent(out) :: viscous_memory_ran(ns), bearing_ran(ns)
    real(c_double), intent(out) :: position(npos), mu_inst(npos, ns), hydro_load(npos, ns)
    real(c_double), intent(out) :: penetration(npos, ns)
@@ -90,6 +91,7 @@ subroutine pf_simulate(np, z, dx, closed, ns, speeds_kmh, mu_loc, length, width,
    effects = ""
    mu = 0; hydroplaning_fraction = 0; wet_fraction = 0; max_balance_residual = 0
    mean_hydro_load = 0; max_compression = 0; n_clamped = 0; bearing_evaluations = 0
+   memory_updates = 0
    viscous_memory_ran = 0; bearing_ran = 0; position = 0; mu_inst = 0; hydro_load = 0
    penetration = 0; contact_elements = 0; n_elements = 0; n_positions = 0; n_spinup = 0
    m%mu_loc = mu_loc; m%length = length; m%width = width; m%thickness = thickness
@@ -118,6 +120,7 @@ subroutine pf_simulate(np, z, dx, closed, ns, speeds_kmh, mu_loc, length, width,
    max_compression = res%max_compression
    n_clamped = res%n_clamped
    bearing_evaluations = res%bearing_evaluations
+   memory_updates = res%memory_updates
    viscous_memory_ran = merge(1, 0, res%viscous_memory_ran)
    bearing_ran = merge(1, 0, res%bearing_ran)
    n_elements = res%n_elements

@@ -1,0 +1,74 @@
+"""Only the effects a scene calls for run; skipping one gives the same
+numbers as running it with its neutral value, and does no work (counted)."""
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import run_program, write_scene
+
+DX = 0.87e-3
+SPEEDS = [0.0, 10.0, 40.0, 80.0]
+
+
+def test_dry_scene_never_evaluates_the_bearing(profile_m):
+    dry = pavefric.simulate(profile_m, DX, SPEEDS)
+    assert np.all(dry["bearing_evaluations"].values == 0)
+    assert not dry["bearing_ran"].values.any()
+    assert "hydrodynamic_bearing" not in dry.attrs["effects"]
+    # the same scene with the bearing running at its neutral value (alpha = 0
+    # makes Eq. 15 carry nothing): identical numbers, but real work done
+    neutral = pavefric.simulate(profile_m, DX, SPEEDS, depth=1e-3, alpha=0.0)
+    assert np.array_equal(neutral["mu"].values, dry["mu"].values)
+    assert np.all(neutral["bearing_evaluations"].values[1:] > 0)
+    assert "hydrodynamic_bearing" in neutral.attrs["effects"]
+
+
+def test_elastic_scene_keeps_no_viscous_memory(profile_m):
+    elastic = pavefric.simulate(profile_m, DX, SPEEDS, viscosity=0.0)
+    assert np.all(elastic["memory_updates"].values == 0)
+    assert "viscous_memory" not in elastic.attrs["effects"]
+    # memory running with a neutral viscosity (relaxes to nothing in a step)
+    neutral = pavefric.simulate(profile_m, DX, SPEEDS, viscosity=1e-300)
+    assert np.array_equal(neutral["mu"].values, elastic["mu"].values)
+    assert np.all(neutral["memory_updates"].values[1:] > 0)
+    assert neutral["memory_updates"].values[0] == 0            # V = 0: no memory
+    assert "viscous_memory" in neutral.attrs["effects"]
+
+
+def test_no_series_no_per_position_output(tmp_path, profile_m):
+    ds = pavefric.simulate(profile_m, DX, SPEEDS)
+    assert "position" not in ds.dims
+    scene = write_scene(tmp_path, profile=profile_m)
+    out = tmp_path / "o.nc"
+    assert run_program(scene, "-o", out).returncode == 0
+    with xr.open_dataset(out) as f:
+        assert "position" not in f.dims
+        assert not any(v in f for v in ("mu_inst", "hydro_load", "penetration"))
+
+
+def test_series_does_not_change_the_mean(profile_m):
+    a = pavefric.simulate(profile_m, DX, SPEEDS, depth=1e-3)
+    b = pavefric.simulate(profile_m, DX, SPEEDS, depth=1e-3, series=True)
+    assert np.array_equal(a["mu"].values, b["mu"].values)
+
+
+@pytest.mark.parametrize("threads", ["1", "2"])
+def test_thread_count_changes_no_bit(tmp_path, profile_m, threads):
+    import os
+
+    scene = write_scene(tmp_path, profile=profile_m,
+                        groups={"water": "depth = 1e-3",
+                                "operation": "speeds_kmh = 5, 10, 20, 30, 40, 60, 80, 100",
+                                "output": "series = .true."})
+    env_out = {}
+    for n in ("1", threads):
+        out = tmp_path / f"t{n}.nc"
+        import subprocess
+        from conftest import program
+        r = subprocess.run([program(), str(scene), "-o", str(out)], capture_output=True,
+                           text=True, env={**os.environ, "OMP_NUM_THREADS": n})
+        assert r.returncode == 0, r.stderr
+        env_out[n] = xr.open_dataset(out).load()
+    for var in ("mu", "mu_inst", "penetration", "hydro_load", "max_balance_residual"):
+        assert np.array_equal(env_out["1"][var].values, env_out[threads][var].values)

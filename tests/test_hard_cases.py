@@ -1,0 +1,174 @@
+"""Hard cases: each runs, and its result is finite and behaves as
+docs/numerics.md says (or a clear error is raised)."""
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import pavefric
+from conftest import run_program, write_scene
+
+DX = 0.87e-3
+SPEEDS = [0.0, 1e-6, 20.0, 60.0, 1000.0]
+
+
+@pytest.fixture(scope="module")
+def z():
+    from pavefric.surfaces import spectral_profile
+
+    return spectral_profile(1024, DX, rms=0.5e-3, seed=3)
+
+
+def finite(ds):
+    for name in ("mu", "max_balance_residual", "mean_hydro_load", "max_compression",
+                 "wet_fraction", "hydroplaning_fraction"):
+        assert np.all(np.isfinite(ds[name].values)), name
+    assert np.all(ds["mu"].values >= 0)
+    assert np.all(ds["max_balance_residual"].values <= 1e-12)
+
+
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_facets_steeper_than_theta_max(depth):
+    ramp = np.tan(np.radians(70)) * DX * np.arange(10)
+    saw = np.tile(np.concatenate([ramp, ramp[::-1]]), 30)
+    ds = pavefric.simulate(saw, DX, SPEEDS, mu_loc=0.5, depth=depth)
+    finite(ds)
+    assert ds["n_clamped"].values[0] > 0
+    # a clamped facet pushes with tan(85 deg) at most
+    assert np.all(ds["mu"].values <= np.tan(np.radians(85)))
+
+
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_vertical_step(z, depth):
+    step = z.copy()
+    step[512:] += 5e-3                       # a 5 mm cliff (and its wrap-around)
+    ds = pavefric.simulate(step, DX, SPEEDS, depth=depth)
+    finite(ds)
+    assert ds["n_clamped"].values[0] > 0
+    assert ds["max_compression"].values[0] > 4e-3   # the pad climbs onto the step
+
+
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_isolated_spike(z, depth):
+    spike = z.copy()
+    spike[300] += 100 * z.std()
+    ds = pavefric.simulate(spike, DX, SPEEDS, depth=depth, series=True)
+    finite(ds)
+    # while the spike is under the pad, the whole load rests on it: one contact
+    assert ds["contact_elements"].values[0].min() == 1
+
+
+def test_perfectly_flat_profile():
+    ds = pavefric.simulate(np.zeros(500), DX, SPEEDS, mu_loc=0.4)
+    finite(ds)
+    np.testing.assert_allclose(ds["mu"].values, 0.4, rtol=1e-14)
+    # wet: no valley holds the water, the film closes, the bearing carries
+    # the whole load at any speed > 0 (Wh -> infinity as Hout -> 0)
+    wet = pavefric.simulate(np.zeros(500), DX, SPEEDS, mu_loc=0.4, depth=1e-3)
+    finite(wet)
+    assert wet["mu"].values[0] == pytest.approx(0.4, rel=1e-14)
+    # at 1e-6 km/h the film that carries W is thinner than any double: the
+    # pad rests on it with a penetration of order 1e-61 m
+    assert wet["mu"].values[1] < 1e-12
+    assert np.all(wet["mu"].values[2:] == 0.0)
+    assert np.all(wet["hydroplaning_fraction"].values[2:] == 1.0)
+
+
+def test_one_element_pad(z):
+    ds = pavefric.simulate(z, DX, SPEEDS, length=DX)
+    finite(ds)
+    assert ds.attrs["pad_elements"] == 1
+    # one element carries W on each facet: mu is the mean of tan(theta)
+    flat = pavefric.simulate(np.zeros(50), DX, SPEEDS, length=DX, mu_loc=0.3)
+    np.testing.assert_allclose(flat["mu"].values, 0.3, rtol=1e-14)
+
+
+def test_load_compressing_past_the_thickness(tmp_path, z):
+    ds = pavefric.simulate(z, DX, SPEEDS, load=1e5)
+    finite(ds)
+    assert np.all(ds["max_compression"].values > 0.006)
+    scene = write_scene(tmp_path, profile=z, groups={"pad": "load = 1e5"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 0
+    assert "warning" in r.stderr and "&pad thickness = 0.006" in r.stderr
+
+
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_tiny_load(z, depth):
+    ds = pavefric.simulate(z, DX, SPEEDS, load=1e-9, depth=depth)
+    finite(ds)
+    assert ds["max_compression"].values[0] < 1e-9
+
+
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_extreme_speeds(z, depth):
+    ds = pavefric.simulate(z, DX, [0.0, 1e-6, 1000.0], depth=depth)
+    finite(ds)
+    assert ds["mu"].values[1] == pytest.approx(ds["mu"].values[0], abs=1e-9)
+    if depth > 0:
+        assert ds["hydroplaning_fraction"].values[2] > 0.5     # 1000 km/h floats
+        assert ds["bearing_evaluations"].values[0] == 0
+
+
+@pytest.mark.parametrize("viscosity", [0.0, 1e12])
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_extreme_viscosity(z, viscosity, depth):
+    ds = pavefric.simulate(z, DX, SPEEDS, viscosity=viscosity, depth=depth)
+    finite(ds)
+
+
+@pytest.mark.parametrize("stiffness", [1e4, 1e14])
+@pytest.mark.parametrize("depth", [0.0, 1e-3])
+def test_extreme_stiffness(z, stiffness, depth):
+    ds = pavefric.simulate(z, DX, SPEEDS, stiffness=stiffness, depth=depth)
+    finite(ds)
+
+
+def test_bearing_near_a_equal_one_and_huge_a():
+    from pavefric.core import hydro_load
+
+    h_in = 1e-3
+    wh, dwh = hydro_load([h_in / (1 + 1e-12), h_in / 1e12], h_in, prefactor=2.0)
+    assert np.all(np.isfinite(wh)) and np.all(np.isfinite(dwh))
+    # a = 1 + e: Wh ~ P e / (12 Hin^2);  a = 1e12: Wh ~ P (ln a - 2) / Hin^2
+    e = (h_in - h_in / (1 + 1e-12)) / (h_in / (1 + 1e-12))
+    assert wh[0] == pytest.approx(2.0 * e / 12 / h_in**2, rel=1e-9)
+    assert wh[1] == pytest.approx(2.0 * (np.log(1e12) - 2) / h_in**2, rel=1e-9)
+
+
+def test_complete_hydroplaning(z):
+    # deep water (valleys under the pad all flooded) and a strong bearing
+    ds = pavefric.simulate(z, DX, [20.0, 60.0], depth=5e-3, alpha=1e6, series=True)
+    finite(ds)
+    assert np.all(ds["mu"].values == 0.0)                 # exactly 0, no NaN
+    assert np.all(ds["hydroplaning_fraction"].values == 1.0)
+    assert np.all(ds["contact_elements"].values == 0)
+    np.testing.assert_allclose(ds["hydro_load"].values, 11.8, rtol=1e-12)
+
+
+@pytest.mark.parametrize("series", [False])
+def test_ten_million_points_memory_scales_with_profile(series):
+    """Peak memory of a 10-million-point profile is proportional to the
+    profile, not to profile x pad: a 4 times longer pad costs almost nothing."""
+    script = textwrap.dedent("""
+        import resource, sys, numpy as np, pavefric
+        n = 10_000_000
+        z = 1e-4 * np.sin(np.arange(n) * 0.37) + 2e-4 * np.sin(np.arange(n) * 0.051)
+        base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        ds = pavefric.simulate(z, 0.87e-3, [60.0], closed=False, length=float(sys.argv[1]))
+        assert np.isfinite(ds["mu"].values).all()
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        print((peak - base) * 1024 / n)
+    """)
+    per_point = {}
+    for length in (0.02, 0.08):
+        r = subprocess.run([sys.executable, "-c", script, str(length)], capture_output=True,
+                           text=True, timeout=600)
+        assert r.returncode == 0, r.stderr
+        per_point[length] = float(r.stdout.strip())
+    # the core holds heights, facet tangents and clamp flags, a few copies:
+    # tens of bytes per point; profile x pad would be 8 x 92 = 736 bytes
+    assert per_point[0.08] < 100
+    assert per_point[0.08] - per_point[0.02] < 8
