@@ -4,6 +4,7 @@ Commands:
   run SCENE.nml [-o OUT.nc] [--plot PNG]   run a scene (same core as the program)
   plot OUT.nc [OUT.nc ...] -o PNG           friction against speed
   surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
+  accuracy SCENE.nml [...] [--report docs/accuracy.md]  accuracy-cost study
 """
 from __future__ import annotations
 
@@ -40,6 +41,15 @@ def main(argv: list[str] | None = None) -> int:
     p_surf.add_argument("--points", type=int, default=1024)
     p_surf.add_argument("--dx-mm", type=float, default=0.87)
 
+    p_acc = sub.add_parser("accuracy", help="accuracy-cost study of the numerical knobs")
+    p_acc.add_argument("scenes", nargs="+", help="scene namelists")
+    p_acc.add_argument("--speeds", type=float, nargs="+", default=None,
+                       help="speeds in km/h (default: each scene's)")
+    p_acc.add_argument("--outdir", default="outputs/accuracy")
+    p_acc.add_argument("--repeats", type=int, default=3)
+    p_acc.add_argument("--report", default=None,
+                       help="also write a Markdown report here (e.g. docs/accuracy.md)")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -56,6 +66,11 @@ def main(argv: list[str] | None = None) -> int:
             from .plot import plot_mu_speed
 
             print(f"wrote {plot_mu_speed(args.files, args.output, title=args.title)}")
+        elif args.command == "accuracy":
+            from .reports import accuracy_report
+
+            accuracy_report(args.scenes, args.outdir, speeds=args.speeds, repeats=args.repeats,
+                            report=args.report)
         elif args.command == "surface":
             from .surfaces import spectral_profile, write_profile
 

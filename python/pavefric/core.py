@@ -29,6 +29,8 @@ __all__ = [
     "Profile",
     "layout",
     "hydro_load",
+    "load_scene",
+    "Scene",
 ]
 
 
@@ -216,6 +218,53 @@ def open_dataset(path: str | os.PathLike):
 
     with xr.open_dataset(path, engine="netcdf4") as ds:
         return ds.load()
+
+
+@dataclass
+class Scene:
+    """A scene namelist as the core reads it: the profile (heights in m,
+    spacing dx in m), the speeds, and the model parameters as ``simulate``
+    keywords."""
+
+    name: str
+    heights: np.ndarray
+    dx: float
+    closed: bool
+    speeds_kmh: np.ndarray
+    parameters: dict
+    series: bool
+    profile_file: str
+    output_file: str
+
+    def simulate(self, speeds_kmh=None, series=None, **overrides):
+        """Run this scene through ``simulate`` (parameters may be overridden)."""
+        params = {**self.parameters, **overrides}
+        return simulate(self.heights, self.dx,
+                        self.speeds_kmh if speeds_kmh is None else speeds_kmh,
+                        closed=self.closed, series=self.series if series is None else series,
+                        **params)
+
+
+def load_scene(path: str | os.PathLike) -> Scene:
+    """Read a scene namelist and its profile with the core's readers."""
+    out = _core.pf_scene_info(str(path))
+    (np_, ns, dx, closed, series, mu_loc, length, width, thickness, load, shape, radius,
+     stiffness, viscosity, depth, water_viscosity, alpha, beta, theta_max_deg, substeps,
+     elements_per_sample, position_stride, wet_tolerance, profile_file, output_file,
+     status, message) = out
+    _check(status, message)
+    z, speeds, status, message = _core.pf_scene_arrays(str(path), int(np_), int(ns))
+    _check(status, message)
+    params = dict(mu_loc=float(mu_loc), length=float(length), width=float(width),
+                  thickness=float(thickness), load=float(load), shape=_text(shape),
+                  radius=float(radius), stiffness=float(stiffness), viscosity=float(viscosity),
+                  depth=float(depth), water_viscosity=float(water_viscosity),
+                  alpha=float(alpha), beta=float(beta), theta_max_deg=float(theta_max_deg),
+                  substeps=int(substeps), elements_per_sample=int(elements_per_sample),
+                  position_stride=int(position_stride), wet_tolerance=float(wet_tolerance))
+    return Scene(name=Path(path).stem, heights=z.copy(), dx=float(dx), closed=bool(closed),
+                 speeds_kmh=speeds.copy(), parameters=params, series=bool(series),
+                 profile_file=_text(profile_file), output_file=_text(output_file))
 
 
 @dataclass

@@ -233,3 +233,86 @@ subroutine pf_hydro_load(n, prefactor, h_in, h_out, wh, dwh_dhout)
       call hydro_load(prefactor, h_in, h_out(i), wh(i), dwh_dhout(i))
    end do
 end subroutine pf_hydro_load
+
+!> Read a scene file as the program does (first pass): sizes, spacing and
+!> parameters. The heights and speeds come from pf_scene_arrays.
+subroutine pf_scene_info(path, np, ns, dx, closed, series, mu_loc, length, width, thickness, &
+      & load, pad_shape, radius, stiffness, viscosity, depth, water_viscosity, alpha, beta, &
+      & theta_max_deg, substeps, elements_per_sample, position_stride, wet_tolerance, &
+      & profile_file, output_file, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_kinds, only: wp
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_run, only: load_scene_profile
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(out) :: np, ns, closed, series, substeps, elements_per_sample
+   integer(c_int), intent(out) :: position_stride, status
+   real(c_double), intent(out) :: dx, mu_loc, length, width, thickness, load, radius, stiffness
+   real(c_double), intent(out) :: viscosity, depth, water_viscosity, alpha, beta, theta_max_deg
+   real(c_double), intent(out) :: wet_tolerance
+   character(len=16), intent(out) :: pad_shape
+   character(len=4096), intent(out) :: profile_file, output_file
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(error_type), allocatable :: error
+   real(wp), allocatable :: z(:)
+   np = 0; ns = 0; dx = 0; closed = 0; series = 0; status = 0; message = ""
+   profile_file = ""; output_file = ""; pad_shape = ""
+   call read_scene(path, scene, error)
+   if (.not. allocated(error)) call load_scene_profile(scene, z, dx, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   np = size(z)
+   ns = size(scene%speeds_kmh)
+   closed = merge(1, 0, scene%closed)
+   series = merge(1, 0, scene%series)
+   associate(m => scene%model)
+      mu_loc = m%mu_loc; length = m%length; width = m%width; thickness = m%thickness
+      load = m%load; pad_shape = m%shape; radius = m%radius; stiffness = m%stiffness
+      viscosity = m%viscosity; depth = m%depth; water_viscosity = m%water_viscosity
+      alpha = m%alpha; beta = m%beta; theta_max_deg = m%theta_max_deg
+      substeps = m%substeps; elements_per_sample = m%elements_per_sample
+      position_stride = m%position_stride; wet_tolerance = m%wet_tolerance
+   end associate
+   profile_file = scene%profile_file
+   output_file = scene%output_file
+end subroutine pf_scene_info
+
+!> Heights (m) and speeds (km/h) of a scene file (second pass).
+subroutine pf_scene_arrays(path, np, ns, z, speeds_kmh, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_kinds, only: wp
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_run, only: load_scene_profile
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(in) :: np, ns
+   real(c_double), intent(out) :: z(np), speeds_kmh(ns)
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(error_type), allocatable :: error
+   real(wp), allocatable :: zz(:)
+   real(wp) :: dx
+   z = 0; speeds_kmh = 0; status = 0; message = ""
+   call read_scene(path, scene, error)
+   if (.not. allocated(error)) call load_scene_profile(scene, zz, dx, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   if (size(zz) /= np .or. size(scene%speeds_kmh) /= ns) then
+      status = 2
+      message = "scene '" // trim(path) // "' changed while it was read"
+      return
+   end if
+   z = zz
+   speeds_kmh = scene%speeds_kmh
+end subroutine pf_scene_arrays

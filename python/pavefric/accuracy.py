@@ -1,0 +1,181 @@
+"""Accuracy-cost study: what each numerical knob buys, and what it costs.
+
+For a scene, each knob of ``&numerics`` is varied over a range with the others
+at the scene's values; for each setting the friction is computed (by the
+Fortran core), its largest difference over the speeds from the finest
+setting of that knob is recorded, and the wall time is measured (best of a
+few repeats; absolute times are noisy, ratios less so).
+"""
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+# knob -> settings, coarsest (cheapest) first; the last is the reference
+KNOBS: dict[str, list] = {
+    "substeps": [1, 2, 4, 8, 16, 32, 64],
+    "elements_per_sample": [1, 2, 4, 8, 16, 32, 64],
+    "position_stride": [32, 16, 8, 4, 2, 1],
+    "wet_tolerance": [1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14],
+}
+
+BUDGETS = {  # name -> largest acceptable |mu error| of the setting
+    "quick look": 0.05,
+    "network survey": 0.01,
+    "research": 0.002,
+}
+
+
+def _timed(scene, speeds, repeats, **knob):
+    best = np.inf
+    ds = None
+    for _ in range(max(1, repeats)):
+        t0 = time.perf_counter()
+        ds = scene.simulate(speeds_kmh=speeds, series=False, **knob)
+        best = min(best, time.perf_counter() - t0)
+    return ds, best
+
+
+def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = None,
+          knobs: dict[str, list] | None = None, repeats: int = 3):
+    """Run the study on one scene; return an ``xarray.Dataset`` with one row
+    per (knob, setting): ``mu`` per speed, ``error`` (largest |mu - mu_finest|
+    over the speeds), ``time_s``, ``element_steps``."""
+    import xarray as xr
+
+    from .core import layout, load_scene
+
+    scene = load_scene(scene_path)
+    speeds = np.asarray(scene.speeds_kmh if speeds_kmh is None else speeds_kmh, dtype=float)
+    knobs = dict(KNOBS if knobs is None else knobs)
+    wet = scene.parameters["depth"] > 0
+    if not wet:
+        knobs.pop("wet_tolerance", None)   # a dry scene never solves the wet balance
+    rows = []
+    for knob, values in knobs.items():
+        results = []
+        for value in values:
+            ds, seconds = _timed(scene, speeds, repeats, **{knob: value})
+            p = {**scene.parameters, knob: value}
+            n_el, n_pos = layout(scene.heights.size, scene.dx, scene.closed, **{
+                k: p[k] for k in ("length", "elements_per_sample", "substeps",
+                                  "position_stride")})
+            results.append((value, ds["mu"].values.copy(), seconds,
+                            n_el * (n_pos + ds.attrs["spinup_positions"]) * speeds.size))
+        finest = results[-1][1]
+        for value, mu, seconds, steps in results:
+            rows.append((knob, float(value), mu, float(np.max(np.abs(mu - finest))), seconds,
+                         steps))
+    # The continuum limit, estimated by Richardson extrapolation of the two
+    # finest time refinements (first-order convergence: each doubling halves
+    # the error, which the convergence column shows).
+    sub = [r for r in rows if r[0] == "substeps"]
+    if len(sub) >= 2 and sub[-1][1] == 2 * sub[-2][1]:
+        limit = 2 * sub[-1][2] - sub[-2][2]
+        limit_note = (f"Richardson extrapolation 2 mu(substeps={sub[-1][1]:g}) - "
+                      f"mu(substeps={sub[-2][1]:g})")
+    else:
+        limit = rows[-1][2]
+        limit_note = "the last setting"
+    n = len(rows)
+    return xr.Dataset(
+        {
+            "knob": ("setting", np.array([r[0] for r in rows], dtype=object)),
+            "value": ("setting", np.array([r[1] for r in rows])),
+            "mu": (("setting", "speed_kmh"), np.array([r[2] for r in rows])),
+            "error": ("setting", np.array([float(np.max(np.abs(r[2] - limit))) for r in rows]),
+                      {"long_name": "largest |mu - mu(continuum limit)| over speeds"}),
+            "convergence": ("setting", np.array([r[3] for r in rows]),
+                            {"long_name": "largest |mu - mu(finest setting of this knob)| "
+                                          "over speeds"}),
+            "mu_limit": ("speed_kmh", np.asarray(limit)),
+            "time_s": ("setting", np.array([r[4] for r in rows]),
+                       {"units": "s", "long_name": "wall time, best of repeats (noisy)"}),
+            "element_steps": ("setting", np.array([r[5] for r in rows], dtype=np.int64)),
+        },
+        coords={"setting": np.arange(n), "speed_kmh": speeds},
+        attrs={"scene": str(scene_path), "wet": int(wet), "repeats": repeats,
+               "limit": limit_note,
+               "speeds_kmh": " ".join(f"{s:g}" for s in speeds)},
+    )
+
+
+def to_csv(table, path: str | os.PathLike) -> None:
+    """One row per setting: knob, value, error, time, element-steps, mu per speed."""
+    speeds = table["speed_kmh"].values
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write("scene,knob,value,error,convergence,time_s,element_steps,"
+                 + ",".join(f"mu_{s:g}kmh" for s in speeds) + "\n")
+        for i in range(table.sizes["setting"]):
+            mu = ",".join(f"{m:.12g}" for m in table["mu"].values[i])
+            fh.write(f"{Path(table.attrs['scene']).stem},{table['knob'].values[i]},"
+                     f"{table['value'].values[i]:g},{table['error'].values[i]:.6g},"
+                     f"{table['convergence'].values[i]:.6g},"
+                     f"{table['time_s'].values[i]:.6g},{table['element_steps'].values[i]},{mu}\n")
+
+
+def to_netcdf(table, path: str | os.PathLike) -> None:
+    out = table.copy()
+    out["knob"] = out["knob"].astype(str)
+    out.to_netcdf(path)
+
+
+def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) -> str:
+    """Log-log error against time, one line per knob (and scene)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
+    markers = {"substeps": "o", "elements_per_sample": "s", "position_stride": "^",
+               "wet_tolerance": "d"}
+    for table in tables:
+        name = Path(table.attrs["scene"]).stem
+        for knob in dict.fromkeys(table["knob"].values):
+            sel = table["knob"].values == knob
+            err = table["convergence"].values[sel]
+            t = table["time_s"].values[sel]
+            keep = err > 0                                 # the finest setting is 0
+            if keep.any():
+                ax.loglog(t[keep], err[keep], marker=markers.get(knob, "x"), ms=4,
+                          label=f"{name}: {knob}")
+    ax.set_xlabel("wall time (s, best of repeats; noisy)")
+    ax.set_ylabel("largest |mu - mu(knob's finest setting)| over speeds")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    if title:
+        ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return str(path)
+
+
+def recommend(tables: Sequence) -> dict[str, dict]:
+    """For each budget, the cheapest setting (one knob changed) whose error is
+    within the budget on every scene; the error and time are the worst ones."""
+    out = {}
+    candidates: dict[tuple, list] = {}
+    for table in tables:
+        for i in range(table.sizes["setting"]):
+            key = (str(table["knob"].values[i]), float(table["value"].values[i]))
+            candidates.setdefault(key, []).append((float(table["error"].values[i]),
+                                                   float(table["time_s"].values[i])))
+    for budget, limit in BUDGETS.items():
+        best = None
+        for (knob, value), res in candidates.items():
+            if len(res) < len(tables):
+                continue                       # not measured on every scene (dry-only knob)
+            err = max(r[0] for r in res)
+            t = max(r[1] for r in res)
+            if err <= limit and (best is None or t < best[3]):
+                best = (knob, value, err, t)
+        if best:
+            out[budget] = {"knob": best[0], "value": best[1], "error": best[2],
+                           "time_s": best[3], "limit": limit}
+    return out

@@ -1,0 +1,41 @@
+"""The accuracy-cost study (a reduced run)."""
+import subprocess
+import sys
+
+import numpy as np
+
+from conftest import ROOT
+
+
+def test_accuracy_study_reduced(tmp_path):
+    from pavefric import accuracy
+
+    knobs = {"substeps": [1, 2, 4, 8], "position_stride": [8, 4, 2, 1],
+             "wet_tolerance": [1e-3, 1e-8, 1e-14]}
+    table = accuracy.study(ROOT / "inputs" / "ctm_wet.nml", speeds_kmh=[20, 60], knobs=knobs,
+                           repeats=1)
+    for knob in knobs:
+        conv = table["convergence"].values[table["knob"].values == knob]
+        assert conv[-1] == 0.0 and conv[0] > 0
+        if knob != "position_stride":   # stride subsamples too: not monotone (docs)
+            assert np.all(np.diff(conv) < 0), (knob, conv)   # refining buys accuracy
+    sub = table["time_s"].values[table["knob"].values == "substeps"]
+    assert np.all(np.isfinite(sub)) and np.all(sub > 0)
+    steps = table["element_steps"].values[table["knob"].values == "substeps"]
+    assert list(steps[1:] / steps[:-1]) == [2, 2, 2]
+    accuracy.to_csv(table, tmp_path / "a.csv")
+    header = (tmp_path / "a.csv").read_text().splitlines()[0]
+    assert header.startswith("scene,knob,value,error,convergence,time_s,element_steps,mu_20kmh")
+
+
+def test_accuracy_command_writes_report(tmp_path):
+    report = tmp_path / "docs" / "accuracy.md"
+    r = subprocess.run([sys.executable, "-m", "pavefric", "accuracy",
+                        str(ROOT / "inputs" / "ctm_dry.nml"), "--speeds", "40",
+                        "--repeats", "1", "--outdir", str(tmp_path / "out"),
+                        "--report", str(report)], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    text = report.read_text()
+    assert "## Recommended settings" in text and "quick look" in text
+    assert (tmp_path / "docs" / "figures" / "accuracy.png").stat().st_size > 10_000
+    assert (tmp_path / "out" / "accuracy_ctm_dry.nc").exists()
