@@ -8,6 +8,7 @@ module pavefric
    use pavefric_simulate, only: sim_result_type, simulate, effects_text
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_run, only: run_scene
+   use pavefric_texture, only: texture_type, texture_metrics, mean_profile_depth
    implicit none
    public
 end module pavefric

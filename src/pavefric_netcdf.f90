@@ -7,6 +7,7 @@ module pavefric_netcdf
    use pavefric_kinds, only: wp, pavefric_version
    use pavefric_error, only: error_type, fatal_error
    use pavefric_simulate, only: sim_result_type, effects_text
+   use pavefric_texture, only: texture_type
    use pavefric_fsys, only: rename_file, remove_file, process_id
    use pavefric_format, only: to_str
    implicit none
@@ -20,6 +21,10 @@ module pavefric_netcdf
       real(wp) :: dx = 0.0_wp
       integer :: profile_points = 0
       logical :: closed = .true.
+      !> Texture metrics of the profile, when they could be computed.
+      logical :: has_texture = .false.
+      type(texture_type) :: texture
+      character(len=:), allocatable :: texture_note
    end type output_metadata_type
 
 contains
@@ -59,7 +64,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       integer :: ncid, d_speed, d_pos, stat
       integer :: v_speed, v_kmh, v_mu, v_ncl, v_hyd, v_wet, v_res, v_mwh, v_comp, v_nbe
-      integer :: v_mem, v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce
+      integer :: v_mem, v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce, v_mpd, v_rh, v_rs
       logical :: series
 
       series = allocated(res%mu_inst)
@@ -99,6 +104,16 @@ contains
          & "whether the rubber elements carried viscous memory", v_vis)
       call def(ncid, "bearing_ran", nf90_byte, [d_speed], "", &
          & "whether the hydrodynamic bearing took part in the load balance", v_bea)
+      if (meta%has_texture) then
+         call def(ncid, "mpd", nf90_double, [integer ::], "m", &
+            & "mean profile depth (ISO 13473-1 / ASTM E1845, 100 mm segments, slope " // &
+            & "suppression)", v_mpd)
+         call check(nf90_put_att(ncid, v_mpd, "n_segments", meta%texture%n_segments), "mpd")
+         call def(ncid, "rms_height", nf90_double, [integer ::], "m", &
+            & "RMS profile height about the mean", v_rh)
+         call def(ncid, "rms_slope", nf90_double, [integer ::], "1", &
+            & "RMS slope between neighbouring samples at the profile spacing", v_rs)
+      end if
       if (allocated(error)) goto 99
       call flags(v_vis)
       call flags(v_bea)
@@ -128,6 +143,7 @@ contains
       call gatt("effects", effects_text(res))
       call gatt("profile_file", meta%profile_file)
       call gatt("input_namelist", meta%input_namelist)
+      if (allocated(meta%texture_note)) call gatt("texture_note", meta%texture_note)
       call check(nf90_put_att(ncid, nf90_global, "profile_points", meta%profile_points), "att")
       call check(nf90_put_att(ncid, nf90_global, "profile_dx", meta%dx), "att")
       call check(nf90_put_att(ncid, nf90_global, "profile_closed", merge(1, 0, meta%closed)), &
@@ -152,6 +168,11 @@ contains
       call check(nf90_put_var(ncid, v_mem, res%memory_updates), "memory_updates")
       call check(nf90_put_var(ncid, v_vis, merge(1, 0, res%viscous_memory_ran)), "flags")
       call check(nf90_put_var(ncid, v_bea, merge(1, 0, res%bearing_ran)), "flags")
+      if (meta%has_texture) then
+         call check(nf90_put_var(ncid, v_mpd, meta%texture%mpd), "mpd")
+         call check(nf90_put_var(ncid, v_rh, meta%texture%rms_height), "rms_height")
+         call check(nf90_put_var(ncid, v_rs, meta%texture%rms_slope), "rms_slope")
+      end if
       if (series) then
          call check(nf90_put_var(ncid, v_pos, res%position), "position")
          call check(nf90_put_var(ncid, v_mui, res%mu_inst), "mu_inst")

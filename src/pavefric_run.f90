@@ -9,6 +9,7 @@ module pavefric_run
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_netcdf, only: write_results, output_metadata_type, temporary_name
    use pavefric_fsys, only: make_directory, dir_name, remove_file
+   use pavefric_texture, only: texture_metrics
    implicit none
    private
 
@@ -54,6 +55,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(scene_type) :: scene
       type(output_metadata_type) :: meta
+      type(error_type), allocatable :: texture_error
       real(wp), allocatable :: z(:)
       real(wp) :: dx
 
@@ -87,6 +89,10 @@ contains
       meta%dx = dx
       meta%profile_points = size(z)
       meta%closed = scene%closed
+      ! Texture metrics: reported when the profile holds a whole segment.
+      call texture_metrics(z, dx, scene%closed, 0.1_wp, .true., meta%texture, texture_error)
+      meta%has_texture = .not. allocated(texture_error)
+      if (allocated(texture_error)) meta%texture_note = texture_error%message
       call write_results(out_path, res, meta, error)
    end subroutine run_scene
 

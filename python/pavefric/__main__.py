@@ -5,6 +5,7 @@ Commands:
   plot OUT.nc [OUT.nc ...] -o PNG           friction against speed
   surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
   accuracy SCENE.nml [...] [--report docs/accuracy.md]  accuracy-cost study
+  bench [--report docs/performance.md]      benchmark against the NumPy reference
 """
 from __future__ import annotations
 
@@ -50,6 +51,11 @@ def main(argv: list[str] | None = None) -> int:
     p_acc.add_argument("--report", default=None,
                        help="also write a Markdown report here (e.g. docs/accuracy.md)")
 
+    p_bench = sub.add_parser("bench", help="benchmark the core against the NumPy reference")
+    p_bench.add_argument("--report", default=None, help="write docs/performance.md here")
+    p_bench.add_argument("--largest", type=int, default=10_000_000,
+                         help="largest profile of the length scaling (points)")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -71,6 +77,10 @@ def main(argv: list[str] | None = None) -> int:
 
             accuracy_report(args.scenes, args.outdir, speeds=args.speeds, repeats=args.repeats,
                             report=args.report)
+        elif args.command == "bench":
+            from .bench import run as bench_run
+
+            bench_run(args.report, args.largest)
         elif args.command == "surface":
             from .surfaces import spectral_profile, write_profile
 

@@ -316,3 +316,33 @@ subroutine pf_scene_arrays(path, np, ns, z, speeds_kmh, status, message)
    z = zz
    speeds_kmh = scene%speeds_kmh
 end subroutine pf_scene_arrays
+
+!> Texture metrics of heights z (m): MPD (m), segments used, RMS height (m),
+!> RMS slope; msd holds each segment's depth (size nseg_max).
+subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg_max, mpd, &
+      & n_segments, rms_height, rms_slope, msd, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_texture, only: texture_type, texture_metrics, mean_profile_depth
+   use pavefric_error, only: error_type
+   implicit none
+   integer(c_int), intent(in) :: np, closed, slope_suppression, nseg_max
+   real(c_double), intent(in) :: z(np), dx, segment_length
+   real(c_double), intent(out) :: mpd, rms_height, rms_slope, msd(nseg_max)
+   integer(c_int), intent(out) :: n_segments, status
+   character(len=2048), intent(out) :: message
+   type(texture_type) :: tex
+   type(error_type), allocatable :: error
+   mpd = 0; rms_height = 0; rms_slope = 0; msd = 0; n_segments = 0; status = 0; message = ""
+   call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, error)
+   if (.not. allocated(error)) call mean_profile_depth(z, dx, segment_length, &
+      & slope_suppression /= 0, mpd, n_segments, error, msd)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   mpd = tex%mpd
+   n_segments = tex%n_segments
+   rms_height = tex%rms_height
+   rms_slope = tex%rms_slope
+end subroutine pf_texture

@@ -1,0 +1,212 @@
+"""Benchmark: throughput, scaling and memory of the Fortran core, each figure
+printed beside the same work done by the NumPy reference of MODEL.md (the
+slow test reference in tests/reference.py) in the same run.
+
+Run from a checkout: ``python -m pavefric bench [--report docs/performance.md]``.
+Not a test: absolute times are noisy; ratios measured side by side are the
+figures to read.
+"""
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+DX = 0.87e-3
+
+
+def _reference():
+    """The NumPy reference from the checkout's tests/ (it is not installed)."""
+    here = Path.cwd() / "tests" / "reference.py"
+    if not here.exists():
+        here = Path(__file__).resolve().parents[2] / "tests" / "reference.py"
+    if not here.exists():
+        raise FileNotFoundError("tests/reference.py not found: run the benchmark from a checkout")
+    spec = importlib.util.spec_from_file_location("pavefric_reference", here)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def surfaces():
+    """Texture profiles of three kinds (CTM-like, closed, 1024 points)."""
+    from .surfaces import spectral_profile
+
+    return {
+        "fine (rms 0.2 mm)": spectral_profile(1024, DX, rms=0.2e-3, seed=21),
+        "medium (rms 0.5 mm)": spectral_profile(1024, DX, rms=0.5e-3, skew=-0.3, seed=22),
+        "coarse (rms 1.0 mm)": spectral_profile(1024, DX, rms=1.0e-3, skew=-0.6, seed=23),
+    }
+
+
+def _best(fn, repeats=3):
+    best = np.inf
+    out = None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def _rate_core(z, dx, closed=True, speeds=(60.0,), repeats=3, **kw):
+    from .core import simulate
+
+    seconds, ds = _best(lambda: simulate(z, dx, list(speeds), closed=closed, **kw), repeats)
+    n_el = ds.attrs["pad_elements"]
+    steps = n_el * (ds.attrs["averaged_positions"] + ds.attrs["spinup_positions"]) * len(speeds)
+    return steps / seconds, seconds, ds
+
+
+def _rate_reference(ref, z, dx, closed=True, speeds=(60.0,), **kw):
+    t0 = time.perf_counter()
+    ref.simulate(z, dx, list(speeds), closed=closed, **kw)
+    seconds = time.perf_counter() - t0
+    n_el = int(np.floor(kw.get("length", 0.020) / dx + 0.5))
+    positions = (z.size + n_el) if closed else (z.size - n_el + 1)
+    return n_el * positions * len(speeds) / seconds, seconds
+
+
+def _child(code: str, env=None) -> dict:
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       env={**os.environ, **(env or {})}, timeout=1800)
+    if r.returncode != 0:
+        raise RuntimeError(r.stderr)
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def throughput(ref, log):
+    rows = []
+    log("\n== Throughput per core, N = 23 (0.87 mm, 20 mm pad), 60 km/h ==")
+    log(f"{'surface':22s} {'scene':5s} {'core Msteps/s':>14s} {'numpy Msteps/s':>15s} {'ratio':>8s}")
+    for name, z in surfaces().items():
+        big = np.tile(z, 64)                        # 65,536 points: a measurable time
+        for scene, kw, nref in (("dry", {}, 1024), ("wet", {"depth": 1e-3}, 128)):
+            core, _, _ = _rate_core(big, DX, **kw)
+            numpy_rate, _ = _rate_reference(ref, z[:nref], DX, **kw)
+            rows.append(dict(surface=name, scene=scene, core=core, numpy=numpy_rate,
+                             ratio=core / numpy_rate))
+            log(f"{name:22s} {scene:5s} {core / 1e6:14.1f} {numpy_rate / 1e6:15.3f} "
+                f"{core / numpy_rate:8.0f}x")
+    return rows
+
+
+def scaling_elements(ref, log):
+    from .surfaces import spectral_profile
+
+    log("\n== Scaling in pad elements N (finer profiles, 20 mm pad, 8192 points, 60 km/h) ==")
+    log(f"{'N':>6s} {'dx mm':>8s} {'dry Msteps/s':>13s} {'wet Msteps/s':>13s} "
+        f"{'numpy dry':>10s} {'ratio dry':>10s}")
+    rows = []
+    for r in (1, 2, 4, 8, 16, 32, 87):
+        dx = DX / r
+        z = spectral_profile(8192, dx, rms=0.5e-3, wavelength_min=max(2e-3, 4 * dx),
+                             wavelength_max=min(50e-3, 8192 * dx / 4), seed=5)
+        dry, _, ds = _rate_core(z, dx, repeats=2)
+        wet, _, _ = _rate_core(z, dx, repeats=2, depth=1e-3)
+        nref = min(8192, max(64, 40000 // (23 * r)))
+        numpy_rate, _ = _rate_reference(ref, z[:max(nref, 23 * r + 40)], dx)
+        n = ds.attrs["pad_elements"]
+        rows.append(dict(N=n, dx=dx, dry=dry, wet=wet, numpy=numpy_rate))
+        log(f"{n:6d} {dx * 1e3:8.4f} {dry / 1e6:13.1f} {wet / 1e6:13.1f} "
+            f"{numpy_rate / 1e6:10.3f} {dry / numpy_rate:9.0f}x")
+    worst = max(rows[0]["dry"] / r["dry"] for r in rows)
+    log(f"per-element cost at N = {rows[-1]['N']} vs N = 23: dry "
+        f"{rows[0]['dry'] / rows[-1]['dry']:.2f}x, wet {rows[0]['wet'] / rows[-1]['wet']:.2f}x "
+        f"(worst dry over N: {worst:.2f}x)")
+    return rows
+
+
+MEMORY_CHILD = """
+import json, resource, sys, time, numpy as np, pavefric
+n = int(sys.argv[1]); nspeeds = int(sys.argv[2])
+z = 1e-4 * np.sin(np.arange(n) * 0.37) + 2e-4 * np.sin(np.arange(n) * 0.051)
+pavefric.simulate(z[:200], 0.87e-3, [60.0])
+base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t0 = time.perf_counter()
+ds = pavefric.simulate(z, 0.87e-3, list(np.linspace(20, 80, nspeeds)), closed=False)
+t = time.perf_counter() - t0
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print(json.dumps({"n": n, "seconds": t, "extra_bytes": (peak - base) * 1024,
+                  "steps": 23 * (n - 22) * nspeeds}))
+"""
+
+
+def scaling_length(log, largest=10_000_000):
+    log("\n== Scaling in profile length (open profile, dry, 1 speed, 1 thread) ==")
+    log(f"{'points':>10s} {'seconds':>9s} {'Msteps/s':>9s} {'peak extra MB':>14s} "
+        f"{'bytes/point':>12s}")
+    rows = []
+    n = 1000
+    while n <= largest:
+        res = _child(f"import sys; sys.argv = ['x', '{n}', '1']\n" + MEMORY_CHILD,
+                     env={"OMP_NUM_THREADS": "1"})
+        rows.append(res)
+        log(f"{n:10d} {res['seconds']:9.3f} {res['steps'] / res['seconds'] / 1e6:9.1f} "
+            f"{res['extra_bytes'] / 2**20:14.1f} {res['extra_bytes'] / n:12.1f}")
+        n *= 10
+    six = _child(f"import sys; sys.argv = ['x', '{largest // 10}', '6']\n" + MEMORY_CHILD,
+                 env={"OMP_NUM_THREADS": "1"})
+    one = next(r for r in rows if r["n"] == largest // 10)
+    log(f"memory with 6 speeds vs 1 at {largest // 10:,} points (no series): "
+        f"{six['extra_bytes'] / 2**20:.1f} MB vs {one['extra_bytes'] / 2**20:.1f} MB")
+    return rows, six
+
+
+THREADS_CHILD = """
+import json, time, numpy as np, pavefric
+from pavefric.surfaces import spectral_profile
+z = np.tile(spectral_profile(1024, 0.87e-3, rms=0.5e-3, seed=22), 64)
+speeds = [10.0, 20.0, 30.0, 40.0, 60.0, 80.0]
+pavefric.simulate(z[:200], 0.87e-3, speeds)
+best = 1e9
+for _ in range(3):
+    t0 = time.perf_counter()
+    ds = pavefric.simulate(z, 0.87e-3, speeds, depth=DEPTH)
+    best = min(best, time.perf_counter() - t0)
+print(json.dumps({"seconds": best, "mu": ds["mu"].values.tolist()}))
+"""
+
+
+def threads(log):
+    log("\n== OpenMP over the speeds of a sweep (6 speeds, 65,536 points) ==")
+    rows = []
+    for scene, depth in (("dry", "0.0"), ("wet", "1e-3")):
+        one = _child(THREADS_CHILD.replace("DEPTH", depth), env={"OMP_NUM_THREADS": "1"})
+        two = _child(THREADS_CHILD.replace("DEPTH", depth), env={"OMP_NUM_THREADS": "2"})
+        same = one["mu"] == two["mu"]
+        rows.append(dict(scene=scene, one=one["seconds"], two=two["seconds"], same=same))
+        log(f"{scene}: 1 thread {one['seconds']:.3f} s, 2 threads {two['seconds']:.3f} s, "
+            f"speed-up {one['seconds'] / two['seconds']:.2f}x, identical results: {same}")
+    return rows
+
+
+def run(report: str | None = None, largest: int = 10_000_000) -> dict:
+    from .reports import machine_description
+
+    lines: list[str] = []
+
+    def log(text=""):
+        print(text, flush=True)
+        lines.append(text)
+
+    log(f"pavefric benchmark on {machine_description()}")
+    ref = _reference()
+    results = {
+        "throughput": throughput(ref, log),
+        "elements": scaling_elements(ref, log),
+        "length": scaling_length(log, largest),
+        "threads": threads(log),
+    }
+    if report:
+        from .reports import performance_report
+
+        performance_report(Path(report), results, lines)
+        log(f"\nwrote {report}")
+    return results

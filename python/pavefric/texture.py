@@ -1,0 +1,46 @@
+"""Texture metrics (computed by the Fortran core) and the International
+Friction Index of ASTM E1960 (a two-line formula of the standard, here)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _core
+from .core import _check
+
+
+def texture(heights_m, dx: float, *, closed: bool = True, segment_length: float = 0.1,
+            slope_suppression: bool = True) -> dict:
+    """Mean profile depth (ISO 13473-1 / ASTM E1845), RMS height and RMS slope.
+
+    Returns a dict with ``mpd`` (m), ``n_segments``, ``msd`` (m, per segment),
+    ``rms_height`` (m) and ``rms_slope`` (-).
+    """
+    z = np.ascontiguousarray(np.asarray(heights_m, dtype=np.float64).ravel())
+    nseg = max(1, int(z.size // max(1, round(segment_length / dx))))
+    (mpd, n_segments, rms_h, rms_s, msd, status, message) = _core.pf_texture(
+        z, float(dx), int(bool(closed)), float(segment_length), int(bool(slope_suppression)),
+        nseg)
+    _check(status, message)
+    return {"mpd": float(mpd), "n_segments": int(n_segments),
+            "msd": msd[:int(n_segments)].copy(), "rms_height": float(rms_h),
+            "rms_slope": float(rms_s)}
+
+
+# ASTM E1960-07 (2015), Sections 6-7: speed constant and F60 for the DFT at 20 km/h
+SP_A, SP_B = 14.2, 89.7          # Sp = a + b MPD (MPD in mm, Sp in km/h)
+F60_A, F60_B = 0.081, 0.732      # F60 = A + B DFT20 exp(-40/Sp)
+
+
+def speed_constant(mpd_m: float) -> float:
+    """Sp (km/h) of ASTM E1960 from the mean profile depth (m)."""
+    return SP_A + SP_B * mpd_m * 1e3
+
+
+def ifi(dft20: float, mpd_m: float) -> dict:
+    """International Friction Index (ASTM E1960) from a DFT value at 20 km/h
+    and the mean profile depth (m): ``{"F60": ..., "Sp": ...}`` (Sp in km/h)."""
+    sp = speed_constant(mpd_m)
+    fr60 = dft20 * math.exp((20.0 - 60.0) / sp)
+    return {"F60": F60_A + F60_B * fr60, "Sp": sp}

@@ -1,0 +1,126 @@
+!> Texture metrics of a profile: mean profile depth (ISO 13473-1 / ASTM
+!> E1845), RMS height and RMS slope. No friction physics here.
+module pavefric_texture
+   use pavefric_kinds, only: wp
+   use pavefric_error, only: error_type, fatal_error
+   use pavefric_format, only: to_str
+   implicit none
+   private
+
+   public :: texture_type, texture_metrics, mean_profile_depth
+
+   !> Texture metrics of one profile (SI units).
+   type :: texture_type
+      !> Mean profile depth (m): the mean of the segments' mean segment depths.
+      real(wp) :: mpd = 0.0_wp
+      !> Number of complete segments MPD was averaged over.
+      integer :: n_segments = 0
+      !> RMS height about the mean (m).
+      real(wp) :: rms_height = 0.0_wp
+      !> RMS of the slope between neighbouring samples at the profile's own
+      !> spacing (-).
+      real(wp) :: rms_slope = 0.0_wp
+   end type texture_type
+
+   interface
+      !> LAPACK least squares (QR).
+      pure subroutine dgels(trans, m, n, nrhs, a, lda, b, ldb, work, lwork, info)
+         import :: wp
+         character, intent(in) :: trans
+         integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
+         real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+         real(wp), intent(out) :: work(*)
+         integer, intent(out) :: info
+      end subroutine dgels
+   end interface
+
+contains
+
+   !> All metrics of heights z (m) at spacing dx (m); MPD over segments of
+   !> `segment_length` (m, ISO: 0.1), with or without slope suppression.
+   subroutine texture_metrics(z, dx, closed, segment_length, slope_suppression, tex, error)
+      real(wp), intent(in) :: z(:), dx, segment_length
+      logical, intent(in) :: closed, slope_suppression
+      type(texture_type), intent(out) :: tex
+      type(error_type), allocatable, intent(out) :: error
+      real(wp) :: mean
+      integer :: n
+      n = size(z)
+      if (n < 2) then
+         call fatal_error(error, "texture: a profile needs at least two points")
+         return
+      end if
+      call mean_profile_depth(z, dx, segment_length, slope_suppression, tex%mpd, &
+         & tex%n_segments, error)
+      if (allocated(error)) return
+      mean = sum(z) / real(n, wp)
+      tex%rms_height = sqrt(sum((z - mean)**2) / real(n, wp))
+      if (closed) then
+         tex%rms_slope = sqrt((sum((z(2:n) - z(1:n-1))**2) + (z(1) - z(n))**2) &
+            & / real(n, wp)) / dx
+      else
+         tex%rms_slope = sqrt(sum((z(2:n) - z(1:n-1))**2) / real(n - 1, wp)) / dx
+      end if
+   end subroutine texture_metrics
+
+   !> Mean profile depth: the profile is cut into consecutive segments of
+   !> nint(segment_length/dx) samples from its start (an incomplete last
+   !> segment is not used). In each segment, with slope suppression, the
+   !> least-squares line is removed (ASTM E1845); the mean segment depth is
+   !> the average of the highest points of the two halves minus the segment's
+   !> mean height. MPD is the mean over the segments.
+   pure subroutine mean_profile_depth(z, dx, segment_length, slope_suppression, mpd, &
+         & n_segments, error, msd)
+      real(wp), intent(in) :: z(:), dx, segment_length
+      logical, intent(in) :: slope_suppression
+      real(wp), intent(out) :: mpd
+      integer, intent(out) :: n_segments
+      type(error_type), allocatable, intent(out) :: error
+      !> Optional: each segment's mean segment depth (m).
+      real(wp), intent(out), optional :: msd(:)
+      real(wp), allocatable :: a(:,:), b(:,:), work(:), seg(:)
+      real(wp) :: depth
+      integer :: ns, k, i, half, info, lwork
+
+      mpd = 0.0_wp
+      n_segments = 0
+      if (.not. (dx > 0.0_wp) .or. .not. (segment_length > 0.0_wp)) then
+         call fatal_error(error, "texture: dx = " // to_str(dx) // " and segment length = " // &
+            & to_str(segment_length) // " must be > 0")
+         return
+      end if
+      ns = nint(segment_length / dx)
+      if (ns < 4) then
+         call fatal_error(error, "texture: a segment of " // to_str(segment_length) // &
+            & " m holds fewer than 4 samples at dx = " // to_str(dx) // " m")
+         return
+      end if
+      n_segments = size(z) / ns
+      if (n_segments < 1) then
+         call fatal_error(error, "texture: the profile (" // to_str(size(z)) // " points, " // &
+            & to_str(size(z) * dx) // " m) is shorter than one segment of " // &
+            & to_str(segment_length) // " m")
+         return
+      end if
+      lwork = 64 * ns
+      allocate(a(ns, 2), b(ns, 1), work(lwork), seg(ns))
+      half = ns / 2
+      do k = 1, n_segments
+         seg = z((k-1)*ns + 1 : k*ns)
+         if (slope_suppression) then
+            a(:, 1) = 1.0_wp
+            a(:, 2) = [(real(i - 1, wp) * dx, i = 1, ns)]
+            b(:, 1) = seg
+            call dgels('N', ns, 2, 1, a, ns, b, ns, work, lwork, info)
+            seg = seg - (b(1, 1) + b(2, 1) * [(real(i - 1, wp) * dx, i = 1, ns)])
+         end if
+         depth = 0.5_wp * (maxval(seg(1:half)) + maxval(seg(half+1:ns))) - sum(seg) / real(ns, wp)
+         if (present(msd)) then
+            if (k <= size(msd)) msd(k) = depth
+         end if
+         mpd = mpd + depth
+      end do
+      mpd = mpd / real(n_segments, wp)
+   end subroutine mean_profile_depth
+
+end module pavefric_texture
