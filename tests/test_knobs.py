@@ -18,7 +18,7 @@ def test_knobs_at_one_are_the_model(profile_m):
     ("substeps", [1, 2, 4, 8, 16, 64]),
     ("elements_per_sample", [1, 2, 4, 8, 32]),
 ])
-@pytest.mark.parametrize("scene", [dict(viscosity=3e3), dict(viscosity=3e3, depth=1e-3)])
+@pytest.mark.parametrize("scene", [dict(viscosity=3e3), dict(viscosity=3e3, depth=1e-3, alpha=1.0)])
 def test_refinement_converges(profile_m, knob, values, scene):
     mus = [pavefric.simulate(profile_m, DX, [40.0], **scene, **{knob: v})["mu"].values[0]
            for v in values]

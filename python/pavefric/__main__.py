@@ -6,6 +6,9 @@ Commands:
   surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
   accuracy SCENE.nml [...] [--report docs/accuracy.md]  accuracy-cost study
   bench [--report docs/performance.md]      benchmark against the NumPy reference
+  calibrate DATA.csv --fit alpha ...        least-squares calibration (core runs)
+  surfaces [--outdir inputs/surfaces]       regenerate the six reference surfaces
+  validate [--report docs/validation.md]    calibrate at 20 km/h, compare, report
 """
 from __future__ import annotations
 
@@ -56,6 +59,31 @@ def main(argv: list[str] | None = None) -> int:
     p_bench.add_argument("--largest", type=int, default=10_000_000,
                          help="largest profile of the length scaling (points)")
 
+    p_cal = sub.add_parser("calibrate", help="fit model parameters to measured friction (CSV)")
+    p_cal.add_argument("data", help="CSV with columns surface,speed_kmh,mu")
+    p_cal.add_argument("--scenes", default="inputs/surfaces",
+                       help="directory of <surface>.nml scenes")
+    p_cal.add_argument("--fit", nargs="+", default=["alpha"],
+                       help="parameters: alpha beta viscosity ... or mu_loc:<SURFACE>")
+    p_cal.add_argument("--speeds", type=float, nargs="+", default=None,
+                       help="use only these speeds (km/h)")
+    p_cal.add_argument("--source", default=None,
+                       help="use only rows whose 'source' column is this (e.g. dft)")
+    p_cal.add_argument("--start", nargs="+", default=None, help="start values, name=value")
+    p_cal.add_argument("-o", "--output", default=None, help="write the fit as JSON")
+
+    p_sur = sub.add_parser("surfaces", help="(re)generate the six reference surfaces")
+    p_sur.add_argument("--outdir", default="inputs/surfaces")
+    p_sur.add_argument("--table", default=None, help="kane2017_tables.csv")
+    p_sur.add_argument("--alpha", type=float, default=None)
+    p_sur.add_argument("--beta", type=float, default=1.75)
+
+    p_val = sub.add_parser("validate", help="calibrate on 20 km/h and regenerate docs/validation.md")
+    p_val.add_argument("--table", default=None, help="kane2017_tables.csv")
+    p_val.add_argument("--report", default="docs/validation.md")
+    p_val.add_argument("--outdir", default="outputs/validation")
+    p_val.add_argument("--quick", action="store_true", help="fewer speeds in the curves")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -81,6 +109,21 @@ def main(argv: list[str] | None = None) -> int:
             from .bench import run as bench_run
 
             bench_run(args.report, args.largest)
+        elif args.command == "calibrate":
+            from .calibrate import main_calibrate
+
+            return main_calibrate(args)
+        elif args.command == "surfaces":
+            from .reference_surfaces import write_surfaces
+            from .validation import CALIBRATED_ALPHA, default_table
+
+            write_surfaces(args.outdir, args.table or default_table(),
+                           alpha=CALIBRATED_ALPHA if args.alpha is None else args.alpha,
+                           beta=args.beta)
+        elif args.command == "validate":
+            from .validation import validate
+
+            validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick)
         elif args.command == "surface":
             from .surfaces import spectral_profile, write_profile
 

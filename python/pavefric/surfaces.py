@@ -20,9 +20,10 @@ def spectral_profile(n: int = CTM_POINTS, dx: float = CTM_DX, *, rms: float = 0.
 
     Amplitude spectrum ``|Z(k)| ~ k**(-exponent/2)`` (power ~ k**-exponent)
     between the two wavelengths, random phases from ``numpy.random.default_rng(seed)``,
-    scaled to RMS height ``rms`` (m). ``skew`` < 0 flattens the peaks (a
-    "negative" texture like a worn asphalt), > 0 sharpens them, through the
-    monotone map ``z -> sinh(skew z/s)/skew`` applied before rescaling.
+    scaled to RMS height ``rms`` (m). ``skew`` < 0 gives flat tops and deep
+    narrow valleys (a "negative" texture, like an asphalt), > 0 sharp peaks,
+    through the monotone map ``z -> (exp(skew z/s) - 1)/skew`` (s the RMS)
+    applied before rescaling.
     """
     if n < 4 or dx <= 0 or rms < 0 or wavelength_min <= 0 or wavelength_max <= wavelength_min:
         raise ValueError("spectral_profile: n >= 4, dx > 0, rms >= 0 and "
@@ -39,7 +40,7 @@ def spectral_profile(n: int = CTM_POINTS, dx: float = CTM_DX, *, rms: float = 0.
     z -= z.mean()
     s = z.std()
     if s > 0 and skew != 0.0:
-        z = np.sinh(skew * z / s) / skew
+        z = np.expm1(skew * z / s) / skew
         z -= z.mean()
         s = z.std()
     if s > 0:
