@@ -215,8 +215,8 @@ contains
       real(wp), intent(in) :: z(:), dx
       logical, intent(in) :: closed
       type(geometry_type), intent(out) :: geo
-      real(wp), allocatable :: zf(:), tf(:)
-      logical, allocatable :: cf(:)
+      real(wp), allocatable :: zf(:), tf(:), t_fine(:)
+      logical, allocatable :: cf(:), c_fine(:)
       real(wp) :: dxf, xc
       integer :: fine, n_ext, k, i
 
@@ -242,8 +242,23 @@ contains
          geo%n_spin = 0
       end if
 
-      allocate(tf(geo%npf), cf(geo%npf))
-      call facet_friction(zf, dxf, closed, m%mu_loc, m%theta_max_deg, tf, cf)
+      ! Facets belong to the measured profile: tan(theta) from MODEL.md's
+      ! central differences at the samples, interpolated linearly between
+      ! them on a refined grid (a refined point counts as clamped when its
+      ! nearest sample is). Refinement then changes the discretisation, not
+      ! the surface's facet geometry.
+      allocate(tf(size(z)), cf(size(z)))
+      call facet_friction(z, dx, closed, m%mu_loc, m%theta_max_deg, tf, cf)
+      if (fine > 1) then
+         call refine_profile(tf, closed, fine, t_fine)
+         call move_alloc(t_fine, tf)
+         allocate(c_fine(geo%npf))
+         do k = 1, geo%npf
+            c_fine(k) = cf(min(size(z), (k - 1 + fine / 2) / fine + 1))
+            if (closed .and. (k - 1 + fine / 2) / fine + 1 > size(z)) c_fine(k) = cf(1)
+         end do
+         call move_alloc(c_fine, cf)
+      end if
       if (closed) then
          n_ext = geo%npf + (geo%n_el - 1) * geo%spacing
          allocate(geo%z(n_ext), geo%tan_theta(n_ext), geo%clamped(n_ext))

@@ -51,6 +51,8 @@ def main(argv: list[str] | None = None) -> int:
                        help="speeds in km/h (default: each scene's)")
     p_acc.add_argument("--outdir", default="outputs/accuracy")
     p_acc.add_argument("--repeats", type=int, default=3)
+    p_acc.add_argument("--also-dry", action="store_true",
+                       help="also study each scene with its water removed")
     p_acc.add_argument("--report", default=None,
                        help="also write a Markdown report here (e.g. docs/accuracy.md)")
 
@@ -104,7 +106,7 @@ def main(argv: list[str] | None = None) -> int:
             from .reports import accuracy_report
 
             accuracy_report(args.scenes, args.outdir, speeds=args.speeds, repeats=args.repeats,
-                            report=args.report)
+                            report=args.report, also_dry=args.also_dry)
         elif args.command == "bench":
             from .bench import run as bench_run
 

@@ -23,10 +23,10 @@ KNOBS: dict[str, list] = {
     "wet_tolerance": [1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14],
 }
 
-BUDGETS = {  # name -> largest acceptable |mu error| of the setting
-    "quick look": 0.05,
-    "network survey": 0.01,
-    "research": 0.002,
+BUDGETS = {  # name -> largest cost, as wall time relative to the default settings
+    "quick look": 1.0,
+    "network survey": 4.0,
+    "research": 64.0,
 }
 
 
@@ -41,7 +41,8 @@ def _timed(scene, speeds, repeats, **knob):
 
 
 def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = None,
-          knobs: dict[str, list] | None = None, repeats: int = 3):
+          knobs: dict[str, list] | None = None, repeats: int = 3,
+          overrides: dict | None = None, label: str | None = None):
     """Run the study on one scene; return an ``xarray.Dataset`` with one row
     per (knob, setting): ``mu`` per speed, ``error`` (largest |mu - mu_finest|
     over the speeds), ``time_s``, ``element_steps``."""
@@ -50,6 +51,7 @@ def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = No
     from .core import layout, load_scene
 
     scene = load_scene(scene_path)
+    scene.parameters.update(overrides or {})
     speeds = np.asarray(scene.speeds_kmh if speeds_kmh is None else speeds_kmh, dtype=float)
     knobs = dict(KNOBS if knobs is None else knobs)
     wet = scene.parameters["depth"] > 0
@@ -70,14 +72,17 @@ def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = No
         for value, mu, seconds, steps in results:
             rows.append((knob, float(value), mu, float(np.max(np.abs(mu - finest))), seconds,
                          steps))
-    # The continuum limit, estimated by Richardson extrapolation of the two
-    # finest time refinements (first-order convergence: each doubling halves
-    # the error, which the convergence column shows).
+    # The converged limit, estimated by Richardson extrapolation of the finest
+    # time refinements, with the order of convergence estimated from the
+    # three finest (kept within [0.5, 4]).
     sub = [r for r in rows if r[0] == "substeps"]
-    if len(sub) >= 2 and sub[-1][1] == 2 * sub[-2][1]:
-        limit = 2 * sub[-1][2] - sub[-2][2]
-        limit_note = (f"Richardson extrapolation 2 mu(substeps={sub[-1][1]:g}) - "
-                      f"mu(substeps={sub[-2][1]:g})")
+    if len(sub) >= 3 and sub[-1][1] == 2 * sub[-2][1] == 4 * sub[-3][1]:
+        d1 = np.abs(sub[-2][2] - sub[-3][2]).max()
+        d2 = np.abs(sub[-1][2] - sub[-2][2]).max()
+        order = float(np.clip(np.log2(d1 / d2), 0.5, 4.0)) if d2 > 0 and d1 > 0 else 1.0
+        limit = sub[-1][2] + (sub[-1][2] - sub[-2][2]) / (2.0**order - 1.0)
+        limit_note = (f"Richardson extrapolation of substeps = {sub[-2][1]:g}, {sub[-1][1]:g} "
+                      f"with the observed order {order:.2f}")
     else:
         limit = rows[-1][2]
         limit_note = "the last setting"
@@ -98,7 +103,8 @@ def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = No
             "element_steps": ("setting", np.array([r[5] for r in rows], dtype=np.int64)),
         },
         coords={"setting": np.arange(n), "speed_kmh": speeds},
-        attrs={"scene": str(scene_path), "wet": int(wet), "repeats": repeats,
+        attrs={"scene": str(scene_path), "label": label or Path(scene_path).stem,
+               "wet": int(wet), "repeats": repeats,
                "limit": limit_note,
                "speeds_kmh": " ".join(f"{s:g}" for s in speeds)},
     )
@@ -112,7 +118,7 @@ def to_csv(table, path: str | os.PathLike) -> None:
                  + ",".join(f"mu_{s:g}kmh" for s in speeds) + "\n")
         for i in range(table.sizes["setting"]):
             mu = ",".join(f"{m:.12g}" for m in table["mu"].values[i])
-            fh.write(f"{Path(table.attrs['scene']).stem},{table['knob'].values[i]},"
+            fh.write(f"{table.attrs['label']},{table['knob'].values[i]},"
                      f"{table['value'].values[i]:g},{table['error'].values[i]:.6g},"
                      f"{table['convergence'].values[i]:.6g},"
                      f"{table['time_s'].values[i]:.6g},{table['element_steps'].values[i]},{mu}\n")
@@ -135,7 +141,7 @@ def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) ->
     markers = {"substeps": "o", "elements_per_sample": "s", "position_stride": "^",
                "wet_tolerance": "d"}
     for table in tables:
-        name = Path(table.attrs["scene"]).stem
+        name = table.attrs["label"]
         for knob in dict.fromkeys(table["knob"].values):
             sel = table["knob"].values == knob
             err = table["convergence"].values[sel]
@@ -157,15 +163,22 @@ def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) ->
 
 
 def recommend(tables: Sequence) -> dict[str, dict]:
-    """For each budget, the cheapest setting (one knob changed) whose error is
-    within the budget on every scene; the error and time are the worst ones."""
+    """For each budget (a cost limit relative to the default settings), the
+    single-knob setting with the smallest worst-case error over the scenes
+    among those whose worst-case cost stays within the limit."""
     out = {}
     candidates: dict[tuple, list] = {}
     for table in tables:
+        knobs = table["knob"].values
+        values = table["value"].values
+        default = [i for i in range(table.sizes["setting"])
+                   if knobs[i] == "substeps" and values[i] == 1.0]
+        t_default = float(table["time_s"].values[default[0]]) if default else np.nan
         for i in range(table.sizes["setting"]):
-            key = (str(table["knob"].values[i]), float(table["value"].values[i]))
-            candidates.setdefault(key, []).append((float(table["error"].values[i]),
-                                                   float(table["time_s"].values[i])))
+            key = (str(knobs[i]), float(values[i]))
+            candidates.setdefault(key, []).append(
+                (float(table["error"].values[i]), float(table["time_s"].values[i]),
+                 float(table["time_s"].values[i]) / t_default))
     for budget, limit in BUDGETS.items():
         best = None
         for (knob, value), res in candidates.items():
@@ -173,9 +186,12 @@ def recommend(tables: Sequence) -> dict[str, dict]:
                 continue                       # not measured on every scene (dry-only knob)
             err = max(r[0] for r in res)
             t = max(r[1] for r in res)
-            if err <= limit and (best is None or t < best[3]):
-                best = (knob, value, err, t)
+            cost = max(r[2] for r in res)
+            # the default itself (cost 1 by definition) is always allowed
+            if (cost <= limit or (knob, value) == ("substeps", 1.0)) and \
+                    (best is None or err < best[2]):
+                best = (knob, value, err, t, cost)
         if best:
             out[budget] = {"knob": best[0], "value": best[1], "error": best[2],
-                           "time_s": best[3], "limit": limit}
+                           "time_s": best[3], "cost": best[4], "limit": limit}
     return out
