@@ -8,6 +8,7 @@ module pavefric_netcdf
    use pavefric_error, only: error_type, fatal_error
    use pavefric_simulate, only: sim_result_type, effects_text
    use pavefric_texture, only: texture_type
+   use pavefric_preprocess, only: preprocess_report_type
    use pavefric_fsys, only: rename_file, remove_file, process_id
    use pavefric_format, only: to_str
    implicit none
@@ -25,6 +26,9 @@ module pavefric_netcdf
       logical :: has_texture = .false.
       type(texture_type) :: texture
       character(len=:), allocatable :: texture_note
+      !> What preprocessing did to the profile.
+      type(preprocess_report_type) :: preprocess
+      character(len=:), allocatable :: preprocessing
    end type output_metadata_type
 
 contains
@@ -109,6 +113,7 @@ contains
             & "mean profile depth (ISO 13473-1 / ASTM E1845, 100 mm segments, slope " // &
             & "suppression)", v_mpd)
          call check(nf90_put_att(ncid, v_mpd, "n_segments", meta%texture%n_segments), "mpd")
+         call check(nf90_put_att(ncid, v_mpd, "n_valid_segments", meta%texture%n_valid), "mpd")
          call def(ncid, "rms_height", nf90_double, [integer ::], "m", &
             & "RMS profile height about the mean", v_rh)
          call def(ncid, "rms_slope", nf90_double, [integer ::], "1", &
@@ -144,6 +149,20 @@ contains
       call gatt("profile_file", meta%profile_file)
       call gatt("input_namelist", meta%input_namelist)
       if (allocated(meta%texture_note)) call gatt("texture_note", meta%texture_note)
+      if (allocated(meta%preprocessing)) then
+         call gatt("preprocessing", meta%preprocessing)
+         call gatt("preprocess_format", meta%preprocess%format)
+         call iatt("preprocess_points_read", meta%preprocess%points_read)
+         call iatt("preprocess_trimmed_start", meta%preprocess%trimmed_start)
+         call iatt("preprocess_trimmed_end", meta%preprocess%trimmed_end)
+         call iatt("preprocess_dropouts", meta%preprocess%dropouts)
+         call iatt("preprocess_spikes", meta%preprocess%spikes)
+         call iatt("preprocess_points_out", meta%preprocess%points_out)
+         call iatt("preprocess_resampled", merge(1, 0, meta%preprocess%resampled))
+         call iatt("preprocess_filtered", merge(1, 0, meta%preprocess%filtered))
+         call check(nf90_put_att(ncid, nf90_global, "preprocess_dx_in", meta%preprocess%dx_in), &
+            & "att")
+      end if
       call check(nf90_put_att(ncid, nf90_global, "profile_points", meta%profile_points), "att")
       call check(nf90_put_att(ncid, nf90_global, "profile_dx", meta%dx), "att")
       call check(nf90_put_att(ncid, nf90_global, "profile_closed", merge(1, 0, meta%closed)), &
@@ -212,6 +231,12 @@ contains
          call check(nf90_put_att(ncid, varid, "flag_values", [0_1, 1_1]), "flag_values")
          call check(nf90_put_att(ncid, varid, "flag_meanings", "no yes"), "flag_meanings")
       end subroutine flags
+
+      subroutine iatt(name, value)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: value
+         call check(nf90_put_att(ncid, nf90_global, name, value), "attribute " // name)
+      end subroutine iatt
 
       subroutine gatt(name, text)
          character(len=*), intent(in) :: name, text

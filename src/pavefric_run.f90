@@ -5,7 +5,8 @@ module pavefric_run
    use pavefric_error, only: error_type, fatal_error
    use pavefric_format, only: to_str
    use pavefric_scene, only: scene_type, read_scene
-   use pavefric_profile, only: profile_type, read_profile_text, unit_factor
+   use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
+   use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_netcdf, only: write_results, output_metadata_type, temporary_name
    use pavefric_fsys, only: make_directory, dir_name, remove_file
@@ -13,37 +14,64 @@ module pavefric_run
    implicit none
    private
 
-   public :: run_scene, load_scene_profile, ctm_dx
+   public :: run_scene, load_scene_profile, ctm_dx, preprocess_summary
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
    real(wp), parameter :: ctm_dx = 0.87e-3_wp
 
 contains
 
-   !> Read the scene's profile and settle its spacing.
-   subroutine load_scene_profile(scene, z, dx, error)
+   !> Read the scene's profile (any supported format), preprocess it as the
+   !> scene says, and settle its spacing.
+   subroutine load_scene_profile(scene, clean, error)
       type(scene_type), intent(in) :: scene
-      real(wp), allocatable, intent(out) :: z(:)
-      real(wp), intent(out) :: dx
+      type(clean_profile_type), intent(out) :: clean
       type(error_type), allocatable, intent(out) :: error
-      type(profile_type) :: prof
-      call read_profile_text(scene%profile_file, unit_factor(scene%height_unit), prof, error)
+      type(raw_profile_type) :: raw
+      real(wp) :: dx, file_dx
+      integer :: n
+      call read_raw_profile(scene%profile_file, scene%format, unit_factor(scene%height_unit), &
+         & scene%x_column, scene%z_column, raw, error)
       if (allocated(error)) return
-      if (prof%has_x) then
-         if (scene%dx > 0.0_wp .and. abs(scene%dx - prof%dx) > 0.01_wp * prof%dx) then
-            call fatal_error(error, "&surface dx = " // to_str(scene%dx) // ": disagrees with " // &
-               & "the spacing " // to_str(prof%dx) // " m of the distances in '" // &
-               & scene%profile_file // "'")
-            return
+      dx = ctm_dx
+      if (scene%dx > 0.0_wp) dx = scene%dx
+      if (raw%has_x) then
+         n = size(raw%x)
+         if (n >= 2) then
+            file_dx = (raw%x(n) - raw%x(1)) / real(n - 1, wp)
+            if (scene%dx > 0.0_wp .and. scene%preprocess%resample_dx <= 0.0_wp .and. &
+                  & abs(scene%dx - file_dx) > 0.01_wp * file_dx) then
+               call fatal_error(error, "&surface dx = " // to_str(scene%dx) // &
+                  & ": disagrees with the spacing " // to_str(file_dx) // &
+                  & " m of the distances in '" // scene%profile_file // "'")
+               return
+            end if
          end if
-         dx = prof%dx
-      else if (scene%dx > 0.0_wp) then
-         dx = scene%dx
-      else
-         dx = ctm_dx
       end if
-      call move_alloc(prof%z, z)
+      call preprocess(raw, dx, scene%preprocess, clean, error)
    end subroutine load_scene_profile
+
+   !> One line saying what preprocessing did.
+   function preprocess_summary(r) result(text)
+      type(preprocess_report_type), intent(in) :: r
+      character(len=:), allocatable :: text
+      text = "format " // r%format // "; " // to_str(r%points_read) // " points read; " // &
+         & to_str(r%trimmed_start) // " trimmed at the start and " // to_str(r%trimmed_end) // &
+         & " at the end (reference plates); " // to_str(r%dropouts) // &
+         & " dropouts interpolated; " // to_str(r%spikes) // " spike points replaced; "
+      if (r%resampled) then
+         text = text // "resampled from " // to_str(r%dx_in) // " m to " // to_str(r%dx_out) // &
+            & " m; "
+      else
+         text = text // "spacing " // to_str(r%dx_out) // " m kept; "
+      end if
+      if (r%filtered) then
+         text = text // "low-pass filtered; "
+      else
+         text = text // "not filtered; "
+      end if
+      text = text // to_str(r%points_out) // " points used"
+   end function preprocess_summary
 
    !> Run the scene in `path`; write its NetCDF output to `output_override`
    !> when that is not empty, else to the namelist's &output file, else to
@@ -56,8 +84,7 @@ contains
       type(scene_type) :: scene
       type(output_metadata_type) :: meta
       type(error_type), allocatable :: texture_error
-      real(wp), allocatable :: z(:)
-      real(wp) :: dx
+      type(clean_profile_type) :: clean
 
       call read_scene(path, scene, error)
       if (allocated(error)) return
@@ -77,20 +104,24 @@ contains
       call check_writable(out_path, error)
       if (allocated(error)) return
 
-      call load_scene_profile(scene, z, dx, error)
+      call load_scene_profile(scene, clean, error)
       if (allocated(error)) return
-      call simulate(scene%model, z, dx, scene%closed, scene%speeds_kmh, scene%series, res, error)
+      call simulate(scene%model, clean%z, clean%dx, scene%closed, scene%speeds_kmh, &
+         & scene%series, res, error)
       if (allocated(error)) return
 
       meta%title = "pavefric friction-speed curve of scene " // scene%name
       meta%history = timestamp() // " pavefric " // pavefric_version // ": " // command
       meta%input_namelist = scene%text
       meta%profile_file = scene%profile_file
-      meta%dx = dx
-      meta%profile_points = size(z)
+      meta%dx = clean%dx
+      meta%profile_points = size(clean%z)
       meta%closed = scene%closed
-      ! Texture metrics: reported when the profile holds a whole segment.
-      call texture_metrics(z, dx, scene%closed, 0.1_wp, .true., meta%texture, texture_error)
+      meta%preprocess = clean%report
+      meta%preprocessing = preprocess_summary(clean%report)
+      ! Texture metrics: reported when the profile holds a whole valid segment.
+      call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., meta%texture, &
+         & texture_error, dropout_fraction=clean%dropout_fraction, spike=clean%spike)
       meta%has_texture = .not. allocated(texture_error)
       if (allocated(texture_error)) meta%texture_note = texture_error%message
       call write_results(out_path, res, meta, error)

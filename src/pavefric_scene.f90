@@ -11,6 +11,7 @@ module pavefric_scene
    use pavefric_model, only: model_type
    use pavefric_profile, only: unit_factor
    use pavefric_fsys, only: dir_name, base_name, join_path
+   use pavefric_preprocess, only: preprocess_type
    implicit none
    private
 
@@ -21,7 +22,7 @@ module pavefric_scene
    integer, parameter :: path_len = 4096
 
    character(len=*), parameter :: known_groups = &
-      & " surface pad rubber water operation numerics output "
+      & " surface preprocess pad rubber water operation numerics output "
 
    !> A scene read from a namelist file.
    type :: scene_type
@@ -39,6 +40,10 @@ module pavefric_scene
       real(wp) :: dx = -1.0_wp
       !> &surface closed: a closed CTM circle (.true.) or an open profile.
       logical :: closed = .true.
+      !> &surface format ('auto', 'plain', 'captif', 'csv'), x_column, z_column.
+      character(len=:), allocatable :: format, x_column, z_column
+      !> &preprocess: making an instrument profile fit for analysis.
+      type(preprocess_type) :: preprocess
       !> &operation speeds_kmh.
       real(wp), allocatable :: speeds_kmh(:)
       !> &output file ('' = outputs/<name>.nc) and series.
@@ -86,8 +91,8 @@ contains
       type(scene_type), intent(out) :: scene
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: groups
-      character(len=9), parameter :: group_names(7) = [character(len=9) :: "surface", "pad", &
-         & "rubber", "water", "operation", "numerics", "output"]
+      character(len=10), parameter :: group_names(8) = [character(len=10) :: "surface", &
+         & "preprocess", "pad", "rubber", "water", "operation", "numerics", "output"]
       integer :: unit, ios, i
       character(len=512) :: msg
 
@@ -109,12 +114,19 @@ contains
       scene%profile_file = ""
       scene%height_unit = "mm"
       scene%output_file = ""
+      scene%format = "auto"
+      scene%x_column = ""
+      scene%z_column = ""
       do i = 1, size(group_names)
          if (.not. has(groups, trim(group_names(i)))) cycle
          select case (trim(group_names(i)))
          case ("surface")
-            call read_group(unit, "surface", "profile_file height_unit dx closed mu_loc", &
-               & nml_surface, scene, error)
+            call read_group(unit, "surface", "profile_file height_unit dx closed mu_loc " // &
+               & "format x_column z_column", nml_surface, scene, error)
+         case ("preprocess")
+            call read_group(unit, "preprocess", "dropouts trim_plates plate_threshold " // &
+               & "plate_min_length plate_buffer spike_slope resample_dx lowpass_wavelength", &
+               & nml_preprocess, scene, error)
          case ("pad")
             call read_group(unit, "pad", "length width thickness load shape radius", &
                & nml_pad, scene, error)
@@ -403,11 +415,15 @@ contains
       integer, intent(in), optional :: unit
       character(len=*), intent(in), optional :: text
       character(len=path_len) :: profile_file
-      character(len=16) :: height_unit
+      character(len=16) :: height_unit, format
+      character(len=256) :: x_column, z_column
       real(wp) :: dx, mu_loc
       logical :: closed
-      namelist /surface/ profile_file, height_unit, dx, closed, mu_loc
+      namelist /surface/ profile_file, height_unit, dx, closed, mu_loc, format, x_column, z_column
       profile_file = scene%profile_file
+      format = scene%format
+      x_column = scene%x_column
+      z_column = scene%z_column
       height_unit = scene%height_unit
       dx = scene%dx
       closed = scene%closed
@@ -419,7 +435,44 @@ contains
       scene%dx = dx
       scene%closed = closed
       scene%model%mu_loc = mu_loc
+      scene%format = trim(format)
+      scene%x_column = trim(x_column)
+      scene%z_column = trim(z_column)
    end subroutine nml_surface
+
+   subroutine nml_preprocess(scene, ios, msg, unit, text)
+      type(scene_type), intent(inout) :: scene
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: msg
+      integer, intent(in), optional :: unit
+      character(len=*), intent(in), optional :: text
+      character(len=16) :: dropouts
+      logical :: trim_plates
+      real(wp) :: plate_threshold, plate_min_length, plate_buffer, spike_slope, resample_dx
+      real(wp) :: lowpass_wavelength
+      namelist /preprocess/ dropouts, trim_plates, plate_threshold, plate_min_length, &
+         & plate_buffer, spike_slope, resample_dx, lowpass_wavelength
+      associate(p => scene%preprocess)
+         dropouts = p%dropouts
+         trim_plates = p%trim_plates
+         plate_threshold = p%plate_threshold
+         plate_min_length = p%plate_min_length
+         plate_buffer = p%plate_buffer
+         spike_slope = p%spike_slope
+         resample_dx = p%resample_dx
+         lowpass_wavelength = p%lowpass_wavelength
+         if (present(unit)) read(unit, nml=preprocess, iostat=ios, iomsg=msg)
+         if (present(text)) read(text, nml=preprocess, iostat=ios, iomsg=msg)
+         p%dropouts = dropouts
+         p%trim_plates = trim_plates
+         p%plate_threshold = plate_threshold
+         p%plate_min_length = plate_min_length
+         p%plate_buffer = plate_buffer
+         p%spike_slope = spike_slope
+         p%resample_dx = resample_dx
+         p%lowpass_wavelength = lowpass_wavelength
+      end associate
+   end subroutine nml_preprocess
 
    subroutine nml_pad(scene, ios, msg, unit, text)
       type(scene_type), intent(inout) :: scene

@@ -13,8 +13,9 @@ module pavefric_texture
    type :: texture_type
       !> Mean profile depth (m): the mean of the segments' mean segment depths.
       real(wp) :: mpd = 0.0_wp
-      !> Number of complete segments MPD was averaged over.
+      !> Number of complete segments, and how many were valid and averaged.
       integer :: n_segments = 0
+      integer :: n_valid = 0
       !> RMS height about the mean (m).
       real(wp) :: rms_height = 0.0_wp
       !> RMS of the slope between neighbouring samples at the profile's own
@@ -38,9 +39,13 @@ contains
 
    !> All metrics of heights z (m) at spacing dx (m); MPD over segments of
    !> `segment_length` (m, ISO: 0.1), with or without slope suppression.
-   subroutine texture_metrics(z, dx, closed, segment_length, slope_suppression, tex, error)
+   subroutine texture_metrics(z, dx, closed, segment_length, slope_suppression, tex, error, &
+         & dropout_fraction, spike)
       real(wp), intent(in) :: z(:), dx, segment_length
       logical, intent(in) :: closed, slope_suppression
+      !> Optional per-sample quality from preprocessing (see mean_profile_depth).
+      real(wp), intent(in), optional :: dropout_fraction(:)
+      logical, intent(in), optional :: spike(:)
       type(texture_type), intent(out) :: tex
       type(error_type), allocatable, intent(out) :: error
       real(wp) :: mean
@@ -51,7 +56,8 @@ contains
          return
       end if
       call mean_profile_depth(z, dx, segment_length, slope_suppression, tex%mpd, &
-         & tex%n_segments, error)
+         & tex%n_segments, error, dropout_fraction=dropout_fraction, spike=spike, &
+         & n_valid=tex%n_valid)
       if (allocated(error)) return
       mean = sum(z) / real(n, wp)
       tex%rms_height = sqrt(sum((z - mean)**2) / real(n, wp))
@@ -70,7 +76,7 @@ contains
    !> the average of the highest points of the two halves minus the segment's
    !> mean height. MPD is the mean over the segments.
    pure subroutine mean_profile_depth(z, dx, segment_length, slope_suppression, mpd, &
-         & n_segments, error, msd)
+         & n_segments, error, msd, dropout_fraction, spike, n_valid)
       real(wp), intent(in) :: z(:), dx, segment_length
       logical, intent(in) :: slope_suppression
       real(wp), intent(out) :: mpd
@@ -78,9 +84,15 @@ contains
       type(error_type), allocatable, intent(out) :: error
       !> Optional: each segment's mean segment depth (m).
       real(wp), intent(out), optional :: msd(:)
+      !> Optional per-sample quality (ISO 13473-1): a segment with more than
+      !> 10 % dropouts or 5 % spikes is not valid and not averaged.
+      real(wp), intent(in), optional :: dropout_fraction(:)
+      logical, intent(in), optional :: spike(:)
+      !> Optional: number of valid segments averaged.
+      integer, intent(out), optional :: n_valid
       real(wp), allocatable :: a(:,:), b(:,:), work(:), seg(:)
       real(wp) :: depth
-      integer :: ns, k, i, half, info, lwork
+      integer :: ns, k, i, half, info, lwork, nv
 
       mpd = 0.0_wp
       n_segments = 0
@@ -105,6 +117,7 @@ contains
       lwork = 64 * ns
       allocate(a(ns, 2), b(ns, 1), work(lwork), seg(ns))
       half = ns / 2
+      nv = 0
       do k = 1, n_segments
          seg = z((k-1)*ns + 1 : k*ns)
          if (slope_suppression) then
@@ -118,9 +131,23 @@ contains
          if (present(msd)) then
             if (k <= size(msd)) msd(k) = depth
          end if
+         if (present(dropout_fraction)) then
+            if (sum(dropout_fraction((k-1)*ns + 1 : k*ns)) > 0.1_wp * real(ns, wp)) cycle
+         end if
+         if (present(spike)) then
+            if (count(spike((k-1)*ns + 1 : k*ns)) > 0.05_wp * real(ns, wp)) cycle
+         end if
          mpd = mpd + depth
+         nv = nv + 1
       end do
-      mpd = mpd / real(n_segments, wp)
+      if (present(n_valid)) n_valid = nv
+      if (nv == 0) then
+         mpd = 0.0_wp
+         call fatal_error(error, "texture: no valid segment (each has more than 10 % " // &
+            & "dropouts or 5 % spikes)")
+         return
+      end if
+      mpd = mpd / real(nv, wp)
    end subroutine mean_profile_depth
 
 end module pavefric_texture

@@ -9,7 +9,7 @@ package wraps it for pre- and post-processing.
 """
 from .core import (PavefricError, Profile, Scene, defaults, layout, load_scene, open_dataset,
                    read_profile, run, simulate)
-from .plot import plot_mu_speed
+from .plot import plot_mu_speed, plot_profile
 from .texture import ifi, texture
 
 open = open_dataset  # noqa: A001  - pavefric.open(path) reads an output file
@@ -17,4 +17,4 @@ open = open_dataset  # noqa: A001  - pavefric.open(path) reads an output file
 __version__ = "0.1.0"
 
 __all__ = ["PavefricError", "Profile", "Scene", "load_scene", "defaults", "layout", "open", "open_dataset",
-           "ifi", "plot_mu_speed", "read_profile", "texture", "run", "simulate", "__version__"]
+           "ifi", "plot_mu_speed", "plot_profile", "read_profile", "texture", "run", "simulate", "__version__"]

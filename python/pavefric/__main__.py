@@ -9,6 +9,7 @@ Commands:
   calibrate DATA.csv --fit alpha ...        least-squares calibration (core runs)
   surfaces [--outdir inputs/surfaces]       regenerate the six reference surfaces
   validate [--report docs/validation.md]    calibrate at 20 km/h, compare, report
+  profile FILE [--dropouts interpolate ...] read, preprocess, report, plot a profile
 """
 from __future__ import annotations
 
@@ -86,6 +87,19 @@ def main(argv: list[str] | None = None) -> int:
     p_val.add_argument("--outdir", default="outputs/validation")
     p_val.add_argument("--quick", action="store_true", help="fewer speeds in the curves")
 
+    p_prof = sub.add_parser("profile", help="read and preprocess a profile file; report and plot")
+    p_prof.add_argument("file")
+    p_prof.add_argument("--format", default="auto")
+    p_prof.add_argument("--height-unit", default="mm")
+    p_prof.add_argument("--dropouts", default="error", choices=["error", "interpolate"])
+    p_prof.add_argument("--no-trim-plates", action="store_true")
+    p_prof.add_argument("--spike-slope", type=float, default=0.0)
+    p_prof.add_argument("--resample-mm", type=float, default=0.0)
+    p_prof.add_argument("--lowpass-mm", type=float, default=0.0)
+    p_prof.add_argument("--plot", default=None, help="PNG of raw against cleaned profile")
+    p_prof.add_argument("--export", default=None,
+                        help="write the cleaned profile as two columns (distance, height; mm)")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -126,6 +140,33 @@ def main(argv: list[str] | None = None) -> int:
             from .validation import validate
 
             validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick)
+        elif args.command == "profile":
+            from .core import read_profile
+            from .plot import plot_profile
+            from .texture import texture
+
+            prof = read_profile(args.file, args.height_unit, format=args.format,
+                                dropouts=args.dropouts, trim_plates=not args.no_trim_plates,
+                                spike_slope=args.spike_slope,
+                                resample_dx=args.resample_mm * 1e-3,
+                                lowpass_wavelength=args.lowpass_mm * 1e-3)
+            for key, value in prof.report.items():
+                print(f"{key:16s} {value}")
+            try:
+                t = texture(prof, closed=False)
+                print(f"{'mpd_mm':16s} {t['mpd'] * 1e3:.4f} ({t['n_valid']} of "
+                      f"{t['n_segments']} segments valid)")
+            except PavefricError as exc:
+                print(f"{'mpd_mm':16s} - ({exc})")
+            if args.plot:
+                print(f"wrote {plot_profile(prof, args.plot)}")
+            if args.export:
+                import numpy as np
+
+                x = np.arange(prof.heights.size) * prof.dx
+                np.savetxt(args.export, np.column_stack([x * 1e3, prof.heights * 1e3]),
+                           fmt="%.17g", header=f"cleaned from {args.file}\ndistance_mm height_mm")
+                print(f"wrote {args.export}")
         elif args.command == "surface":
             from .surfaces import spectral_profile, write_profile
 

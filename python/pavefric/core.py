@@ -269,19 +269,61 @@ def load_scene(path: str | os.PathLike) -> Scene:
 
 @dataclass
 class Profile:
-    """A profile as the core reads it: heights (m), spacing (m) if the file had
-    distances (else None), and the file it came from."""
+    """A profile as the core reads and preprocesses it.
+
+    ``heights`` (m) at spacing ``dx`` (m) are fit for analysis; ``report``
+    says what preprocessing did; ``raw_x``, ``raw_heights`` (m, NaN at
+    dropouts) are the file's points for checking; ``dropout_fraction`` and
+    ``spike`` are per-sample quality flags (used for texture validity)."""
 
     heights: np.ndarray
-    dx: float | None
+    dx: float
     path: str
+    report: dict
+    raw_x: np.ndarray
+    raw_heights: np.ndarray
+    dropout_fraction: np.ndarray
+    spike: np.ndarray
 
 
-def read_profile(path: str | os.PathLike, height_unit: str = "mm") -> Profile:
-    """Read a plain-text profile (one column of heights, or distance and height)
-    with the core's reader; heights are returned in metres."""
-    np_, dx, has_x, status, message = _core.pf_profile_info(str(path), height_unit)
+PREPROCESS_DEFAULTS = dict(dropouts="error", trim_plates=True, plate_threshold=0.010,
+                           plate_min_length=0.005, plate_buffer=0.002, spike_slope=0.0,
+                           resample_dx=0.0, lowpass_wavelength=0.0)
+
+
+def read_profile(path: str | os.PathLike, height_unit: str = "mm", *, format: str = "auto",
+                 x_column: str = "", z_column: str = "", dx: float | None = None,
+                 **preprocess) -> Profile:
+    """Read a profile file (plain text, laser profiler export, CSV) and make
+    it fit for analysis with the core's ISO 13473-1 preprocessing (keywords
+    of ``&preprocess``: dropouts, trim_plates, plate_threshold,
+    plate_min_length, plate_buffer, spike_slope, resample_dx,
+    lowpass_wavelength). ``dx`` (m) is used when the file has no distances
+    (default: the CTM's 0.87 mm)."""
+    unknown = sorted(set(preprocess) - set(PREPROCESS_DEFAULTS))
+    if unknown:
+        raise TypeError(f"unknown preprocessing option(s) {', '.join(unknown)}; known: "
+                        f"{', '.join(PREPROCESS_DEFAULTS)}")
+    p = {**PREPROCESS_DEFAULTS, **preprocess}
+    dx_default = float(dx) if dx else float(_core_defaults()["ctm_dx"])
+    args = (str(path), format, height_unit, x_column, z_column, dx_default, str(p["dropouts"]),
+            int(bool(p["trim_plates"])), float(p["plate_threshold"]),
+            float(p["plate_min_length"]), float(p["plate_buffer"]), float(p["spike_slope"]),
+            float(p["resample_dx"]), float(p["lowpass_wavelength"]))
+    n_raw, n_out, dx_out, has_x, status, message = _core.pf_profile_info(*args)
     _check(status, message)
-    z, status, message = _core.pf_read_profile(str(path), height_unit, int(np_))
+    (x_raw, z_raw, valid, z, frac, spike, counts, fmt, status, message) = \
+        _core.pf_read_profile(*args, int(n_raw), int(n_out))
     _check(status, message)
-    return Profile(heights=z.copy(), dx=float(dx) if has_x else None, path=str(path))
+    keys = ["points_read", "trimmed_start", "trimmed_end", "dropouts", "spikes", "points_out",
+            "resampled", "filtered"]
+    report = {k: int(v) for k, v in zip(keys, counts)}
+    report["resampled"] = bool(report["resampled"])
+    report["filtered"] = bool(report["filtered"])
+    report["format"] = _text(fmt)
+    report["dx"] = float(dx_out)
+    report["has_distances"] = bool(has_x)
+    raw_h = np.where(valid.astype(bool), z_raw, np.nan)
+    return Profile(heights=z.copy(), dx=float(dx_out), path=str(path), report=report,
+                   raw_x=x_raw.copy(), raw_heights=raw_h, dropout_fraction=frac.copy(),
+                   spike=spike.astype(bool))

@@ -43,3 +43,40 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
     fig.savefig(output)
     plt.close(fig)
     return str(output)
+
+
+def plot_profile(profile, output: str | os.PathLike, title: str | None = None,
+                 xlim: tuple | None = None) -> str:
+    """Raw points (dropouts as gaps) against the cleaned profile, in mm."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    fig, (a, b) = plt.subplots(2, 1, figsize=(10, 5.6), dpi=110)
+    a.plot(profile.raw_x * 1e3, profile.raw_heights * 1e3, lw=0.4, color="0.4")
+    r = profile.report
+    a.set_title(title or f"{os.path.basename(profile.path)}: as read ({r['format']}, "
+                f"{r['points_read']} points, {r['dropouts']} dropouts)", fontsize=9)
+    a.set_ylabel("height (mm)")
+    x = np.arange(profile.heights.size) * profile.dx * 1e3
+    b.plot(x, profile.heights * 1e3, lw=0.5, color="C0")
+    if profile.spike.any():
+        b.plot(x[profile.spike], profile.heights[profile.spike] * 1e3, "r.", ms=2,
+               label="spikes replaced")
+        b.legend(fontsize=7)
+    b.set_title(f"cleaned: {r['trimmed_start']} + {r['trimmed_end']} points trimmed "
+                f"(plates), {r['spikes']} spike points, spacing {profile.dx * 1e3:.4g} mm"
+                + (", low-pass filtered" if r["filtered"] else ""), fontsize=9)
+    b.set_xlabel("distance (mm)")
+    b.set_ylabel("height (mm)")
+    if xlim:
+        a.set_xlim(*xlim)
+        b.set_xlim(*xlim)
+    for ax in (a, b):
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(output)
+    plt.close(fig)
+    return str(output)

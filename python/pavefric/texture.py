@@ -10,20 +10,37 @@ from . import _core
 from .core import _check
 
 
-def texture(heights_m, dx: float, *, closed: bool = True, segment_length: float = 0.1,
-            slope_suppression: bool = True) -> dict:
+def texture(heights_m, dx: float | None = None, *, closed: bool = True,
+            segment_length: float = 0.1, slope_suppression: bool = True) -> dict:
     """Mean profile depth (ISO 13473-1 / ASTM E1845), RMS height and RMS slope.
 
-    Returns a dict with ``mpd`` (m), ``n_segments``, ``msd`` (m, per segment),
-    ``rms_height`` (m) and ``rms_slope`` (-).
+    ``heights_m`` is an array (with ``dx`` in m) or a ``Profile`` from
+    ``read_profile``, whose dropout and spike flags then make segments with
+    more than 10 % dropouts or 5 % spikes invalid (not averaged), as ISO
+    13473-1 says. Returns a dict with ``mpd`` (m), ``n_segments``,
+    ``n_valid``, ``msd`` (m, per segment, valid or not), ``rms_height`` (m)
+    and ``rms_slope`` (-).
     """
-    z = np.ascontiguousarray(np.asarray(heights_m, dtype=np.float64).ravel())
+    use_quality = 0
+    if hasattr(heights_m, "dropout_fraction"):
+        prof = heights_m
+        z = np.ascontiguousarray(prof.heights, dtype=np.float64)
+        dx = prof.dx if dx is None else dx
+        frac = np.ascontiguousarray(prof.dropout_fraction, dtype=np.float64)
+        spike = np.ascontiguousarray(prof.spike, dtype=np.int32)
+        use_quality = 1
+    else:
+        z = np.ascontiguousarray(np.asarray(heights_m, dtype=np.float64).ravel())
+        frac = np.zeros(z.size)
+        spike = np.zeros(z.size, dtype=np.int32)
+    if dx is None:
+        raise TypeError("texture: dx is required with an array of heights")
     nseg = max(1, int(z.size // max(1, round(segment_length / dx))))
-    (mpd, n_segments, rms_h, rms_s, msd, status, message) = _core.pf_texture(
+    (mpd, n_segments, n_valid, rms_h, rms_s, msd, status, message) = _core.pf_texture(
         z, float(dx), int(bool(closed)), float(segment_length), int(bool(slope_suppression)),
-        nseg)
+        nseg, use_quality, frac, spike)
     _check(status, message)
-    return {"mpd": float(mpd), "n_segments": int(n_segments),
+    return {"mpd": float(mpd), "n_segments": int(n_segments), "n_valid": int(n_valid),
             "msd": msd[:int(n_segments)].copy(), "rms_height": float(rms_h),
             "rms_slope": float(rms_s)}
 

@@ -162,62 +162,102 @@ subroutine pf_run_scene(path, output, command, out_path, status, message)
    out_path = written
 end subroutine pf_run_scene
 
-!> Number of points and spacing of a plain-text profile (first pass).
-subroutine pf_profile_info(path, height_unit, np, dx, has_x, status, message)
+!> Read and preprocess a profile file (first pass): sizes and spacing.
+subroutine pf_profile_info(path, format, height_unit, x_column, z_column, dx_default, &
+      & dropouts, trim_plates, plate_threshold, plate_min_length, plate_buffer, spike_slope, &
+      & resample_dx, lowpass_wavelength, n_raw, n_out, dx, has_x, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_profile, only: profile_type, read_profile_text, unit_factor
+   use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
+   use pavefric_preprocess, only: preprocess_type, clean_profile_type, preprocess
    use pavefric_error, only: error_type
    implicit none
-   character(len=*), intent(in) :: path, height_unit
-   integer(c_int), intent(out) :: np, has_x, status
+   character(len=*), intent(in) :: path, format, height_unit, x_column, z_column, dropouts
+   real(c_double), intent(in) :: dx_default, plate_threshold, plate_min_length, plate_buffer
+   real(c_double), intent(in) :: spike_slope, resample_dx, lowpass_wavelength
+   integer(c_int), intent(in) :: trim_plates
+   integer(c_int), intent(out) :: n_raw, n_out, has_x, status
    real(c_double), intent(out) :: dx
    character(len=2048), intent(out) :: message
-   type(profile_type) :: prof
+   type(raw_profile_type) :: raw
+   type(clean_profile_type) :: clean
+   type(preprocess_type) :: p
    type(error_type), allocatable :: error
-   np = 0; dx = 0; has_x = 0; status = 0; message = ""
+   n_raw = 0; n_out = 0; dx = 0; has_x = 0; status = 0; message = ""
+   p = preprocess_type(dropouts, trim_plates /= 0, plate_threshold, plate_min_length, &
+      & plate_buffer, spike_slope, resample_dx, lowpass_wavelength)
    if (unit_factor(height_unit) <= 0) then
       status = 1
-      message = "&surface height_unit = '" // trim(height_unit) // "': unknown (expected 'mm', " // &
-         & "'um' or 'm')"
+      message = "&surface height_unit = '" // trim(height_unit) // "': unknown (expected " // &
+         & "'mm', 'um' or 'm')"
       return
    end if
-   call read_profile_text(path, unit_factor(height_unit), prof, error)
+   call read_raw_profile(path, format, unit_factor(height_unit), x_column, z_column, raw, error)
+   if (.not. allocated(error)) call preprocess(raw, dx_default, p, clean, error)
    if (allocated(error)) then
       status = error%stat
       message = error%message
       return
    end if
-   np = size(prof%z)
-   dx = prof%dx
-   has_x = merge(1, 0, prof%has_x)
+   n_raw = size(raw%z)
+   n_out = size(clean%z)
+   dx = clean%dx
+   has_x = merge(1, 0, raw%has_x)
 end subroutine pf_profile_info
 
-!> Heights (m) of a plain-text profile of np points (second pass).
-subroutine pf_read_profile(path, height_unit, np, z, status, message)
+!> Read and preprocess a profile file (second pass): the raw points, the
+!> clean heights (m), their quality, and the report.
+subroutine pf_read_profile(path, format, height_unit, x_column, z_column, dx_default, &
+      & dropouts, trim_plates, plate_threshold, plate_min_length, plate_buffer, spike_slope, &
+      & resample_dx, lowpass_wavelength, n_raw, n_out, x_raw, z_raw, valid_raw, z, &
+      & dropout_fraction, spike, counts, format_read, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_profile, only: profile_type, read_profile_text, unit_factor
+   use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
+   use pavefric_preprocess, only: preprocess_type, clean_profile_type, preprocess
    use pavefric_error, only: error_type
    implicit none
-   character(len=*), intent(in) :: path, height_unit
-   integer(c_int), intent(in) :: np
-   real(c_double), intent(out) :: z(np)
-   integer(c_int), intent(out) :: status
+   character(len=*), intent(in) :: path, format, height_unit, x_column, z_column, dropouts
+   real(c_double), intent(in) :: dx_default, plate_threshold, plate_min_length, plate_buffer
+   real(c_double), intent(in) :: spike_slope, resample_dx, lowpass_wavelength
+   integer(c_int), intent(in) :: trim_plates, n_raw, n_out
+   real(c_double), intent(out) :: x_raw(n_raw), z_raw(n_raw), z(n_out), dropout_fraction(n_out)
+   integer(c_int), intent(out) :: valid_raw(n_raw), spike(n_out), counts(8), status
+   character(len=16), intent(out) :: format_read
    character(len=2048), intent(out) :: message
-   type(profile_type) :: prof
+   type(raw_profile_type) :: raw
+   type(clean_profile_type) :: clean
+   type(preprocess_type) :: p
    type(error_type), allocatable :: error
-   z = 0; status = 0; message = ""
-   call read_profile_text(path, unit_factor(height_unit), prof, error)
+   integer :: i
+   x_raw = 0; z_raw = 0; valid_raw = 0; z = 0; dropout_fraction = 0; spike = 0; counts = 0
+   status = 0; message = ""; format_read = ""
+   p = preprocess_type(dropouts, trim_plates /= 0, plate_threshold, plate_min_length, &
+      & plate_buffer, spike_slope, resample_dx, lowpass_wavelength)
+   call read_raw_profile(path, format, unit_factor(height_unit), x_column, z_column, raw, error)
+   if (.not. allocated(error)) call preprocess(raw, dx_default, p, clean, error)
    if (allocated(error)) then
       status = error%stat
       message = error%message
       return
    end if
-   if (size(prof%z) /= np) then
+   if (size(raw%z) /= n_raw .or. size(clean%z) /= n_out) then
       status = 2
       message = "'" // trim(path) // "' changed while it was read"
       return
    end if
-   z = prof%z
+   if (raw%has_x) then
+      x_raw = raw%x
+   else
+      x_raw = [(real(i - 1, c_double) * dx_default, i = 1, n_raw)]
+   end if
+   z_raw = raw%z
+   valid_raw = merge(1, 0, raw%valid)
+   z = clean%z
+   dropout_fraction = clean%dropout_fraction
+   spike = merge(1, 0, clean%spike)
+   counts = [clean%report%points_read, clean%report%trimmed_start, clean%report%trimmed_end, &
+      & clean%report%dropouts, clean%report%spikes, clean%report%points_out, &
+      & merge(1, 0, clean%report%resampled), merge(1, 0, clean%report%filtered)]
+   format_read = clean%report%format
 end subroutine pf_read_profile
 
 !> The bearing load (Eq. 15) and its derivative for arrays of outlet films.
@@ -244,6 +284,7 @@ subroutine pf_scene_info(path, np, ns, dx, closed, series, mu_loc, length, width
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_run, only: load_scene_profile
+   use pavefric_preprocess, only: clean_profile_type
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path
@@ -257,17 +298,18 @@ subroutine pf_scene_info(path, np, ns, dx, closed, series, mu_loc, length, width
    character(len=2048), intent(out) :: message
    type(scene_type) :: scene
    type(error_type), allocatable :: error
-   real(wp), allocatable :: z(:)
+   type(clean_profile_type) :: clean
    np = 0; ns = 0; dx = 0; closed = 0; series = 0; status = 0; message = ""
    profile_file = ""; output_file = ""; pad_shape = ""
    call read_scene(path, scene, error)
-   if (.not. allocated(error)) call load_scene_profile(scene, z, dx, error)
+   if (.not. allocated(error)) call load_scene_profile(scene, clean, error)
    if (allocated(error)) then
       status = error%stat
       message = error%message
       return
    end if
-   np = size(z)
+   np = size(clean%z)
+   dx = clean%dx
    ns = size(scene%speeds_kmh)
    closed = merge(1, 0, scene%closed)
    series = merge(1, 0, scene%series)
@@ -289,6 +331,7 @@ subroutine pf_scene_arrays(path, np, ns, z, speeds_kmh, status, message)
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_run, only: load_scene_profile
+   use pavefric_preprocess, only: clean_profile_type
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path
@@ -298,42 +341,49 @@ subroutine pf_scene_arrays(path, np, ns, z, speeds_kmh, status, message)
    character(len=2048), intent(out) :: message
    type(scene_type) :: scene
    type(error_type), allocatable :: error
-   real(wp), allocatable :: zz(:)
-   real(wp) :: dx
+   type(clean_profile_type) :: clean
    z = 0; speeds_kmh = 0; status = 0; message = ""
    call read_scene(path, scene, error)
-   if (.not. allocated(error)) call load_scene_profile(scene, zz, dx, error)
+   if (.not. allocated(error)) call load_scene_profile(scene, clean, error)
    if (allocated(error)) then
       status = error%stat
       message = error%message
       return
    end if
-   if (size(zz) /= np .or. size(scene%speeds_kmh) /= ns) then
+   if (size(clean%z) /= np .or. size(scene%speeds_kmh) /= ns) then
       status = 2
       message = "scene '" // trim(path) // "' changed while it was read"
       return
    end if
-   z = zz
+   z = clean%z
    speeds_kmh = scene%speeds_kmh
 end subroutine pf_scene_arrays
 
 !> Texture metrics of heights z (m): MPD (m), segments used, RMS height (m),
 !> RMS slope; msd holds each segment's depth (size nseg_max).
-subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg_max, mpd, &
-      & n_segments, rms_height, rms_slope, msd, status, message)
+subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg_max, &
+      & use_quality, dropout_fraction, spike, mpd, n_segments, n_valid, rms_height, rms_slope, &
+      & msd, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_texture, only: texture_type, texture_metrics, mean_profile_depth
    use pavefric_error, only: error_type
    implicit none
-   integer(c_int), intent(in) :: np, closed, slope_suppression, nseg_max
-   real(c_double), intent(in) :: z(np), dx, segment_length
+   integer(c_int), intent(in) :: np, closed, slope_suppression, nseg_max, use_quality
+   real(c_double), intent(in) :: z(np), dx, segment_length, dropout_fraction(np)
+   integer(c_int), intent(in) :: spike(np)
    real(c_double), intent(out) :: mpd, rms_height, rms_slope, msd(nseg_max)
-   integer(c_int), intent(out) :: n_segments, status
+   integer(c_int), intent(out) :: n_segments, n_valid, status
    character(len=2048), intent(out) :: message
    type(texture_type) :: tex
    type(error_type), allocatable :: error
-   mpd = 0; rms_height = 0; rms_slope = 0; msd = 0; n_segments = 0; status = 0; message = ""
-   call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, error)
+   mpd = 0; rms_height = 0; rms_slope = 0; msd = 0; n_segments = 0; n_valid = 0
+   status = 0; message = ""
+   if (use_quality /= 0) then
+      call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, &
+         & error, dropout_fraction=dropout_fraction, spike=spike /= 0)
+   else
+      call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, error)
+   end if
    if (.not. allocated(error)) call mean_profile_depth(z, dx, segment_length, &
       & slope_suppression /= 0, mpd, n_segments, error, msd)
    if (allocated(error)) then
@@ -343,6 +393,7 @@ subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg
    end if
    mpd = tex%mpd
    n_segments = tex%n_segments
+   n_valid = tex%n_valid
    rms_height = tex%rms_height
    rms_slope = tex%rms_slope
 end subroutine pf_texture

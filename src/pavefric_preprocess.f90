@@ -1,0 +1,425 @@
+!> Making an instrument profile fit for analysis (ISO 13473-1): trimming the
+!> reference plates, handling dropouts, resampling, removing spikes and
+!> low-pass filtering. Each step is optional and counted in a report.
+module pavefric_preprocess
+   use pavefric_kinds, only: wp, pi
+   use pavefric_error, only: error_type, fatal_error
+   use pavefric_format, only: to_str
+   use pavefric_profile, only: raw_profile_type
+   implicit none
+   private
+
+   public :: preprocess_type, preprocess_report_type, clean_profile_type, preprocess, &
+      & validate_preprocess, butterworth_filtfilt
+
+   !> The &preprocess options (SI units).
+   type :: preprocess_type
+      !> 'error' (a dropout stops the run, naming file and line) or 'interpolate'.
+      character(len=16) :: dropouts = "error"
+      !> Trim reference plates (long runs far from the surface's heights) at the ends.
+      logical :: trim_plates = .true.
+      !> A point further than this from the median height is off the surface (m).
+      real(wp) :: plate_threshold = 0.010_wp
+      !> Shortest run of such points that is a plate, not a spike (m).
+      real(wp) :: plate_min_length = 0.005_wp
+      !> Distance trimmed beyond a plate's edge (m).
+      real(wp) :: plate_buffer = 0.002_wp
+      !> A jump |dz| >= spike_slope * dx flags both points as a spike (0: off).
+      real(wp) :: spike_slope = 0.0_wp
+      !> Resample by averaging into bins of this spacing (m; 0: keep the spacing).
+      real(wp) :: resample_dx = 0.0_wp
+      !> Low-pass cut-off wavelength (m) of a 2nd-order Butterworth filter run
+      !> forwards and backwards (ISO 13473-1:2019 Annex D: 2.4 mm; 0: off).
+      real(wp) :: lowpass_wavelength = 0.0_wp
+   end type preprocess_type
+
+   !> What preprocessing did.
+   type :: preprocess_report_type
+      character(len=:), allocatable :: format
+      integer :: points_read = 0
+      integer :: trimmed_start = 0, trimmed_end = 0
+      integer :: dropouts = 0
+      integer :: spikes = 0
+      integer :: points_out = 0
+      real(wp) :: dx_in = 0.0_wp, dx_out = 0.0_wp
+      logical :: resampled = .false., filtered = .false.
+   end type preprocess_report_type
+
+   !> A profile fit for analysis, with per-sample quality for texture metrics.
+   type :: clean_profile_type
+      real(wp), allocatable :: z(:)
+      real(wp) :: dx = 0.0_wp
+      !> Share of each sample's raw points that were dropouts.
+      real(wp), allocatable :: dropout_fraction(:)
+      !> Whether a sample was flagged as a spike.
+      logical, allocatable :: spike(:)
+      type(preprocess_report_type) :: report
+   end type clean_profile_type
+
+contains
+
+   !> Check the options; messages name &preprocess and the variable.
+   pure subroutine validate_preprocess(p, error)
+      type(preprocess_type), intent(in) :: p
+      type(error_type), allocatable, intent(out) :: error
+      if (trim(p%dropouts) /= "error" .and. trim(p%dropouts) /= "interpolate") then
+         call fatal_error(error, "&preprocess dropouts = '" // trim(p%dropouts) // &
+            & "': unknown (expected 'error' or 'interpolate')")
+      else if (.not. (p%plate_threshold > 0.0_wp)) then
+         call fatal_error(error, "&preprocess plate_threshold = " // to_str(p%plate_threshold) // &
+            & ": must be > 0")
+      else if (.not. (p%plate_min_length >= 0.0_wp)) then
+         call fatal_error(error, "&preprocess plate_min_length = " // &
+            & to_str(p%plate_min_length) // ": must be >= 0")
+      else if (.not. (p%plate_buffer >= 0.0_wp)) then
+         call fatal_error(error, "&preprocess plate_buffer = " // to_str(p%plate_buffer) // &
+            & ": must be >= 0")
+      else if (.not. (p%spike_slope >= 0.0_wp)) then
+         call fatal_error(error, "&preprocess spike_slope = " // to_str(p%spike_slope) // &
+            & ": must be >= 0 (0: off)")
+      else if (.not. (p%resample_dx >= 0.0_wp)) then
+         call fatal_error(error, "&preprocess resample_dx = " // to_str(p%resample_dx) // &
+            & ": must be >= 0 (0: off)")
+      else if (.not. (p%lowpass_wavelength >= 0.0_wp)) then
+         call fatal_error(error, "&preprocess lowpass_wavelength = " // &
+            & to_str(p%lowpass_wavelength) // ": must be >= 0 (0: off)")
+      end if
+   end subroutine validate_preprocess
+
+   !> Run the steps in ISO 13473-1's order. `dx` is the spacing to use when
+   !> the file gave no distances.
+   subroutine preprocess(raw, dx, p, clean, error)
+      type(raw_profile_type), intent(in) :: raw
+      real(wp), intent(in) :: dx
+      type(preprocess_type), intent(in) :: p
+      type(clean_profile_type), intent(out) :: clean
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), allocatable :: x(:), z(:), frac(:)
+      logical, allocatable :: ok(:), plate(:)
+      integer, allocatable :: lines(:)
+      real(wp) :: med, x_start, x_end, step
+      integer :: n, i, i0, i1, k
+
+      call validate_preprocess(p, error)
+      if (allocated(error)) return
+      n = size(raw%z)
+      clean%report%format = raw%format
+      clean%report%points_read = n
+      if (raw%has_x) then
+         x = raw%x
+      else
+         x = [(real(i - 1, wp) * dx, i = 1, n)]
+      end if
+      z = raw%z
+      ok = raw%valid
+      lines = raw%line
+
+      ! 1. reference plates at the ends
+      i0 = 1
+      i1 = n
+      if (p%trim_plates .and. count(ok) > 0) then
+         med = median(pack(z, ok))
+         allocate(plate(n))
+         ! a dropout continues the state of the point before it (forward fill)
+         do i = 1, n
+            if (ok(i)) then
+               plate(i) = abs(z(i) - med) > p%plate_threshold
+            else if (i > 1) then
+               plate(i) = plate(i-1)
+            else
+               plate(i) = .false.
+            end if
+         end do
+         call plate_bounds(x, plate, p%plate_min_length, x_start, x_end)
+         if (x_start > -huge(1.0_wp)) then
+            x_start = x_start + p%plate_buffer
+            do while (i0 <= n)
+               if (x(i0) >= x_start) exit
+               i0 = i0 + 1
+            end do
+         end if
+         if (x_end < huge(1.0_wp)) then
+            x_end = x_end - p%plate_buffer
+            do while (i1 >= i0)
+               if (x(i1) < x_end) exit
+               i1 = i1 - 1
+            end do
+         end if
+         clean%report%trimmed_start = i0 - 1
+         clean%report%trimmed_end = n - i1
+         if (i1 - i0 + 1 < 2) then
+            call fatal_error(error, raw%path // ": nothing is left of the profile after " // &
+               & "trimming reference plates (&preprocess trim_plates, plate_threshold)")
+            return
+         end if
+         ! distances from the trimming boundary (the resampling bins start there)
+         if (x_start > -huge(1.0_wp)) then
+            x = x(i0:i1) - x_start
+         else
+            x = x(i0:i1)
+         end if
+         z = z(i0:i1)
+         ok = ok(i0:i1)
+         lines = lines(i0:i1)
+      end if
+      n = size(z)
+
+      ! 2. dropouts
+      clean%report%dropouts = count(.not. ok)
+      if (clean%report%dropouts > 0) then
+         if (trim(p%dropouts) == "error") then
+            k = findloc(ok, .false., dim=1)
+            call fatal_error(error, raw%path // ":" // to_str(lines(k)) // &
+               & ": dropout (no valid height); set &preprocess dropouts = 'interpolate' " // &
+               & "to interpolate dropouts (ISO 13473-1)")
+            return
+         end if
+         if (count(ok) == 0) then
+            call fatal_error(error, raw%path // ": every height is a dropout")
+            return
+         end if
+         call interpolate_gaps(x, z, ok)
+      end if
+      frac = merge(0.0_wp, 1.0_wp, ok)
+
+      ! 3. resampling, or the file's own (uniform) spacing
+      clean%report%dx_in = (x(n) - x(1)) / real(max(n - 1, 1), wp)
+      if (p%resample_dx > 0.0_wp) then
+         call resample_bins(x, z, frac, p%resample_dx, clean%z, clean%dropout_fraction, error)
+         if (allocated(error)) then
+            error%message = raw%path // ": " // error%message
+            return
+         end if
+         clean%dx = p%resample_dx
+         clean%report%resampled = .true.
+      else
+         if (n < 2) then
+            clean%dx = dx
+         else
+            clean%dx = clean%report%dx_in
+            do i = 2, n
+               step = x(i) - x(i-1)
+               if (abs(step - clean%dx) > 0.05_wp * clean%dx) then
+                  call fatal_error(error, raw%path // ":" // to_str(lines(i)) // &
+                     & ": spacing " // to_str(step) // " m against the mean " // &
+                     & to_str(clean%dx) // " m (more than 5 % off): resample it " // &
+                     & "(&preprocess resample_dx)")
+                  return
+               end if
+            end do
+         end if
+         if (.not. raw%has_x) clean%dx = dx
+         clean%z = z
+         clean%dropout_fraction = frac
+      end if
+      n = size(clean%z)
+
+      ! 4. spikes: a jump of at least spike_slope * dx flags both its points
+      allocate(clean%spike(n))
+      clean%spike = .false.
+      if (p%spike_slope > 0.0_wp .and. n > 2) then
+         do i = 1, n - 1
+            if (abs(clean%z(i+1) - clean%z(i)) >= p%spike_slope * clean%dx) then
+               clean%spike(i) = .true.
+               clean%spike(i+1) = .true.
+            end if
+         end do
+         clean%report%spikes = count(clean%spike)
+         if (clean%report%spikes > 0 .and. clean%report%spikes < n) then
+            x = [(real(i - 1, wp) * clean%dx, i = 1, n)]
+            ok = .not. clean%spike
+            call interpolate_gaps(x, clean%z, ok)
+         end if
+      end if
+
+      ! 5. low-pass filter
+      if (p%lowpass_wavelength > 0.0_wp) then
+         call butterworth_filtfilt(clean%z, clean%dx, p%lowpass_wavelength, error)
+         if (allocated(error)) then
+            error%message = raw%path // ": " // error%message
+            return
+         end if
+         clean%report%filtered = .true.
+      end if
+      clean%report%points_out = n
+      clean%report%dx_out = clean%dx
+   end subroutine preprocess
+
+   !> End of the last plate run in the first half, start of the first in the
+   !> second half (-huge / huge when there is none). A run counts when it
+   !> spans at least `min_length`.
+   pure subroutine plate_bounds(x, plate, min_length, x_start, x_end)
+      real(wp), intent(in) :: x(:), min_length
+      logical, intent(in) :: plate(:)
+      real(wp), intent(out) :: x_start, x_end
+      integer :: i, j, n, mid
+      n = size(x)
+      mid = (n + 1) / 2
+      x_start = -huge(1.0_wp)
+      x_end = huge(1.0_wp)
+      i = 1
+      do while (i <= n)
+         if (.not. plate(i)) then
+            i = i + 1
+            cycle
+         end if
+         j = i
+         do while (j < n)
+            if (.not. plate(j+1)) exit
+            j = j + 1
+         end do
+         if (x(j) - x(i) >= min_length) then
+            if (j < mid .and. j < n) then
+               x_start = x(j + 1)
+            else if (i > mid .and. x_end == huge(1.0_wp)) then
+               x_end = x(i)
+            end if
+         end if
+         i = j + 1
+      end do
+   end subroutine plate_bounds
+
+   !> Fill invalid points: linear in x between valid neighbours; before the
+   !> first (after the last) valid point, its value.
+   pure subroutine interpolate_gaps(x, z, ok)
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(inout) :: z(:)
+      logical, intent(in) :: ok(:)
+      integer :: i, left, right, n, first, last
+      n = size(z)
+      first = findloc(ok, .true., dim=1)
+      last = findloc(ok, .true., dim=1, back=.true.)
+      if (first == 0) return
+      z(1:first-1) = z(first)
+      z(last+1:n) = z(last)
+      left = first
+      i = first + 1
+      do while (i <= last)
+         if (ok(i)) then
+            left = i
+            i = i + 1
+            cycle
+         end if
+         right = i
+         do while (.not. ok(right))
+            right = right + 1
+         end do
+         z(i:right-1) = z(left) + (z(right) - z(left)) * (x(i:right-1) - x(left)) / &
+            & (x(right) - x(left))
+         i = right
+      end do
+   end subroutine interpolate_gaps
+
+   !> Average into bins ((k-1) target, k target], k = ceil(x/target) (the first
+   !> point's bin at least 1), as ISO 13473-1 resampling does.
+   pure subroutine resample_bins(x, z, frac, target, zr, fr, error)
+      real(wp), intent(in) :: x(:), z(:), frac(:), target
+      real(wp), allocatable, intent(out) :: zr(:), fr(:)
+      type(error_type), allocatable, intent(out) :: error
+      integer, allocatable :: cnt(:)
+      integer :: i, k, nb
+      nb = max(1, ceiling(x(size(x)) / target))
+      allocate(zr(nb), fr(nb), cnt(nb))
+      zr = 0.0_wp
+      fr = 0.0_wp
+      cnt = 0
+      do i = 1, size(x)
+         k = max(1, ceiling(x(i) / target))
+         k = min(k, nb)
+         zr(k) = zr(k) + z(i)
+         fr(k) = fr(k) + frac(i)
+         cnt(k) = cnt(k) + 1
+      end do
+      if (any(cnt == 0)) then
+         call fatal_error(error, "&preprocess resample_dx = " // to_str(target) // &
+            & ": finer than the data's spacing (a bin holds no point)")
+         return
+      end if
+      zr = zr / real(cnt, wp)
+      fr = fr / real(cnt, wp)
+   end subroutine resample_bins
+
+   !> 2nd-order Butterworth low-pass (cut-off wavelength `wavelength`) run
+   !> forwards and backwards, with odd extension of 9 points at each end and
+   !> steady-state initial conditions (as SciPy's sosfiltfilt).
+   pure subroutine butterworth_filtfilt(z, dx, wavelength, error)
+      real(wp), intent(inout) :: z(:)
+      real(wp), intent(in) :: dx, wavelength
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: pad = 9
+      real(wp), allocatable :: e(:)
+      real(wp) :: k, norm, b0, b1, b2, a1, a2
+      integer :: n, i
+      n = size(z)
+      if (n <= pad) then
+         call fatal_error(error, "the low-pass filter needs more than " // to_str(pad) // " points")
+         return
+      end if
+      if (.not. (wavelength > 2.0_wp * dx)) then
+         call fatal_error(error, "&preprocess lowpass_wavelength = " // to_str(wavelength) // &
+            & ": must exceed two samples (" // to_str(2.0_wp * dx) // " m)")
+         return
+      end if
+      ! bilinear transform with pre-warping (= scipy.signal.butter(2, 2 dx / wavelength))
+      k = tan(pi * dx / wavelength)
+      norm = 1.0_wp / (1.0_wp + sqrt(2.0_wp) * k + k * k)
+      b0 = k * k * norm
+      b1 = 2.0_wp * b0
+      b2 = b0
+      a1 = 2.0_wp * (k * k - 1.0_wp) * norm
+      a2 = (1.0_wp - sqrt(2.0_wp) * k + k * k) * norm
+      allocate(e(n + 2 * pad))
+      e(pad+1:pad+n) = z
+      do i = 1, pad
+         e(pad + 1 - i) = 2.0_wp * z(1) - z(1 + i)
+         e(pad + n + i) = 2.0_wp * z(n) - z(n - i)
+      end do
+      call pass(e)
+      e = e(size(e):1:-1)
+      call pass(e)
+      e = e(size(e):1:-1)
+      z = e(pad+1:pad+n)
+   contains
+      pure subroutine pass(s)
+         real(wp), intent(inout) :: s(:)
+         real(wp) :: s1, s2, xin, y
+         integer :: j
+         ! transposed direct form II, steady state for a constant input s(1)
+         s2 = (b2 - a2) * s(1)
+         s1 = (b1 - a1) * s(1) + s2
+         do j = 1, size(s)
+            xin = s(j)
+            y = b0 * xin + s1
+            s1 = b1 * xin - a1 * y + s2
+            s2 = b2 * xin - a2 * y
+            s(j) = y
+         end do
+      end subroutine pass
+   end subroutine butterworth_filtfilt
+
+   !> Median of an array (a sorted copy).
+   pure function median(a) result(m)
+      real(wp), intent(in) :: a(:)
+      real(wp) :: m
+      real(wp), allocatable :: s(:)
+      integer :: n, info
+      interface
+         pure subroutine dlasrt(id, n, d, info)
+            import :: wp
+            character, intent(in) :: id
+            integer, intent(in) :: n
+            real(wp), intent(inout) :: d(*)
+            integer, intent(out) :: info
+         end subroutine dlasrt
+      end interface
+      allocate(s, source=a)
+      n = size(s)
+      call dlasrt('I', n, s, info)
+      if (mod(n, 2) == 1) then
+         m = s((n + 1) / 2)
+      else
+         m = 0.5_wp * (s(n / 2) + s(n / 2 + 1))
+      end if
+   end function median
+
+end module pavefric_preprocess
