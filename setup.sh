@@ -28,6 +28,9 @@ missing_system() {
     miss+=(libnetcdff-dev liblapack-dev)
   fi
   command -v ncdump >/dev/null 2>&1 || miss+=(netcdf-bin)
+  # MPI for batch runs of the program (mpirun -n P pavefric batch.nml)
+  command -v mpifort >/dev/null 2>&1 || miss+=(libopenmpi-dev)
+  command -v mpirun >/dev/null 2>&1 || miss+=(openmpi-bin)
   if ! command -v "$PYTHON" >/dev/null 2>&1; then
     miss+=(python3 python3-dev python3-venv)
   else

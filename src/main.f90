@@ -3,12 +3,18 @@ program pavefric_main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use pavefric, only: pavefric_version, error_type, sim_result_type, run_scene, effects_text
    use pavefric_format, only: to_str
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_batch_mpi, only: run_batch_program, parallel_init, parallel_finalize, is_root
    implicit none
    type(sim_result_type) :: res
+   type(scene_type) :: scene
    type(error_type), allocatable :: error
+   logical :: finished
+   integer :: max_profiles, ios
    character(len=:), allocatable :: scene_path, out_override, out_path, arg, command
    integer :: i, nargs, j
 
+   max_profiles = 0
    nargs = command_argument_count()
    scene_path = ""
    out_override = ""
@@ -24,6 +30,14 @@ program pavefric_main
       case ("-V", "--version")
          write(output_unit, '(a)') "pavefric " // pavefric_version
          stop
+      case ("--max-profiles")
+         if (i == nargs) call fail("option " // arg // " needs a number")
+         i = i + 1
+         call get_arg(i, arg)
+         command = command // " " // arg
+         read(arg, *, iostat=ios) max_profiles
+         if (ios /= 0 .or. max_profiles < 0) call fail("--max-profiles '" // arg // &
+            & "': not a count of profiles")
       case ("-o", "--output")
          if (i == nargs) call fail("option " // arg // " needs a file name")
          i = i + 1
@@ -43,8 +57,36 @@ program pavefric_main
       stop 2, quiet=.true.
    end if
 
-   call run_scene(scene_path, out_override, command, out_path, res, error)
+   call parallel_init()
+   call read_scene(scene_path, scene, error)
    if (allocated(error)) call fail(error%message)
+   if (scene%is_batch) then
+      call run_batch_program(scene_path, out_override, command, max_profiles, out_path, &
+         & finished, error)
+      if (allocated(error)) call fail(error%message)
+      if (is_root()) then
+         if (finished) then
+            write(output_unit, '(a)') "pavefric " // pavefric_version // ": batch " // &
+               & scene_path // " -> " // out_path
+         else
+            write(error_unit, '(a)') "pavefric: batch stopped before the end " // &
+               & "(--max-profiles); run it again to resume from its journal"
+         end if
+      end if
+      call parallel_finalize()
+      if (.not. finished) stop 3, quiet=.true.
+   else if (.not. is_root()) then
+      call parallel_finalize()       ! a single scene runs on rank 0 only
+   else
+      call run_scene(scene_path, out_override, command, out_path, res, error)
+      if (allocated(error)) call fail(error%message)
+      call parallel_finalize()
+      call report_scene()
+   end if
+
+contains
+
+   subroutine report_scene()
 
    do j = 1, size(res%mu)
       if (res%max_compression(j) > res%thickness) write(error_unit, '(a)') "pavefric: warning: " // &
@@ -61,8 +103,7 @@ program pavefric_main
       write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
          & res%wet_fraction(j), res%hydroplaning_fraction(j)
    end do
-
-contains
+   end subroutine report_scene
 
    subroutine get_arg(k, value)
       integer, intent(in) :: k
@@ -75,7 +116,8 @@ contains
 
    subroutine fail(message)
       character(len=*), intent(in) :: message
-      write(error_unit, '(a)') "pavefric: error: " // message
+      if (is_root()) write(error_unit, '(a)') "pavefric: error: " // message
+      call parallel_finalize()
       stop 1, quiet=.true.
    end subroutine fail
 
@@ -91,11 +133,16 @@ contains
          & "                     &operation &numerics &output; see docs/inputs.md)", &
          & "  -o, --output FILE  NetCDF output (default: &output file, else", &
          & "                     outputs/<scene name>.nc)", &
+         & "  --max-profiles N   batch: stop after computing N profiles (resume later)", &
          & "  -h, --help         this help", &
          & "  -V, --version      the version", &
          & "", &
+         & "A scene with a &batch group runs many profiles into one NetCDF file;", &
+         & "under mpirun the profiles are shared among the ranks (docs/cluster.md).", &
+         & "", &
          & "Exit status: 0 on success, 1 on bad input or a failed run (one line on", &
-         & "stderr names the group, variable and value), 2 on bad usage."
+         & "stderr names the group, variable and value), 2 on bad usage, 3 when a", &
+         & "batch stopped early (--max-profiles) and can be resumed."
    end subroutine usage
 
 end program pavefric_main

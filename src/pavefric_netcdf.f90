@@ -4,17 +4,18 @@
 !> failed run leaves no half-written output.
 module pavefric_netcdf
    use netcdf
-   use pavefric_kinds, only: wp, pavefric_version
+   use pavefric_kinds, only: wp, i8, pavefric_version
    use pavefric_error, only: error_type, fatal_error
    use pavefric_simulate, only: sim_result_type, effects_text
    use pavefric_texture, only: texture_type
    use pavefric_preprocess, only: preprocess_report_type
+   use pavefric_batch_types, only: batch_type, block_type
    use pavefric_fsys, only: rename_file, remove_file, process_id
    use pavefric_format, only: to_str
    implicit none
    private
 
-   public :: write_results, output_metadata_type, temporary_name
+   public :: write_results, output_metadata_type, temporary_name, write_batch_results
 
    !> Text that describes where the results came from.
    type :: output_metadata_type
@@ -244,5 +245,182 @@ contains
       end subroutine gatt
 
    end subroutine write_file
+
+   !> Write a batch's results (profile x depth x speed) to `path`, via a
+   !> temporary file and a rename. `history` goes into the history attribute.
+   subroutine write_batch_results(path, batch, blocks, history, error)
+      character(len=*), intent(in) :: path, history
+      type(batch_type), intent(in) :: batch
+      type(block_type), intent(in) :: blocks(:)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: tmp
+      logical :: ok
+      tmp = temporary_name(path)
+      call write_batch_file(tmp, batch, blocks, history, error)
+      if (allocated(error)) then
+         ok = remove_file(tmp)
+         return
+      end if
+      if (.not. rename_file(tmp, path)) then
+         ok = remove_file(tmp)
+         call fatal_error(error, "&output file = '" // path // "': cannot rename the finished " // &
+            & "temporary file onto it")
+      end if
+   end subroutine write_batch_results
+
+   subroutine write_batch_file(path, batch, blocks, history, error)
+      character(len=*), intent(in) :: path, history
+      type(batch_type), intent(in) :: batch
+      type(block_type), intent(in) :: blocks(:)
+      type(error_type), allocatable, intent(out) :: error
+      integer :: ncid, stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
+      integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
+      integer :: v_rs, v_status, v_err, ids(10)
+      real(wp), allocatable :: a(:,:,:), t(:)
+      character(len=:), allocatable :: names(:), msgs(:)
+      character(len=:), allocatable :: effects
+      integer(i8), allocatable :: c(:,:,:)
+      real(wp), parameter :: fill = nf90_fill_double
+
+      np = size(blocks)
+      nd = batch%n_depths
+      ns = batch%n_speeds
+      lname = 1
+      lmsg = 1
+      do i = 1, np
+         lname = max(lname, len(batch%names(i)%s))
+         if (allocated(blocks(i)%message)) lmsg = max(lmsg, len(blocks(i)%message))
+      end do
+      allocate(character(len=lname) :: names(np))
+      allocate(character(len=lmsg) :: msgs(np))
+      do i = 1, np
+         names(i) = batch%names(i)%s
+         msgs(i) = ""
+         if (allocated(blocks(i)%message)) msgs(i) = blocks(i)%message
+      end do
+      effects = "elastic_contact,facet_friction"
+      if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
+      if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
+
+      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), ncid)
+      if (stat /= nf90_noerr) then
+         call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
+            & trim(nf90_strerror(stat)) // ")")
+         return
+      end if
+      call check(nf90_def_dim(ncid, "profile", np, d_p), "dimension profile")
+      call check(nf90_def_dim(ncid, "depth", nd, d_d), "dimension depth")
+      call check(nf90_def_dim(ncid, "speed", ns, d_s), "dimension speed")
+      call check(nf90_def_dim(ncid, "name_strlen", lname, d_name), "dimension name_strlen")
+      call check(nf90_def_dim(ncid, "message_strlen", lmsg, d_msg), "dimension message_strlen")
+      call defv("profile_name", nf90_char, [d_name, d_p], "", "profile file name, without " // &
+         & "directory and extension", v_name)
+      call check(nf90_put_att(ncid, v_name, "_Encoding", "utf-8"), "encoding")
+      call defv("depth", nf90_double, [d_d], "m", "water depth (inlet film of the bearing)", v_depth)
+      call defv("speed", nf90_double, [d_s], "m s-1", "sliding speed of the pad", v_speed)
+      call defv("speed_kmh", nf90_double, [d_s], "km h-1", "sliding speed of the pad", v_kmh)
+      call defv("mu", nf90_double, [d_s, d_d, d_p], "1", &
+         & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
+      call defv("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
+         & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
+      call defv("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
+         & "share of averaged positions where no element touched the profile", v_hyd)
+      call defv("max_balance_residual", nf90_double, [d_s, d_d, d_p], "1", &
+         & "largest |sum F + Wh - W| / W over averaged positions", v_res)
+      call defv("n_clamped", nf90_int64, [d_s, d_d, d_p], "1", &
+         & "contacts on facets clamped at theta_max, summed over averaged positions", v_ncl)
+      call defv("mpd", nf90_double, [d_p], "m", "mean profile depth (ISO 13473-1 / " // &
+         & "ASTM E1845, 100 mm segments, slope suppression)", v_mpd)
+      call defv("rms_height", nf90_double, [d_p], "m", "RMS profile height about the mean", v_rh)
+      call defv("rms_slope", nf90_double, [d_p], "1", "RMS slope at the profile spacing", v_rs)
+      call defv("status", nf90_byte, [d_p], "", "whether the profile was computed", v_status)
+      call check(nf90_put_att(ncid, v_status, "flag_values", [1_1, 2_1]), "flags")
+      call check(nf90_put_att(ncid, v_status, "flag_meanings", "computed failed"), "flags")
+      call defv("error_message", nf90_char, [d_msg, d_p], "", "why a profile failed", v_err)
+      call check(nf90_put_att(ncid, v_err, "_Encoding", "utf-8"), "encoding")
+      do i = 1, 7
+         call fillatt([v_mu, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], i)
+      end do
+      ! the profile names label every per-profile variable (CF auxiliary coordinate)
+      ids = [v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh, v_rs, v_status, v_err]
+      do i = 1, size(ids)
+         call check(nf90_put_att(ncid, ids(i), "coordinates", "profile_name"), "coordinates")
+      end do
+      call gatt("Conventions", "CF-1.10")
+      call gatt("title", "pavefric batch " // batch%scene%name)
+      call gatt("source", "pavefric " // pavefric_version)
+      call gatt("pavefric_version", pavefric_version)
+      call gatt("history", history)
+      call gatt("effects", effects)
+      call gatt("input_namelist", batch%scene%text)
+      call check(nf90_put_att(ncid, nf90_global, "profiles_failed", count([(blocks(i)%status &
+         & == 2, i = 1, np)])), "att")
+      if (allocated(error)) goto 99
+      call check(nf90_enddef(ncid), "end of definitions")
+      if (allocated(error)) goto 99
+
+      call check(nf90_put_var(ncid, v_name, names), "profile_name")
+      call check(nf90_put_var(ncid, v_depth, batch%depths), "depth")
+      call check(nf90_put_var(ncid, v_speed, batch%speeds / 3.6_wp), "speed")
+      call check(nf90_put_var(ncid, v_kmh, batch%speeds), "speed_kmh")
+      allocate(a(ns, nd, np), c(ns, nd, np), t(np))
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%mu, fill, blocks(i)%status == 1)
+      end do
+      call check(nf90_put_var(ncid, v_mu, a), "mu")
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%wet, fill, blocks(i)%status == 1)
+      end do
+      call check(nf90_put_var(ncid, v_wet, a), "wet_fraction")
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%hydroplaning, fill, blocks(i)%status == 1)
+      end do
+      call check(nf90_put_var(ncid, v_hyd, a), "hydroplaning_fraction")
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%residual, fill, blocks(i)%status == 1)
+         c(:, :, i) = nint(blocks(i)%n_clamped, i8)
+      end do
+      call check(nf90_put_var(ncid, v_res, a), "max_balance_residual")
+      call check(nf90_put_var(ncid, v_ncl, c), "n_clamped")
+      t = [(merge(blocks(i)%mpd, fill, blocks(i)%has_texture), i = 1, np)]
+      call check(nf90_put_var(ncid, v_mpd, t), "mpd")
+      t = [(merge(blocks(i)%rms_height, fill, blocks(i)%has_texture), i = 1, np)]
+      call check(nf90_put_var(ncid, v_rh, t), "rms_height")
+      t = [(merge(blocks(i)%rms_slope, fill, blocks(i)%has_texture), i = 1, np)]
+      call check(nf90_put_var(ncid, v_rs, t), "rms_slope")
+      call check(nf90_put_var(ncid, v_status, [(blocks(i)%status, i = 1, np)]), "status")
+      call check(nf90_put_var(ncid, v_err, msgs), "error_message")
+99    continue
+      stat = nf90_close(ncid)
+      if (.not. allocated(error) .and. stat /= nf90_noerr) &
+         & call fatal_error(error, "&output file: closing '" // path // "' failed (" // &
+         & trim(nf90_strerror(stat)) // ")")
+   contains
+      subroutine check(status, what)
+         integer, intent(in) :: status
+         character(len=*), intent(in) :: what
+         if (allocated(error)) return
+         if (status /= nf90_noerr) call fatal_error(error, "&output file: writing " // what // &
+            & " to '" // path // "' failed (" // trim(nf90_strerror(status)) // ")")
+      end subroutine check
+      subroutine defv(name, xtype, dims, units, long_name, varid)
+         character(len=*), intent(in) :: name, units, long_name
+         integer, intent(in) :: xtype, dims(:)
+         integer, intent(out) :: varid
+         varid = -1
+         if (allocated(error)) return
+         call check(nf90_def_var(ncid, name, xtype, dims, varid), "variable " // name)
+         if (len(units) > 0) call check(nf90_put_att(ncid, varid, "units", units), name)
+         call check(nf90_put_att(ncid, varid, "long_name", long_name), name)
+      end subroutine defv
+      subroutine fillatt(ids, k)
+         integer, intent(in) :: ids(:), k
+         call check(nf90_def_var_fill(ncid, ids(k), 0, fill), "fill value")
+      end subroutine fillatt
+      subroutine gatt(name, text)
+         character(len=*), intent(in) :: name, text
+         call check(nf90_put_att(ncid, nf90_global, name, text), "attribute " // name)
+      end subroutine gatt
+   end subroutine write_batch_file
 
 end module pavefric_netcdf

@@ -14,7 +14,7 @@ module pavefric_run
    implicit none
    private
 
-   public :: run_scene, load_scene_profile, ctm_dx, preprocess_summary
+   public :: run_scene, load_scene_profile, ctm_dx, preprocess_summary, timestamp
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
    real(wp), parameter :: ctm_dx = 0.87e-3_wp

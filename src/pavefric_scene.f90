@@ -22,7 +22,7 @@ module pavefric_scene
    integer, parameter :: path_len = 4096
 
    character(len=*), parameter :: known_groups = &
-      & " surface preprocess pad rubber water operation numerics output "
+      & " surface preprocess pad rubber water operation numerics output batch "
 
    !> A scene read from a namelist file.
    type :: scene_type
@@ -49,6 +49,17 @@ module pavefric_scene
       !> &output file ('' = outputs/<name>.nc) and series.
       character(len=:), allocatable :: output_file
       logical :: series = .false.
+      !> Whether the scene is a batch (it has a &batch group).
+      logical :: is_batch = .false.
+      !> &batch profiles: a file-name pattern or a directory (relative to the
+      !> namelist's directory); profile_list: a file naming one profile a line.
+      character(len=:), allocatable :: batch_profiles, batch_profile_list
+      !> &batch depths (m); empty: &water depth.
+      real(wp), allocatable :: batch_depths(:)
+      !> &batch restart: resume from the journal of an interrupted run.
+      logical :: batch_restart = .true.
+      !> &batch progress_every: profiles between progress lines (0: about 20 lines).
+      integer :: batch_progress_every = 0
    end type scene_type
 
    abstract interface
@@ -91,8 +102,8 @@ contains
       type(scene_type), intent(out) :: scene
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: groups
-      character(len=10), parameter :: group_names(8) = [character(len=10) :: "surface", &
-         & "preprocess", "pad", "rubber", "water", "operation", "numerics", "output"]
+      character(len=10), parameter :: group_names(9) = [character(len=10) :: "surface", &
+         & "preprocess", "pad", "rubber", "water", "operation", "numerics", "output", "batch"]
       integer :: unit, ios, i
       character(len=512) :: msg
 
@@ -117,6 +128,8 @@ contains
       scene%format = "auto"
       scene%x_column = ""
       scene%z_column = ""
+      scene%batch_profiles = ""
+      scene%batch_profile_list = ""
       do i = 1, size(group_names)
          if (.not. has(groups, trim(group_names(i)))) cycle
          select case (trim(group_names(i)))
@@ -141,6 +154,10 @@ contains
                & "position_stride wet_tolerance", nml_numerics, scene, error)
          case ("output")
             call read_group(unit, "output", "file series", nml_output, scene, error)
+         case ("batch")
+            scene%is_batch = .true.
+            call read_group(unit, "batch", "profiles profile_list depths restart " // &
+               & "progress_every", nml_batch, scene, error)
          end select
          if (allocated(error)) exit
       end do
@@ -158,6 +175,24 @@ contains
       if (.not. allocated(scene%speeds_kmh)) then
          call fatal_error(error, "&operation speeds_kmh: not given in '" // path // &
             & "' (a list of sliding speeds in km/h is required)")
+         return
+      end if
+      if (scene%is_batch) then
+         if (len(scene%batch_profiles) == 0 .eqv. len(scene%batch_profile_list) == 0) then
+            call fatal_error(error, "&batch: give exactly one of profiles (a pattern or " // &
+               & "directory) and profile_list (a file) in '" // path // "'")
+            return
+         end if
+         if (allocated(scene%batch_depths)) then
+            if (any(.not. (scene%batch_depths >= 0.0_wp .and. scene%batch_depths < huge(1.0_wp)))) then
+               call fatal_error(error, "&batch depths: every depth must be finite and >= 0")
+               return
+            end if
+         end if
+         if (len(scene%batch_profiles) > 0) scene%batch_profiles = &
+            & join_path(dir_name(path), scene%batch_profiles)
+         if (len(scene%batch_profile_list) > 0) scene%batch_profile_list = &
+            & join_path(dir_name(path), scene%batch_profile_list)
          return
       end if
       if (len(scene%profile_file) == 0) then
@@ -439,6 +474,38 @@ contains
       scene%x_column = trim(x_column)
       scene%z_column = trim(z_column)
    end subroutine nml_surface
+
+   subroutine nml_batch(scene, ios, msg, unit, text)
+      type(scene_type), intent(inout) :: scene
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: msg
+      integer, intent(in), optional :: unit
+      character(len=*), intent(in), optional :: text
+      real(wp), parameter :: unset = -huge(1.0_wp)
+      character(len=path_len) :: profiles, profile_list
+      real(wp) :: depths(max_speeds)
+      logical :: restart
+      integer :: progress_every, n
+      namelist /batch/ profiles, profile_list, depths, restart, progress_every
+      profiles = scene%batch_profiles
+      profile_list = scene%batch_profile_list
+      depths = unset
+      restart = scene%batch_restart
+      progress_every = scene%batch_progress_every
+      if (present(unit)) read(unit, nml=batch, iostat=ios, iomsg=msg)
+      if (present(text)) read(text, nml=batch, iostat=ios, iomsg=msg)
+      if (ios /= 0) return
+      scene%batch_profiles = trim(profiles)
+      scene%batch_profile_list = trim(profile_list)
+      scene%batch_restart = restart
+      scene%batch_progress_every = progress_every
+      n = max_speeds
+      do while (n > 0)
+         if (depths(n) /= unset) exit
+         n = n - 1
+      end do
+      if (n > 0) scene%batch_depths = depths(1:n)
+   end subroutine nml_batch
 
    subroutine nml_preprocess(scene, ios, msg, unit, text)
       type(scene_type), intent(inout) :: scene

@@ -187,6 +187,53 @@ def threads(log):
     return rows
 
 
+def mpi_batch(log, root: Path | None = None) -> dict:
+    """Throughput of the demo batch's profiles with 1 and 2 MPI ranks (one
+    OpenMP thread each), on a heavier sweep (8 speeds, 3 depths) so that the
+    run, not mpirun's start-up, is measured."""
+    import shutil
+    import tempfile
+
+    log("\n== MPI batch: demo profiles, 1 rank against 2 ranks (OMP_NUM_THREADS=1) ==")
+    mpirun = shutil.which("mpirun")
+    exe = shutil.which("pavefric", path=str(Path(sys.executable).parent))
+    root = root or Path.cwd()
+    demo_dir = root / "inputs" / "batch_demo"
+    if mpirun is None or exe is None or not demo_dir.exists():
+        log("skipped: needs mpirun, the pavefric program and inputs/batch_demo/")
+        return {}
+    with tempfile.TemporaryDirectory() as tmp:
+        scene = Path(tmp) / "bench_batch.nml"
+        scene.write_text(f"&batch profiles = '{demo_dir}/*.txt', depths = 0.0, 0.5e-3, 1.0e-3 /\n"
+                         "&surface closed = .false., mu_loc = 0.6 /\n"
+                         "&operation speeds_kmh = 10, 20, 30, 40, 50, 60, 70, 80 /\n")
+        env = {**os.environ, "OMP_NUM_THREADS": "1", "OMPI_ALLOW_RUN_AS_ROOT": "1",
+               "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+        times, rates = {}, {}
+        for ranks in (1, 2):
+            best, rate = np.inf, 0.0
+            for rep in range(3):
+                out = Path(tmp) / f"o{ranks}_{rep}.nc"
+                t0 = time.perf_counter()
+                r = subprocess.run([mpirun, "--oversubscribe", "-n", str(ranks), exe, str(scene),
+                                    "-o", str(out)], capture_output=True, text=True, env=env)
+                best = min(best, time.perf_counter() - t0)
+                if r.returncode != 0:
+                    raise RuntimeError(r.stderr)
+                # the batch's own throughput: its last progress line, timed from
+                # the first profile (after MPI start-up and reading the inputs)
+                last = [l for l in r.stdout.splitlines() if "profiles/s" in l][-1]
+                rate = max(rate, float(last.split("%), ")[1].split(" profiles/s")[0]))
+            times[ranks], rates[ranks] = best, rate
+    n = len(list(demo_dir.glob("*.txt")))
+    log(f"{n} profiles x 3 depths x 8 speeds: throughput 1 rank {rates[1]:.0f} profiles/s, "
+        f"2 ranks {rates[2]:.0f} profiles/s: {rates[2] / rates[1]:.2f}x")
+    log(f"  wall time including mpirun start-up: 1 rank {times[1]:.2f} s, 2 ranks "
+        f"{times[2]:.2f} s: {times[1] / times[2]:.2f}x")
+    return {"one": times[1], "two": times[2], "rate_one": rates[1], "rate_two": rates[2],
+            "profiles": n}
+
+
 def run(report: str | None = None, largest: int = 10_000_000) -> dict:
     from .reports import machine_description
 
@@ -203,6 +250,7 @@ def run(report: str | None = None, largest: int = 10_000_000) -> dict:
         "elements": scaling_elements(ref, log),
         "length": scaling_length(log, largest),
         "threads": threads(log),
+        "mpi": mpi_batch(log),
     }
     if report:
         from .reports import performance_report

@@ -201,15 +201,83 @@ def hydro_load(h_out, h_in: float, prefactor: float = 1.0):
     return wh, dwh
 
 
-def run(path: str | os.PathLike, output: str | os.PathLike | None = None) -> Path:
-    """Run the scene namelist at ``path`` as the program does; return the output path."""
+def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
+        progress: bool | None = None) -> Path:
+    """Run the scene namelist at ``path`` as the program does; return the output path.
+
+    A batch scene (with a ``&batch`` group) is computed profile by profile
+    through the core, with a progress bar (``progress``: default when
+    stderr is a terminal), resuming from the journal of an interrupted run.
+    """
     command = "pavefric.run(" + shlex.quote(str(path)) + (
         f", output={shlex.quote(str(output))})" if output else ")")
     if Path(sys.argv[0]).name == "__main__.py":
         command = "python -m pavefric " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    is_batch, status, message = _core.pf_scene_is_batch(str(path))
+    _check(status, message)
+    if is_batch:
+        return _run_batch(str(path), str(output or ""), command, progress)
     out_path, status, message = _core.pf_run_scene(str(path), str(output or ""), command)
     _check(status, message)
     return Path(_text(out_path))
+
+
+def _run_batch(path: str, output: str, command: str, progress: bool | None) -> Path:
+    if progress is None:
+        progress = sys.stderr.isatty()
+    bar = _ProgressBar(progress)
+    chunk = 1
+    while True:
+        t0 = __import__("time").perf_counter()
+        (out_path, computed, finished, total, done, status, message) = _core.pf_batch_run(
+            path, output, command, chunk)
+        _check(status, message)
+        bar.update(int(done), int(total))
+        if finished:
+            bar.close()
+            return Path(_text(out_path))
+        if computed == 0:
+            raise PavefricError(f"batch {path}: no progress (max_profiles reached?)")
+        # aim at about half a second of work per call
+        dt = __import__("time").perf_counter() - t0
+        chunk = max(1, min(int(total), int(chunk * max(1.0, min(4.0, 0.5 / max(dt, 1e-6))))))
+
+
+class _ProgressBar:
+    """tqdm when installed, else a one-line text bar on stderr."""
+
+    def __init__(self, enabled: bool):
+        self.enabled = enabled
+        self._tqdm = None
+        self._done = 0
+        if enabled:
+            try:
+                from tqdm import tqdm
+                self._tqdm = tqdm(unit="profile", desc="pavefric batch")
+            except ImportError:
+                self._tqdm = None
+
+    def update(self, done: int, total: int) -> None:
+        if not self.enabled:
+            return
+        if self._tqdm is not None:
+            self._tqdm.total = total
+            self._tqdm.update(done - self._done)
+        else:
+            width = 30
+            fill = int(width * done / max(total, 1))
+            sys.stderr.write(f"\rpavefric batch [{'#' * fill}{'.' * (width - fill)}] "
+                             f"{done}/{total}")
+            sys.stderr.flush()
+        self._done = done
+
+    def close(self) -> None:
+        if not self.enabled:
+            return
+        if self._tqdm is not None:
+            self._tqdm.close()
+        else:
+            sys.stderr.write("\n")
 
 
 def open_dataset(path: str | os.PathLike):

@@ -221,6 +221,11 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         f"| 2 threads ≥ 1.8x one thread on 6 speeds | dry {th[0]['one'] / th[0]['two']:.2f}x, "
         f"wet {th[1]['one'] / th[1]['two']:.2f}x; identical results: "
         f"{all(r['same'] for r in th)} |",
+        (f"| demo batch: 2 MPI ranks ≥ 1.8x one rank | throughput "
+         f"{results['mpi']['rate_two'] / results['mpi']['rate_one']:.2f}x; wall time with "
+         f"mpirun start-up {results['mpi']['one'] / results['mpi']['two']:.2f}x "
+         f"({results['mpi']['profiles']} profiles, 3 depths, 8 speeds, one thread a rank) |"
+         if results.get("mpi") else "| demo batch: 2 MPI ranks ≥ 1.8x one rank | not measured (no mpirun) |"),
         "",
         "![cost against N and profile length](figures/performance.png)",
         "",

@@ -55,3 +55,26 @@ def write_profile(path: str, heights_m: np.ndarray, header: str = "") -> None:
     lines.extend(f"{1e3 * z:.6f}" for z in heights_m)
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(lines) + "\n")
+
+
+def road_profiles(directory: str, n: int = 300, points: int = 512, dx: float = CTM_DX,
+                  seed: int = 7) -> list:
+    """Write ``n`` seeded profiles of consecutive road segments (texture depth
+    drifting along the road, as on a worn wheel path) as ``seg_0001.txt``...
+    Used by the demo batch (inputs/batch_demo.nml); returns the paths."""
+    import os
+
+    os.makedirs(directory, exist_ok=True)
+    rng = np.random.default_rng(seed)
+    rms_along = 0.35e-3 + 0.25e-3 * np.sin(np.linspace(0, 3 * np.pi, n)) ** 2
+    paths = []
+    for k in range(n):
+        z = spectral_profile(points, dx, rms=float(rms_along[k] * rng.uniform(0.85, 1.15)),
+                             skew=-0.5, seed=seed * 100000 + k)
+        path = os.path.join(directory, f"seg_{k + 1:04d}.txt")
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write("# demo road segment %d of %d (pavefric.surfaces.road_profiles, seed %d)\n"
+                     "height_mm\n" % (k + 1, n, seed))
+            fh.write("\n".join(f"{1e3 * v:.4f}" for v in z) + "\n")
+        paths.append(path)
+    return paths

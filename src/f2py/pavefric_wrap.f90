@@ -397,3 +397,55 @@ subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg
    rms_height = tex%rms_height
    rms_slope = tex%rms_slope
 end subroutine pf_texture
+
+!> Whether a scene file is a batch (it has a &batch group).
+subroutine pf_scene_is_batch(path, is_batch, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(out) :: is_batch, status
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(error_type), allocatable :: error
+   is_batch = 0; status = 0; message = ""
+   call read_scene(path, scene, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   is_batch = merge(1, 0, scene%is_batch)
+end subroutine pf_scene_is_batch
+
+!> Compute up to max_count profiles of a batch not yet in its journal (all
+!> when max_count <= 0); write the NetCDF file once every profile is done.
+subroutine pf_batch_run(path, output, command, max_count, out_path, computed, finished, &
+      & n_total, n_done, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_batch_run, only: run_batch_serial
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, output, command
+   integer(c_int), intent(in) :: max_count
+   character(len=4096), intent(out) :: out_path
+   integer(c_int), intent(out) :: computed, finished, n_total, n_done, status
+   character(len=2048), intent(out) :: message
+   type(error_type), allocatable :: error
+   character(len=:), allocatable :: written
+   logical :: done
+   integer :: c, nt, nd
+   out_path = ""; computed = 0; finished = 0; n_total = 0; n_done = 0; status = 0; message = ""
+   call run_batch_serial(path, output, command, -1, max_count, written, c, done, error, nt, nd)
+   if (allocated(written)) out_path = written
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   computed = c
+   finished = merge(1, 0, done)
+   n_total = nt
+   n_done = nd
+end subroutine pf_batch_run

@@ -1,0 +1,172 @@
+"""Batch runs: one NetCDF over many profiles, MPI, restart, broken profiles."""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import ROOT, program, run_program
+
+DEMO = ROOT / "inputs" / "batch_demo.nml"
+VARS = ("mu", "wet_fraction", "hydroplaning_fraction", "max_balance_residual", "n_clamped",
+        "mpd", "rms_height", "rms_slope", "status", "profile_name", "error_message")
+
+
+def same_contents(a, b):
+    with xr.open_dataset(a) as x, xr.open_dataset(b) as y:
+        for v in VARS:
+            xv, yv = x[v].values, y[v].values
+            if xv.dtype.kind == "f":
+                assert np.array_equal(xv, yv, equal_nan=True), v
+            else:
+                assert np.array_equal(xv, yv), v
+        assert x.attrs["input_namelist"] == y.attrs["input_namelist"]
+        assert x.attrs["effects"] == y.attrs["effects"]
+
+
+def make_batch(tmp_path, n=24, broken=False, speeds="20, 60", depths="0.0, 1.0e-3"):
+    from pavefric.surfaces import road_profiles
+
+    road_profiles(str(tmp_path / "profiles"), n=n, points=256)
+    if broken:
+        (tmp_path / "profiles" / "seg_0005.txt").write_text("height_mm\n0.1\nabc\n0.2\n")
+    scene = tmp_path / "batch.nml"
+    scene.write_text(f"&batch profiles = 'profiles/*.txt', depths = {depths} /\n"
+                     "&surface closed = .false., mu_loc = 0.6 /\n"
+                     f"&operation speeds_kmh = {speeds} /\n")
+    return scene
+
+
+@pytest.fixture(scope="module")
+def serial_demo(tmp_path_factory):
+    out = tmp_path_factory.mktemp("serial") / "demo.nc"
+    r = run_program(DEMO, "-o", out)
+    assert r.returncode == 0, r.stderr
+    return out
+
+
+def test_demo_batch_output(serial_demo):
+    with xr.open_dataset(serial_demo) as ds:
+        assert dict(ds.sizes) == {"profile": 300, "depth": 3, "speed": 4}
+        assert ds["mu"].dims == ("profile", "depth", "speed")
+        assert "profile_name" in ds.coords and ds["profile_name"].values[0] == "seg_0001"
+        assert np.all(ds["status"].values == 1)
+        assert np.all(np.isfinite(ds["mu"].values))
+        assert np.all(ds["max_balance_residual"].values <= 1e-12)
+        # dry (depth 0) is above wet at speed, texture beside friction
+        assert np.all(ds["mu"].sel(depth=0.0).values[:, -1] > ds["mu"].isel(depth=2).values[:, -1])
+        assert np.all(ds["mpd"].values > 0) and ds["mpd"].attrs["units"] == "m"
+        assert ds.attrs["profiles_failed"] == 0
+
+
+def test_mpi_two_ranks_same_as_serial(tmp_path, serial_demo):
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        pytest.fail("mpirun not found: setup.sh installs Open MPI (openmpi-bin)")
+    out = tmp_path / "mpi.nc"
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMP_NUM_THREADS": "1"}
+    r = subprocess.run([mpirun, "--oversubscribe", "-n", "2", program(), str(DEMO), "-o",
+                        str(out)], capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 0, r.stderr + r.stdout
+    assert "on 2 MPI ranks" in r.stdout
+    same_contents(serial_demo, out)
+
+
+def test_killed_batch_resumes_without_recomputing(tmp_path):
+    scene = make_batch(tmp_path, n=400, speeds="10, 20, 30, 40, 50, 60, 70, 80")
+    clean = tmp_path / "clean.nc"
+    assert run_program(scene, "-o", clean).returncode == 0
+    out = tmp_path / "killed.nc"
+    journal = tmp_path / "killed.nc.journal"
+    proc = subprocess.Popen([program(), str(scene), "-o", str(out)], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while time.time() < deadline:
+        if journal.exists() and journal.read_text().count("\nP ") >= 30:
+            break
+        time.sleep(0.005)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert not out.exists()
+    done = journal.read_text().count("\nP ")
+    assert 30 <= done < 400, done
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    resumed = int(r.stdout.split("resuming: ")[1].split(" of ")[0])
+    assert resumed >= done - 1          # a line cut by the kill is recomputed, nothing else
+    assert not journal.exists()
+    same_contents(clean, out)
+
+
+def test_stopped_batch_recomputes_no_finished_profile(tmp_path):
+    scene = make_batch(tmp_path, n=30)
+    clean = tmp_path / "clean.nc"
+    assert run_program(scene, "-o", clean).returncode == 0
+    out = tmp_path / "part.nc"
+    r = run_program(scene, "-o", out, "--max-profiles", "12")
+    assert r.returncode == 3 and "resume" in r.stderr
+    assert not out.exists()
+    # the rest through the core, counting what it computes
+    from pavefric import _core
+    (path, computed, finished, total, done, status, message) = _core.pf_batch_run(
+        str(scene), str(out), "test", 0)
+    assert status == 0 and finished == 1
+    assert (computed, total, done) == (18, 30, 30)
+    same_contents(clean, out)
+
+
+def test_broken_profile_is_reported_and_the_rest_computed(tmp_path):
+    scene = make_batch(tmp_path, n=10, broken=True)
+    out = tmp_path / "b.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(out) as ds:
+        status = ds["status"].values
+        assert status[4] == 2 and np.all(np.delete(status, 4) == 1)
+        msg = str(ds["error_message"].values[4])
+        assert "seg_0005.txt:3" in msg and "abc" in msg
+        assert np.isnan(ds["mu"].values[4]).all()          # fill value, masked
+        assert np.all(np.isfinite(np.delete(ds["mu"].values, 4, axis=0)))
+        assert ds.attrs["profiles_failed"] == 1
+
+
+def test_python_run_of_a_batch_matches_the_program(tmp_path):
+    scene = make_batch(tmp_path, n=15)
+    a = tmp_path / "prog.nc"
+    assert run_program(scene, "-o", a).returncode == 0
+    b = pavefric.run(scene, tmp_path / "py.nc", progress=False)
+    same_contents(a, b)
+
+
+def test_journal_of_another_batch_is_refused(tmp_path):
+    scene = make_batch(tmp_path, n=10)
+    out = tmp_path / "o.nc"
+    assert run_program(scene, "-o", out, "--max-profiles", "3").returncode == 3
+    scene.write_text(scene.read_text().replace("speeds_kmh = 20, 60", "speeds_kmh = 20, 80"))
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 1 and "belongs to another batch" in r.stderr
+
+
+def test_progress_lines(tmp_path):
+    scene = make_batch(tmp_path, n=20)
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    lines = [l for l in r.stdout.splitlines() if l.startswith("pavefric batch: ")]
+    assert len(lines) >= 2 and "20/20 profiles (100.0 %)" in lines[-1]
+    assert "profiles/s" in lines[-1] and "s left" in lines[-1]
+
+
+def test_batch_bad_input(tmp_path):
+    scene = tmp_path / "b.nml"
+    scene.write_text("&batch profiles = 'nothing/*.txt' /\n&operation speeds_kmh = 20 /\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&batch profiles = " in r.stderr and "matches no file" in r.stderr
+    scene.write_text("&batch depths = -1 /\n&operation speeds_kmh = 20 /\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&batch" in r.stderr
