@@ -79,11 +79,13 @@ install_python() {
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
     "numpy>=1.26" "meson>=1.1" "meson-python>=0.15" ninja \
     "xarray>=2023.1" "netCDF4>=1.6" "matplotlib>=3.6" "f90nml>=1.4" \
-    "pytest>=7" "hypothesis>=6" "pandas>=2.2" scipy pyrsona pydantic psutil click
+    "pytest>=7" "hypothesis>=6" "pandas>=2.2" scipy "pydantic>=2,<3" psutil click parse unsync
   # captif-slp (an established ISO 13473-1 implementation, a test reference)
-  # pins pandas<2.2 and numpy<2, which would break xarray and the extension:
-  # install it without its pins; it runs on the current pandas and numpy.
-  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps "captif-slp>=0.22"
+  # and its reader pyrsona 1.x pin pandas<2.2 and numpy<2, which would break
+  # xarray and the extension: install them without their pins (their other
+  # requirements are above); they run on the current pandas and numpy.
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps \
+    "pyrsona>=1.1,<2" "captif-slp>=0.22"
   log "building and installing pavefric (Fortran core, program, Python extension)"
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-build-isolation \
     --force-reinstall --no-deps .

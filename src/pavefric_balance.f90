@@ -8,6 +8,7 @@
 module pavefric_balance
    use pavefric_kinds, only: wp
    use pavefric_bearing, only: hydro_load
+   use pavefric_lapack, only: dlasrt
    implicit none
    private
 
@@ -27,16 +28,6 @@ module pavefric_balance
       integer :: evaluations = 0
    end type wet_state_type
 
-   interface
-      !> LAPACK's sort (increasing with id = 'I'); it has no side effects.
-      pure subroutine dlasrt(id, n, d, info)
-         import :: wp
-         character, intent(in) :: id
-         integer, intent(in) :: n
-         real(wp), intent(inout) :: d(*)
-         integer, intent(out) :: info
-      end subroutine dlasrt
-   end interface
 
 contains
 

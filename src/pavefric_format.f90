@@ -5,7 +5,7 @@ module pavefric_format
    implicit none
    private
 
-   public :: to_str
+   public :: to_str, to_lower
 
    !> Shortest faithful text of a number.
    interface to_str
@@ -79,6 +79,17 @@ contains
       end if
       if (x < 0.0_wp) s = "-" // s
    end function real_to_str
+
+   !> ASCII letters in lower case.
+   pure function to_lower(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (s(i:i) >= "A" .and. s(i:i) <= "Z") t(i:i) = achar(iachar(s(i:i)) + 32)
+      end do
+   end function to_lower
 
    !> A default integer as text.
    pure function int_to_str(i) result(s)

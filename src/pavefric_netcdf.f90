@@ -48,9 +48,17 @@ contains
       type(output_metadata_type), intent(in) :: meta
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
-      logical :: ok
       tmp = temporary_name(path)
       call write_file(tmp, res, meta, error)
+      call commit_temporary(tmp, path, error)
+   end subroutine write_results
+
+   !> Rename a finished temporary file onto `path`; remove it when writing
+   !> failed (`error` allocated on entry) or the rename fails.
+   subroutine commit_temporary(tmp, path, error)
+      character(len=*), intent(in) :: tmp, path
+      type(error_type), allocatable, intent(inout) :: error
+      logical :: ok
       if (allocated(error)) then
          ok = remove_file(tmp)
          return
@@ -60,7 +68,7 @@ contains
          call fatal_error(error, "&output file = '" // path // "': cannot rename the finished " // &
             & "temporary file onto it")
       end if
-   end subroutine write_results
+   end subroutine commit_temporary
 
    subroutine write_file(path, res, meta, error)
       character(len=*), intent(in) :: path
@@ -254,18 +262,9 @@ contains
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
-      logical :: ok
       tmp = temporary_name(path)
       call write_batch_file(tmp, batch, blocks, history, error)
-      if (allocated(error)) then
-         ok = remove_file(tmp)
-         return
-      end if
-      if (.not. rename_file(tmp, path)) then
-         ok = remove_file(tmp)
-         call fatal_error(error, "&output file = '" // path // "': cannot rename the finished " // &
-            & "temporary file onto it")
-      end if
+      call commit_temporary(tmp, path, error)
    end subroutine write_batch_results
 
    subroutine write_batch_file(path, batch, blocks, history, error)

@@ -6,6 +6,7 @@ module pavefric_preprocess
    use pavefric_error, only: error_type, fatal_error
    use pavefric_format, only: to_str
    use pavefric_profile, only: raw_profile_type
+   use pavefric_lapack, only: dlasrt
    implicit none
    private
 
@@ -403,15 +404,6 @@ contains
       real(wp) :: m
       real(wp), allocatable :: s(:)
       integer :: n, info
-      interface
-         pure subroutine dlasrt(id, n, d, info)
-            import :: wp
-            character, intent(in) :: id
-            integer, intent(in) :: n
-            real(wp), intent(inout) :: d(*)
-            integer, intent(out) :: info
-         end subroutine dlasrt
-      end interface
       allocate(s, source=a)
       n = size(s)
       call dlasrt('I', n, s, info)

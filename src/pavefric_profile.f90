@@ -4,7 +4,7 @@ module pavefric_profile
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type, fatal_error
-   use pavefric_format, only: to_str
+   use pavefric_format, only: to_str, to_lower
    implicit none
    private
 
@@ -268,16 +268,16 @@ contains
       else
          do k = 1, nf
             call field(line, sep, k, name)
-            name = lower_text(trim(adjustl(name)))
+            name = to_lower(trim(adjustl(name)))
             if (len_trim(x_column) > 0) then
-               if (name == lower_text(trim(x_column))) ix = k
+               if (name == to_lower(trim(x_column))) ix = k
             else if (ix == 0 .and. (index(name, "dist") > 0 .or. name == "x" .or. &
                   & index(name, "x ") == 1 .or. index(name, "x(") == 1 .or. &
                   & index(name, "x_") == 1 .or. index(name, "chainage") > 0)) then
                ix = k
             end if
             if (len_trim(z_column) > 0) then
-               if (name == lower_text(trim(z_column))) iz = k
+               if (name == to_lower(trim(z_column))) iz = k
             else if (iz == 0 .and. (index(name, "height") > 0 .or. index(name, "depth") > 0 .or. &
                   & index(name, "elev") > 0 .or. name == "z" .or. index(name, "z ") == 1 .or. &
                   & index(name, "z(") == 1 .or. index(name, "z_") == 1)) then
@@ -314,7 +314,7 @@ contains
       real(wp), intent(in) :: default
       real(wp) :: f
       character(len=:), allocatable :: n
-      n = lower_text(name)
+      n = to_lower(name)
       f = default
       if (index(n, "(mm)") > 0 .or. index(n, "[mm]") > 0 .or. index(n, "_mm") > 0) then
          f = 1.0e-3_wp
@@ -325,19 +325,10 @@ contains
       end if
    end function unit_in_name
 
-   pure function lower_text(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (s(i:i) >= "A" .and. s(i:i) <= "Z") t(i:i) = achar(iachar(s(i:i)) + 32)
-      end do
-   end function lower_text
 
    pure logical function is_nan_text(tok)
       character(len=*), intent(in) :: tok
-      is_nan_text = lower_text(trim(adjustl(tok))) == "nan"
+      is_nan_text = to_lower(trim(adjustl(tok))) == "nan"
    end function is_nan_text
 
    !> A number from a token ('/' and '*' have list-directed meanings: refused).

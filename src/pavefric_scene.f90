@@ -7,7 +7,7 @@
 module pavefric_scene
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type, fatal_error
-   use pavefric_format, only: to_str
+   use pavefric_format, only: to_str, to_lower
    use pavefric_model, only: model_type
    use pavefric_profile, only: unit_factor
    use pavefric_fsys, only: dir_name, base_name, join_path
@@ -246,14 +246,14 @@ contains
                   j = j + 1
                end do
                if (j > i + 1) then
-                  if (.not. lower(text(i+1:j-1)) == "end") then
-                     if (index(known_groups, " " // lower(text(i+1:j-1)) // " ") == 0) then
+                  if (.not. to_lower(text(i+1:j-1)) == "end") then
+                     if (index(known_groups, " " // to_lower(text(i+1:j-1)) // " ") == 0) then
                         call fatal_error(error, "&" // text(i+1:j-1) // ": unknown namelist " // &
                            & "group at " // path // ":" // to_str(lineno) // " (known:" // &
                            & known_groups // ")")
                         return
                      end if
-                     groups = groups // lower(text(i+1:j-1)) // " "
+                     groups = groups // to_lower(text(i+1:j-1)) // " "
                   end if
                end if
                i = j - 1
@@ -266,15 +266,6 @@ contains
       end do
    end subroutine list_groups
 
-   pure function lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (s(i:i) >= "A" .and. s(i:i) <= "Z") t(i:i) = achar(iachar(s(i:i)) + 32)
-      end do
-   end function lower
 
    !> Read one group through `reader`; when that fails, find the culprit:
    !> the group's assignments are read one by one from an internal file, so
@@ -306,7 +297,7 @@ contains
          end if
          call strip_trailing_comma(assign)
          eq = index(assign, "=")
-         name = lower(trim(adjustl(assign(1:eq-1))))
+         name = to_lower(trim(adjustl(assign(1:eq-1))))
          if (index(name, "(") > 0) name = name(1:index(name, "(")-1)
          if (index(" " // names // " ", " " // trim(name) // " ") == 0) then
             call fatal_error(error, "&" // group // " " // trim(name) // " = " // &
@@ -355,7 +346,7 @@ contains
          read(unit, '(a)', iostat=ios) line
          if (ios /= 0) exit
          if (.not. inside) then
-            pos = index(lower(line), "&" // group)
+            pos = index(to_lower(line), "&" // group)
             if (pos == 0 .or. len_trim(line(1:max(pos-1, 0))) > 0) cycle
             inside = .true.
             line = line(pos + len(group) + 1:)

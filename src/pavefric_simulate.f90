@@ -297,7 +297,7 @@ contains
       type(kv_step_type) :: kv
       type(wet_state_type) :: wet
       real(wp), allocatable :: c(:), d(:), u(:), u_free(:), work(:)
-      real(wp) :: kel, s_load, cmin, x, x_dry, x_guess, delta_prev, wh, h_m, prefactor, push, sum_f, sum_ft
+      real(wp) :: kel, s_load, cmin, x, x_dry, x_guess, delta_prev, wh, h_m, prefactor, push, sum_f, sum_ft, u_new
       real(wp) :: mu_sum, resid_max, wh_sum, u_max, mu_j, resid
       integer(i8) :: n_clamped, n_eval
       integer :: t, k1, k, i, n, n_contact, n_nocontact, n_wet, n_clamp_j
@@ -371,28 +371,20 @@ contains
          sum_ft = 0.0_wp
          n_contact = 0
          n_clamp_j = 0
-         if (kv%memory) then
-            do i = 1, n
-               k = k1 + (i-1) * geo%spacing
-               push = max(0.0_wp, x - d(i))
-               sum_f = sum_f + push
-               sum_ft = sum_ft + push * geo%tan_theta(k)     ! Eq. 10
-               n_contact = n_contact + merge(1, 0, push > 0.0_wp)
-               n_clamp_j = n_clamp_j + merge(1, 0, push > 0.0_wp .and. geo%clamped(k))
-               u(i) = u_free(i) + push                       ! max(g_i, u_free_i)
-               u_max = max(u_max, u(i))
-            end do
-         else
-            do i = 1, n
-               k = k1 + (i-1) * geo%spacing
-               push = max(0.0_wp, x - d(i))
-               sum_f = sum_f + push
-               sum_ft = sum_ft + push * geo%tan_theta(k)     ! Eq. 10
-               n_contact = n_contact + merge(1, 0, push > 0.0_wp)
-               n_clamp_j = n_clamp_j + merge(1, 0, push > 0.0_wp .and. geo%clamped(k))
-               u_max = max(u_max, push)
-            end do
-         end if
+         do i = 1, n
+            k = k1 + (i-1) * geo%spacing
+            push = max(0.0_wp, x - d(i))
+            sum_f = sum_f + push
+            sum_ft = sum_ft + push * geo%tan_theta(k)        ! Eq. 10
+            n_contact = n_contact + merge(1, 0, push > 0.0_wp)
+            n_clamp_j = n_clamp_j + merge(1, 0, push > 0.0_wp .and. geo%clamped(k))
+            u_new = push
+            if (kv%memory) then                              ! max(g_i, u_free_i)
+               u_new = u_free(i) + push
+               u(i) = u_new
+            end if
+            u_max = max(u_max, u_new)
+         end do
          delta_prev = cmin + x
          if (t < 0) cycle                                    ! spin-up
 

@@ -4,6 +4,7 @@ module pavefric_texture
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type, fatal_error
    use pavefric_format, only: to_str
+   use pavefric_lapack, only: dgels
    implicit none
    private
 
@@ -23,17 +24,6 @@ module pavefric_texture
       real(wp) :: rms_slope = 0.0_wp
    end type texture_type
 
-   interface
-      !> LAPACK least squares (QR).
-      pure subroutine dgels(trans, m, n, nrhs, a, lda, b, ldb, work, lwork, info)
-         import :: wp
-         character, intent(in) :: trans
-         integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
-         real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-         real(wp), intent(out) :: work(*)
-         integer, intent(out) :: info
-      end subroutine dgels
-   end interface
 
 contains
 
