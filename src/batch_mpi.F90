@@ -93,6 +93,10 @@ contains
       character(len=4096) :: msg
       integer :: rank, nranks, ierr, i, k, nv, limit, received, expected, stat(MPI_STATUS_SIZE)
       logical :: flag
+      real(wp), allocatable :: outbox(:,:)
+      character(len=4096), allocatable :: notes(:)
+      integer, allocatable :: requests(:)
+      integer :: mine, nreq, j
       integer, parameter :: tag_values = 1, tag_message = 2
 
       finished = .false.
@@ -149,16 +153,28 @@ contains
             finished = .not. allocated(error)
          end if
       else
+         ! Non-blocking sends, one buffer each: a rank never waits for rank 0
+         ! (busy computing its own share) to receive; all complete at the end.
+         mine = size(pending(1 + rank::nranks))
+         allocate(outbox(nv, mine), notes(mine), requests(2 * mine))
+         nreq = 0
+         j = 0
          do k = 1 + rank, size(pending), nranks
+            j = j + 1
             call batch_compute(batch, pending(k), blocks(pending(k)))
-            call block_pack(batch, blocks(pending(k)), buf)
-            msg = blocks(pending(k))%message
-            ! ~1 KB: sent eagerly, so a rank never waits for rank 0 to receive;
+            call block_pack(batch, blocks(pending(k)), outbox(:, j))
+            nreq = nreq + 1
+            call MPI_Isend(outbox(:, j), nv, MPI_DOUBLE_PRECISION, 0, tag_values, &
+               & MPI_COMM_WORLD, requests(nreq), ierr)
             ! the reason is sent only for a failed profile
-            call MPI_Send(buf, nv, MPI_DOUBLE_PRECISION, 0, tag_values, MPI_COMM_WORLD, ierr)
-            if (blocks(pending(k))%status == 2) call MPI_Send(msg, max(1, len_trim(msg)), &
-               & MPI_CHARACTER, 0, tag_message, MPI_COMM_WORLD, ierr)
+            if (blocks(pending(k))%status == 2) then
+               notes(j) = blocks(pending(k))%message
+               nreq = nreq + 1
+               call MPI_Isend(notes(j), max(1, len_trim(notes(j))), MPI_CHARACTER, 0, &
+                  & tag_message, MPI_COMM_WORLD, requests(nreq), ierr)
+            end if
          end do
+         call MPI_Waitall(nreq, requests, MPI_STATUSES_IGNORE, ierr)
       end if
       call MPI_Bcast(finished, 1, MPI_LOGICAL, 0, MPI_COMM_WORLD, ierr)
    contains

@@ -170,3 +170,19 @@ def test_batch_bad_input(tmp_path):
     scene.write_text("&batch depths = -1 /\n&operation speeds_kmh = 20 /\n")
     r = run_program(scene, "-o", tmp_path / "o.nc")
     assert r.returncode == 1 and "&batch" in r.stderr
+
+
+def test_mpi_broken_profile_same_as_serial(tmp_path):
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        pytest.fail("mpirun not found: setup.sh installs Open MPI (openmpi-bin)")
+    scene = make_batch(tmp_path, n=12, broken=True)
+    serial = tmp_path / "serial.nc"
+    assert run_program(scene, "-o", serial).returncode == 0
+    out = tmp_path / "mpi.nc"
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMP_NUM_THREADS": "1"}
+    r = subprocess.run([mpirun, "--oversubscribe", "-n", "2", program(), str(scene), "-o",
+                        str(out)], capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 0, r.stderr + r.stdout
+    same_contents(serial, out)       # the failed profile's message crossed MPI intact
