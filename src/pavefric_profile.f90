@@ -627,7 +627,9 @@ contains
       integer, intent(in) :: unit
       character(len=:), allocatable, intent(out) :: line
       integer, intent(out) :: ios
-      character(len=4096) :: buf
+      ! a short buffer: a non-advancing read pads all of it on every line;
+      ! longer lines are read in pieces
+      character(len=256) :: buf
       integer :: nread
       line = ""
       do

@@ -49,6 +49,14 @@ def assert_rejected(tmp_path, scene, *needles):
     ("numerics", "theta_max_deg = 90", ["&numerics theta_max_deg = 90"]),
     ("numerics", "theta_max_deg = -10", ["&numerics theta_max_deg = -10"]),
     ("numerics", "theta_max_deg = 120", ["&numerics theta_max_deg = 120"]),
+    ("pad", "shape = 'rounded', radius = 0.005", ["&pad radius = 0.005", "half the pad length"]),
+    ("numerics", "substeps = 0", ["&numerics substeps = 0"]),
+    ("numerics", "elements_per_sample = -2", ["&numerics elements_per_sample = -2"]),
+    ("numerics", "position_stride = 0", ["&numerics position_stride = 0"]),
+    ("numerics", "wet_tolerance = 2", ["&numerics wet_tolerance = 2"]),
+    ("water", "alpha = -1", ["&water alpha = -1"]),
+    ("water", "beta = -0.5", ["&water beta = -0.5"]),
+    ("operation", "speeds_kmh = 20, 1e400", ["&operation speeds_kmh"]),
 ])
 def test_bad_variable(tmp_path, group, body, needles):
     scene = write_scene(tmp_path)

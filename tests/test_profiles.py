@@ -191,3 +191,12 @@ def test_native_spacing_pad_has_hundreds_of_elements():
     assert ds.attrs["pad_elements"] == 533
     assert np.isfinite(ds["mu"].values[0])
     assert ds["max_balance_residual"].values[0] <= 1e-12
+
+
+def test_lines_longer_than_the_read_buffer(tmp_path):
+    f = tmp_path / "long.txt"
+    f.write_text("height_mm\n0." + "1" * 600 + "   # a 600-character number\n" +
+                 "\n".join(["0.2"] * 60) + "\n")
+    p = pavefric.read_profile(f)
+    assert p.report["points_read"] == 61
+    assert p.heights[0] == pytest.approx(0.1111111111111111e-3, rel=1e-15)
