@@ -131,32 +131,45 @@ def to_netcdf(table, path: str | os.PathLike) -> None:
 
 
 def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) -> str:
-    """Log-log error against time, one line per knob (and scene)."""
+    """Log-log error against time: one panel per knob, one line per scene
+    (colour by surface, dashed when dry)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
-    markers = {"substeps": "o", "elements_per_sample": "s", "position_stride": "^",
-               "wet_tolerance": "d"}
-    for table in tables:
-        name = table.attrs["label"]
-        for knob in dict.fromkeys(table["knob"].values):
+    knobs = list(dict.fromkeys(k for t in tables for k in t["knob"].values))
+    ncols = 2
+    nrows = (len(knobs) + 1) // 2
+    fig, axes = plt.subplots(nrows, ncols, figsize=(10, 3.4 * nrows), dpi=110, squeeze=False)
+    surfaces = list(dict.fromkeys(str(t.attrs["label"]).removesuffix("_dry") for t in tables))
+    colours = {name: f"C{i % 10}" for i, name in enumerate(surfaces)}
+    for ax, knob in zip(axes.flat, knobs):
+        for table in tables:
+            label = str(table.attrs["label"])
+            surface = label.removesuffix("_dry")
             sel = table["knob"].values == knob
+            if not sel.any():
+                continue
             err = table["convergence"].values[sel]
             t = table["time_s"].values[sel]
             keep = err > 0                                 # the finest setting is 0
             if keep.any():
-                ax.loglog(t[keep], err[keep], marker=markers.get(knob, "x"), ms=4,
-                          label=f"{name}: {knob}")
-    ax.set_xlabel("wall time (s, best of repeats; noisy)")
-    ax.set_ylabel("largest |mu - mu(knob's finest setting)| over speeds")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    if title:
-        ax.set_title(title)
-    fig.tight_layout()
+                ax.loglog(t[keep], err[keep], marker="o", ms=3, lw=1,
+                          color=colours[surface], ls="--" if table.attrs["wet"] == 0 else "-")
+        ax.set_title(knob, fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        ax.set_xlabel("wall time (s, best of repeats)", fontsize=8)
+        ax.set_ylabel("|mu - mu(finest)|", fontsize=8)
+    for ax in list(axes.flat)[len(knobs):]:
+        ax.axis("off")
+    handles = [plt.Line2D([], [], color=colours[s], label=s) for s in surfaces]
+    handles += [plt.Line2D([], [], color="0.3", ls="-", label="wet"),
+                plt.Line2D([], [], color="0.3", ls="--", label="dry")]
+    fig.legend(handles=handles, loc="lower center", ncol=min(8, len(handles)), fontsize=8)
+    fig.suptitle(title or "error against cost, per knob (each knob's own finest setting as "
+                 "reference)", fontsize=10)
+    fig.tight_layout(rect=(0, 0.06, 1, 0.97))
     fig.savefig(path)
     plt.close(fig)
     return str(path)
