@@ -135,7 +135,7 @@ contains
             end if
             pos = index(line, "#")
             if (pos > 0) line = line(1:pos-1)
-            line = trim(adjustl(replace_cr(line)))
+            line = trim(adjustl(replace_newlines(line)))
             if (len(line) == 0) cycle
             paths = [paths, string_type(join_path(dir_name(scene%batch_profile_list), line))]
          end do
@@ -172,15 +172,6 @@ contains
       end do
    end subroutine expand_profiles
 
-   pure function replace_cr(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: i
-      t = s
-      do i = 1, len(s)
-         if (t(i:i) == achar(13)) t(i:i) = " "
-      end do
-   end function replace_cr
 
    !> Adler-32 of the scene text, profile paths, depths and speeds, in hex:
    !> a journal only resumes the batch it was written for.
@@ -316,6 +307,7 @@ contains
       batch%journal_open = .false.
    end subroutine journal_close
 
+   !> Line breaks (LF, CR) as blanks.
    pure function replace_newlines(s) result(t)
       character(len=*), intent(in) :: s
       character(len=len(s)) :: t

@@ -42,6 +42,11 @@ module pavefric_profile
       character(len=:), allocatable :: path
    end type raw_profile_type
 
+   !> Grow a work array to twice its size.
+   interface double_size
+      module procedure :: double_real, double_int, double_logical
+   end interface double_size
+
 contains
 
    !> The format of a profile file from its content: 'captif' when a line
@@ -384,22 +389,36 @@ contains
       real(wp), allocatable, intent(inout) :: x(:), z(:)
       logical, allocatable, intent(inout) :: ok(:)
       integer, allocatable, intent(inout) :: lines(:)
-      real(wp), allocatable :: t(:)
-      logical, allocatable :: tl(:)
-      integer, allocatable :: ti(:)
-      allocate(t(2*size(x)))
-      t(1:size(x)) = x
-      call move_alloc(t, x)
-      allocate(t(2*size(z)))
-      t(1:size(z)) = z
-      call move_alloc(t, z)
-      allocate(tl(2*size(ok)))
-      tl(1:size(ok)) = ok
-      call move_alloc(tl, ok)
-      allocate(ti(2*size(lines)))
-      ti(1:size(lines)) = lines
-      call move_alloc(ti, lines)
+      call double_size(x)
+      call double_size(z)
+      call double_size(ok)
+      call double_size(lines)
    end subroutine grow_raw
+
+   !> Double an array's size, keeping its values.
+   pure subroutine double_real(a)
+      real(wp), allocatable, intent(inout) :: a(:)
+      real(wp), allocatable :: t(:)
+      allocate(t(2*size(a)))
+      t(1:size(a)) = a
+      call move_alloc(t, a)
+   end subroutine double_real
+
+   pure subroutine double_int(a)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, allocatable :: t(:)
+      allocate(t(2*size(a)))
+      t(1:size(a)) = a
+      call move_alloc(t, a)
+   end subroutine double_int
+
+   pure subroutine double_logical(a)
+      logical, allocatable, intent(inout) :: a(:)
+      logical, allocatable :: t(:)
+      allocate(t(2*size(a)))
+      t(1:size(a)) = a
+      call move_alloc(t, a)
+   end subroutine double_logical
 
    !> Metres per unit for a height unit name; 0 when unknown.
    pure function unit_factor(name) result(f)
@@ -434,7 +453,7 @@ contains
       character(len=:), allocatable :: line, tok
       character(len=512) :: msg
       real(wp), allocatable :: xs(:), zs(:)
-      integer, allocatable :: ls(:), tl(:)
+      integer, allocatable :: ls(:)
       real(wp) :: vals(2), step
       integer :: unit, ios, lineno, n, ncol, ntok, pos, i
       logical :: header_seen, nan_ok
@@ -505,10 +524,9 @@ contains
          end do
          n = n + 1
          if (n > size(zs)) then
-            call grow(xs, zs)
-            allocate(tl(size(zs)))
-            tl(1:size(ls)) = ls
-            call move_alloc(tl, ls)
+            call double_size(xs)
+            call double_size(zs)
+            call double_size(ls)
          end if
          ls(n) = lineno
          if (ncol == 2) then
@@ -592,17 +610,6 @@ contains
       end do
    end subroutine refine_profile
 
-   !> Grow two work arrays to twice their size.
-   pure subroutine grow(a, b)
-      real(wp), allocatable, intent(inout) :: a(:), b(:)
-      real(wp), allocatable :: t(:)
-      allocate(t(2*size(a)))
-      t(1:size(a)) = a
-      call move_alloc(t, a)
-      allocate(t(2*size(b)))
-      t(1:size(b)) = b
-      call move_alloc(t, b)
-   end subroutine grow
 
    !> Next token of `line` from `pos`; separators are blanks, tabs, ',' and ';'.
    pure subroutine next_token(line, pos, tok)
