@@ -32,7 +32,70 @@ module pavefric_netcdf
       character(len=:), allocatable :: preprocessing
    end type output_metadata_type
 
+   !> A NetCDF file being written and the first error met: every call goes
+   !> through `check`, which adds context to nf90_strerror; after an error the
+   !> remaining calls do nothing.
+   type :: nc_writer_type
+      integer :: ncid = -1
+      character(len=:), allocatable :: path
+      type(error_type), allocatable :: error
+   contains
+      procedure :: check => writer_check
+      procedure :: def => writer_def
+      procedure, private :: gatt_text, gatt_int
+      generic :: gatt => gatt_text, gatt_int
+      procedure :: close => writer_close
+   end type nc_writer_type
+
 contains
+
+   subroutine writer_check(w, status, what)
+      class(nc_writer_type), intent(inout) :: w
+      integer, intent(in) :: status
+      character(len=*), intent(in) :: what
+      if (allocated(w%error)) return
+      if (status /= nf90_noerr) call fatal_error(w%error, "&output file: writing " // what // &
+         & " to '" // w%path // "' failed (" // trim(nf90_strerror(status)) // ")")
+   end subroutine writer_check
+
+   !> Define a variable with its units (none if empty) and long name.
+   subroutine writer_def(w, name, xtype, dims, units, long_name, varid)
+      class(nc_writer_type), intent(inout) :: w
+      character(len=*), intent(in) :: name, units, long_name
+      integer, intent(in) :: xtype, dims(:)
+      integer, intent(out) :: varid
+      varid = -1
+      if (allocated(w%error)) return
+      call w%check(nf90_def_var(w%ncid, name, xtype, dims, varid), "variable " // name)
+      if (len(units) > 0) call w%check(nf90_put_att(w%ncid, varid, "units", units), &
+         & name // " units")
+      call w%check(nf90_put_att(w%ncid, varid, "long_name", long_name), name // " long_name")
+   end subroutine writer_def
+
+   subroutine gatt_text(w, name, text)
+      class(nc_writer_type), intent(inout) :: w
+      character(len=*), intent(in) :: name, text
+      call w%check(nf90_put_att(w%ncid, nf90_global, name, text), "attribute " // name)
+   end subroutine gatt_text
+
+   subroutine gatt_int(w, name, value)
+      class(nc_writer_type), intent(inout) :: w
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: value
+      call w%check(nf90_put_att(w%ncid, nf90_global, name, value), "attribute " // name)
+   end subroutine gatt_int
+
+   !> Close the file; `error` receives the first error met, if any.
+   subroutine writer_close(w, error)
+      class(nc_writer_type), intent(inout) :: w
+      type(error_type), allocatable, intent(out) :: error
+      integer :: stat
+      stat = nf90_close(w%ncid)
+      if (.not. allocated(w%error) .and. stat /= nf90_noerr) &
+         & call fatal_error(w%error, "&output file: closing '" // w%path // "' failed (" // &
+         & trim(nf90_strerror(stat)) // ")")
+      if (allocated(w%error)) call move_alloc(w%error, error)
+   end subroutine writer_close
 
    !> The temporary name a final path is first written under.
    function temporary_name(path) result(tmp)
@@ -75,182 +138,151 @@ contains
       type(sim_result_type), intent(in) :: res
       type(output_metadata_type), intent(in) :: meta
       type(error_type), allocatable, intent(out) :: error
-      integer :: ncid, d_speed, d_pos, stat
+      type(nc_writer_type) :: w
+      integer :: d_speed, d_pos, stat
       integer :: v_speed, v_kmh, v_mu, v_ncl, v_hyd, v_wet, v_res, v_mwh, v_comp, v_nbe
       integer :: v_mem, v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce, v_mpd, v_rh, v_rs
       logical :: series
 
       series = allocated(res%mu_inst)
-      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), ncid)
+      w%path = path
+      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
       if (stat /= nf90_noerr) then
          call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
             & trim(nf90_strerror(stat)) // ")")
          return
       end if
 
-      call check(nf90_def_dim(ncid, "speed", size(res%speed), d_speed), "dimension speed")
-      if (allocated(error)) goto 99
-      call def(ncid, "speed", nf90_double, [d_speed], "m s-1", "sliding speed of the pad", v_speed)
-      if (allocated(error)) goto 99
-      call check(nf90_put_att(ncid, v_speed, "axis", "X"), "speed axis")
-      call def(ncid, "speed_kmh", nf90_double, [d_speed], "km h-1", "sliding speed of the pad", &
+      call w%check(nf90_def_dim(w%ncid, "speed", size(res%speed), d_speed), "dimension speed")
+      if (allocated(w%error)) goto 99
+      call w%def("speed", nf90_double, [d_speed], "m s-1", "sliding speed of the pad", v_speed)
+      if (allocated(w%error)) goto 99
+      call w%check(nf90_put_att(w%ncid, v_speed, "axis", "X"), "speed axis")
+      call w%def("speed_kmh", nf90_double, [d_speed], "km h-1", "sliding speed of the pad", &
          & v_kmh)
-      call def(ncid, "mu", nf90_double, [d_speed], "1", &
+      call w%def("mu", nf90_double, [d_speed], "1", &
          & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
-      call def(ncid, "n_clamped", nf90_int64, [d_speed], "1", &
+      call w%def("n_clamped", nf90_int64, [d_speed], "1", &
          & "contacts on facets clamped at theta_max, summed over averaged positions", v_ncl)
-      call def(ncid, "hydroplaning_fraction", nf90_double, [d_speed], "1", &
+      call w%def("hydroplaning_fraction", nf90_double, [d_speed], "1", &
          & "share of averaged positions where no element touched the profile", v_hyd)
-      call def(ncid, "wet_fraction", nf90_double, [d_speed], "1", &
+      call w%def("wet_fraction", nf90_double, [d_speed], "1", &
          & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
-      call def(ncid, "max_balance_residual", nf90_double, [d_speed], "1", &
+      call w%def("max_balance_residual", nf90_double, [d_speed], "1", &
          & "largest |sum F + Wh - W| / W over averaged positions", v_res)
-      call def(ncid, "mean_hydro_load", nf90_double, [d_speed], "N", &
+      call w%def("mean_hydro_load", nf90_double, [d_speed], "N", &
          & "load carried by the hydrodynamic bearing, averaged over positions", v_mwh)
-      call def(ncid, "max_compression", nf90_double, [d_speed], "m", &
+      call w%def("max_compression", nf90_double, [d_speed], "m", &
          & "largest compression of a rubber element (compare with the pad thickness)", v_comp)
-      call def(ncid, "bearing_evaluations", nf90_int64, [d_speed], "1", &
+      call w%def("bearing_evaluations", nf90_int64, [d_speed], "1", &
          & "evaluations of the bearing load formula (0: the bearing did not run)", v_nbe)
-      call def(ncid, "memory_updates", nf90_int64, [d_speed], "1", &
+      call w%def("memory_updates", nf90_int64, [d_speed], "1", &
          & "element-steps that updated viscous memory (0: no viscous memory kept)", v_mem)
-      call def(ncid, "viscous_memory_ran", nf90_byte, [d_speed], "", &
+      call w%def("viscous_memory_ran", nf90_byte, [d_speed], "", &
          & "whether the rubber elements carried viscous memory", v_vis)
-      call def(ncid, "bearing_ran", nf90_byte, [d_speed], "", &
+      call w%def("bearing_ran", nf90_byte, [d_speed], "", &
          & "whether the hydrodynamic bearing took part in the load balance", v_bea)
       if (meta%has_texture) then
-         call def(ncid, "mpd", nf90_double, [integer ::], "m", &
+         call w%def("mpd", nf90_double, [integer ::], "m", &
             & "mean profile depth (ISO 13473-1 / ASTM E1845, 100 mm segments, slope " // &
             & "suppression)", v_mpd)
-         call check(nf90_put_att(ncid, v_mpd, "n_segments", meta%texture%n_segments), "mpd")
-         call check(nf90_put_att(ncid, v_mpd, "n_valid_segments", meta%texture%n_valid), "mpd")
-         call def(ncid, "rms_height", nf90_double, [integer ::], "m", &
+         call w%check(nf90_put_att(w%ncid, v_mpd, "n_segments", meta%texture%n_segments), "mpd")
+         call w%check(nf90_put_att(w%ncid, v_mpd, "n_valid_segments", meta%texture%n_valid), "mpd")
+         call w%def("rms_height", nf90_double, [integer ::], "m", &
             & "RMS profile height about the mean", v_rh)
-         call def(ncid, "rms_slope", nf90_double, [integer ::], "1", &
+         call w%def("rms_slope", nf90_double, [integer ::], "1", &
             & "RMS slope between neighbouring samples at the profile spacing", v_rs)
       end if
-      if (allocated(error)) goto 99
+      if (allocated(w%error)) goto 99
       call flags(v_vis)
       call flags(v_bea)
       if (series) then
-         call check(nf90_def_dim(ncid, "position", res%n_positions, d_pos), "dimension position")
-         call def(ncid, "position", nf90_double, [d_pos], "m", &
+         call w%check(nf90_def_dim(w%ncid, "position", res%n_positions, d_pos), "dimension position")
+         call w%def("position", nf90_double, [d_pos], "m", &
             & "distance slid from the first averaged position", v_pos)
-         call def(ncid, "mu_inst", nf90_double, [d_pos, d_speed], "1", &
+         call w%def("mu_inst", nf90_double, [d_pos, d_speed], "1", &
             & "instantaneous friction coefficient (Kane et al. 2017, Eq. 11)", v_mui)
-         call def(ncid, "hydro_load", nf90_double, [d_pos, d_speed], "N", &
+         call w%def("hydro_load", nf90_double, [d_pos, d_speed], "N", &
             & "load carried by the hydrodynamic bearing (Eq. 15)", v_hl)
-         call def(ncid, "penetration", nf90_double, [d_pos, d_speed], "m", &
+         call w%def("penetration", nf90_double, [d_pos, d_speed], "m", &
             & "global penetration delta of the pad (Eq. 4)", v_pen)
-         call def(ncid, "contact_elements", nf90_int, [d_pos, d_speed], "1", &
+         call w%def("contact_elements", nf90_int, [d_pos, d_speed], "1", &
             & "pad elements in contact with the profile", v_ce)
       end if
-      if (allocated(error)) goto 99
+      if (allocated(w%error)) goto 99
 
-      call gatt("Conventions", "CF-1.10")
-      call gatt("title", meta%title)
-      call gatt("source", "pavefric " // pavefric_version)
-      call gatt("pavefric_version", pavefric_version)
-      call gatt("references", "Kane, Do, Cerezo, Rado & Khelifi (2017), Contribution to " // &
+      call w%gatt("Conventions", "CF-1.10")
+      call w%gatt("title", meta%title)
+      call w%gatt("source", "pavefric " // pavefric_version)
+      call w%gatt("pavefric_version", pavefric_version)
+      call w%gatt("references", "Kane, Do, Cerezo, Rado & Khelifi (2017), Contribution to " // &
          & "pavement friction modelling: an introduction of the wetting effect, " // &
          & "Int. J. Pavement Eng., doi:10.1080/10298436.2017.1369776")
-      call gatt("history", meta%history)
-      call gatt("effects", effects_text(res))
-      call gatt("profile_file", meta%profile_file)
-      call gatt("input_namelist", meta%input_namelist)
-      if (allocated(meta%texture_note)) call gatt("texture_note", meta%texture_note)
+      call w%gatt("history", meta%history)
+      call w%gatt("effects", effects_text(res))
+      call w%gatt("profile_file", meta%profile_file)
+      call w%gatt("input_namelist", meta%input_namelist)
+      if (allocated(meta%texture_note)) call w%gatt("texture_note", meta%texture_note)
       if (allocated(meta%preprocessing)) then
-         call gatt("preprocessing", meta%preprocessing)
-         call gatt("preprocess_format", meta%preprocess%format)
-         call iatt("preprocess_points_read", meta%preprocess%points_read)
-         call iatt("preprocess_trimmed_start", meta%preprocess%trimmed_start)
-         call iatt("preprocess_trimmed_end", meta%preprocess%trimmed_end)
-         call iatt("preprocess_dropouts", meta%preprocess%dropouts)
-         call iatt("preprocess_spikes", meta%preprocess%spikes)
-         call iatt("preprocess_points_out", meta%preprocess%points_out)
-         call iatt("preprocess_resampled", merge(1, 0, meta%preprocess%resampled))
-         call iatt("preprocess_filtered", merge(1, 0, meta%preprocess%filtered))
-         call check(nf90_put_att(ncid, nf90_global, "preprocess_dx_in", meta%preprocess%dx_in), &
+         call w%gatt("preprocessing", meta%preprocessing)
+         call w%gatt("preprocess_format", meta%preprocess%format)
+         call w%gatt("preprocess_points_read", meta%preprocess%points_read)
+         call w%gatt("preprocess_trimmed_start", meta%preprocess%trimmed_start)
+         call w%gatt("preprocess_trimmed_end", meta%preprocess%trimmed_end)
+         call w%gatt("preprocess_dropouts", meta%preprocess%dropouts)
+         call w%gatt("preprocess_spikes", meta%preprocess%spikes)
+         call w%gatt("preprocess_points_out", meta%preprocess%points_out)
+         call w%gatt("preprocess_resampled", merge(1, 0, meta%preprocess%resampled))
+         call w%gatt("preprocess_filtered", merge(1, 0, meta%preprocess%filtered))
+         call w%check(nf90_put_att(w%ncid, nf90_global, "preprocess_dx_in", meta%preprocess%dx_in), &
             & "att")
       end if
-      call check(nf90_put_att(ncid, nf90_global, "profile_points", meta%profile_points), "att")
-      call check(nf90_put_att(ncid, nf90_global, "profile_dx", meta%dx), "att")
-      call check(nf90_put_att(ncid, nf90_global, "profile_closed", merge(1, 0, meta%closed)), &
+      call w%check(nf90_put_att(w%ncid, nf90_global, "profile_points", meta%profile_points), "att")
+      call w%check(nf90_put_att(w%ncid, nf90_global, "profile_dx", meta%dx), "att")
+      call w%check(nf90_put_att(w%ncid, nf90_global, "profile_closed", merge(1, 0, meta%closed)), &
          & "att")
-      call check(nf90_put_att(ncid, nf90_global, "pad_elements", res%n_elements), "att")
-      call check(nf90_put_att(ncid, nf90_global, "averaged_positions", res%n_positions), "att")
-      call check(nf90_put_att(ncid, nf90_global, "spinup_positions", res%n_spinup), "att")
-      if (allocated(error)) goto 99
-      call check(nf90_enddef(ncid), "end of definitions")
-      if (allocated(error)) goto 99
+      call w%check(nf90_put_att(w%ncid, nf90_global, "pad_elements", res%n_elements), "att")
+      call w%check(nf90_put_att(w%ncid, nf90_global, "averaged_positions", res%n_positions), "att")
+      call w%check(nf90_put_att(w%ncid, nf90_global, "spinup_positions", res%n_spinup), "att")
+      if (allocated(w%error)) goto 99
+      call w%check(nf90_enddef(w%ncid), "end of definitions")
+      if (allocated(w%error)) goto 99
 
-      call check(nf90_put_var(ncid, v_speed, res%speed), "speed")
-      call check(nf90_put_var(ncid, v_kmh, res%speed_kmh), "speed_kmh")
-      call check(nf90_put_var(ncid, v_mu, res%mu), "mu")
-      call check(nf90_put_var(ncid, v_ncl, res%n_clamped), "n_clamped")
-      call check(nf90_put_var(ncid, v_hyd, res%hydroplaning_fraction), "hydroplaning_fraction")
-      call check(nf90_put_var(ncid, v_wet, res%wet_fraction), "wet_fraction")
-      call check(nf90_put_var(ncid, v_res, res%max_balance_residual), "max_balance_residual")
-      call check(nf90_put_var(ncid, v_mwh, res%mean_hydro_load), "mean_hydro_load")
-      call check(nf90_put_var(ncid, v_comp, res%max_compression), "max_compression")
-      call check(nf90_put_var(ncid, v_nbe, res%bearing_evaluations), "bearing_evaluations")
-      call check(nf90_put_var(ncid, v_mem, res%memory_updates), "memory_updates")
-      call check(nf90_put_var(ncid, v_vis, merge(1, 0, res%viscous_memory_ran)), "flags")
-      call check(nf90_put_var(ncid, v_bea, merge(1, 0, res%bearing_ran)), "flags")
+      call w%check(nf90_put_var(w%ncid, v_speed, res%speed), "speed")
+      call w%check(nf90_put_var(w%ncid, v_kmh, res%speed_kmh), "speed_kmh")
+      call w%check(nf90_put_var(w%ncid, v_mu, res%mu), "mu")
+      call w%check(nf90_put_var(w%ncid, v_ncl, res%n_clamped), "n_clamped")
+      call w%check(nf90_put_var(w%ncid, v_hyd, res%hydroplaning_fraction), "hydroplaning_fraction")
+      call w%check(nf90_put_var(w%ncid, v_wet, res%wet_fraction), "wet_fraction")
+      call w%check(nf90_put_var(w%ncid, v_res, res%max_balance_residual), "max_balance_residual")
+      call w%check(nf90_put_var(w%ncid, v_mwh, res%mean_hydro_load), "mean_hydro_load")
+      call w%check(nf90_put_var(w%ncid, v_comp, res%max_compression), "max_compression")
+      call w%check(nf90_put_var(w%ncid, v_nbe, res%bearing_evaluations), "bearing_evaluations")
+      call w%check(nf90_put_var(w%ncid, v_mem, res%memory_updates), "memory_updates")
+      call w%check(nf90_put_var(w%ncid, v_vis, merge(1, 0, res%viscous_memory_ran)), "flags")
+      call w%check(nf90_put_var(w%ncid, v_bea, merge(1, 0, res%bearing_ran)), "flags")
       if (meta%has_texture) then
-         call check(nf90_put_var(ncid, v_mpd, meta%texture%mpd), "mpd")
-         call check(nf90_put_var(ncid, v_rh, meta%texture%rms_height), "rms_height")
-         call check(nf90_put_var(ncid, v_rs, meta%texture%rms_slope), "rms_slope")
+         call w%check(nf90_put_var(w%ncid, v_mpd, meta%texture%mpd), "mpd")
+         call w%check(nf90_put_var(w%ncid, v_rh, meta%texture%rms_height), "rms_height")
+         call w%check(nf90_put_var(w%ncid, v_rs, meta%texture%rms_slope), "rms_slope")
       end if
       if (series) then
-         call check(nf90_put_var(ncid, v_pos, res%position), "position")
-         call check(nf90_put_var(ncid, v_mui, res%mu_inst), "mu_inst")
-         call check(nf90_put_var(ncid, v_hl, res%hydro_load), "hydro_load")
-         call check(nf90_put_var(ncid, v_pen, res%penetration), "penetration")
-         call check(nf90_put_var(ncid, v_ce, res%contact_elements), "contact_elements")
+         call w%check(nf90_put_var(w%ncid, v_pos, res%position), "position")
+         call w%check(nf90_put_var(w%ncid, v_mui, res%mu_inst), "mu_inst")
+         call w%check(nf90_put_var(w%ncid, v_hl, res%hydro_load), "hydro_load")
+         call w%check(nf90_put_var(w%ncid, v_pen, res%penetration), "penetration")
+         call w%check(nf90_put_var(w%ncid, v_ce, res%contact_elements), "contact_elements")
       end if
 99    continue
-      stat = nf90_close(ncid)
-      if (.not. allocated(error) .and. stat /= nf90_noerr) &
-         & call fatal_error(error, "&output file: closing '" // path // "' failed (" // &
-         & trim(nf90_strerror(stat)) // ")")
+      call w%close(error)
 
    contains
 
-      subroutine check(status, what)
-         integer, intent(in) :: status
-         character(len=*), intent(in) :: what
-         if (allocated(error)) return
-         if (status /= nf90_noerr) call fatal_error(error, "&output file: writing " // what // &
-            & " to '" // path // "' failed (" // trim(nf90_strerror(status)) // ")")
-      end subroutine check
-
-      subroutine def(nc, name, xtype, dims, units, long_name, varid)
-         integer, intent(in) :: nc, xtype, dims(:)
-         character(len=*), intent(in) :: name, units, long_name
-         integer, intent(out) :: varid
-         varid = -1
-         if (allocated(error)) return
-         call check(nf90_def_var(nc, name, xtype, dims, varid), "variable " // name)
-         if (len(units) > 0) call check(nf90_put_att(nc, varid, "units", units), name // " units")
-         call check(nf90_put_att(nc, varid, "long_name", long_name), name // " long_name")
-      end subroutine def
-
       subroutine flags(varid)
          integer, intent(in) :: varid
-         call check(nf90_put_att(ncid, varid, "flag_values", [0_1, 1_1]), "flag_values")
-         call check(nf90_put_att(ncid, varid, "flag_meanings", "no yes"), "flag_meanings")
+         call w%check(nf90_put_att(w%ncid, varid, "flag_values", [0_1, 1_1]), "flag_values")
+         call w%check(nf90_put_att(w%ncid, varid, "flag_meanings", "no yes"), "flag_meanings")
       end subroutine flags
-
-      subroutine iatt(name, value)
-         character(len=*), intent(in) :: name
-         integer, intent(in) :: value
-         call check(nf90_put_att(ncid, nf90_global, name, value), "attribute " // name)
-      end subroutine iatt
-
-      subroutine gatt(name, text)
-         character(len=*), intent(in) :: name, text
-         call check(nf90_put_att(ncid, nf90_global, name, text), "attribute " // name)
-      end subroutine gatt
 
    end subroutine write_file
 
@@ -272,7 +304,8 @@ contains
       type(batch_type), intent(in) :: batch
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
-      integer :: ncid, stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
+      type(nc_writer_type) :: w
+      integer :: stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
       integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, ids(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -301,125 +334,102 @@ contains
       if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
       if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
 
-      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), ncid)
+      w%path = path
+      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
       if (stat /= nf90_noerr) then
          call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
             & trim(nf90_strerror(stat)) // ")")
          return
       end if
-      call check(nf90_def_dim(ncid, "profile", np, d_p), "dimension profile")
-      call check(nf90_def_dim(ncid, "depth", nd, d_d), "dimension depth")
-      call check(nf90_def_dim(ncid, "speed", ns, d_s), "dimension speed")
-      call check(nf90_def_dim(ncid, "name_strlen", lname, d_name), "dimension name_strlen")
-      call check(nf90_def_dim(ncid, "message_strlen", lmsg, d_msg), "dimension message_strlen")
-      call defv("profile_name", nf90_char, [d_name, d_p], "", "profile file name, without " // &
+      call w%check(nf90_def_dim(w%ncid, "profile", np, d_p), "dimension profile")
+      call w%check(nf90_def_dim(w%ncid, "depth", nd, d_d), "dimension depth")
+      call w%check(nf90_def_dim(w%ncid, "speed", ns, d_s), "dimension speed")
+      call w%check(nf90_def_dim(w%ncid, "name_strlen", lname, d_name), "dimension name_strlen")
+      call w%check(nf90_def_dim(w%ncid, "message_strlen", lmsg, d_msg), "dimension message_strlen")
+      call w%def("profile_name", nf90_char, [d_name, d_p], "", "profile file name, without " // &
          & "directory and extension", v_name)
-      call check(nf90_put_att(ncid, v_name, "_Encoding", "utf-8"), "encoding")
-      call defv("depth", nf90_double, [d_d], "m", "water depth (inlet film of the bearing)", v_depth)
-      call defv("speed", nf90_double, [d_s], "m s-1", "sliding speed of the pad", v_speed)
-      call defv("speed_kmh", nf90_double, [d_s], "km h-1", "sliding speed of the pad", v_kmh)
-      call defv("mu", nf90_double, [d_s, d_d, d_p], "1", &
+      call w%check(nf90_put_att(w%ncid, v_name, "_Encoding", "utf-8"), "encoding")
+      call w%def("depth", nf90_double, [d_d], "m", "water depth (inlet film of the bearing)", v_depth)
+      call w%def("speed", nf90_double, [d_s], "m s-1", "sliding speed of the pad", v_speed)
+      call w%def("speed_kmh", nf90_double, [d_s], "km h-1", "sliding speed of the pad", v_kmh)
+      call w%def("mu", nf90_double, [d_s, d_d, d_p], "1", &
          & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
-      call defv("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
+      call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
          & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
-      call defv("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
+      call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
          & "share of averaged positions where no element touched the profile", v_hyd)
-      call defv("max_balance_residual", nf90_double, [d_s, d_d, d_p], "1", &
+      call w%def("max_balance_residual", nf90_double, [d_s, d_d, d_p], "1", &
          & "largest |sum F + Wh - W| / W over averaged positions", v_res)
-      call defv("n_clamped", nf90_int64, [d_s, d_d, d_p], "1", &
+      call w%def("n_clamped", nf90_int64, [d_s, d_d, d_p], "1", &
          & "contacts on facets clamped at theta_max, summed over averaged positions", v_ncl)
-      call defv("mpd", nf90_double, [d_p], "m", "mean profile depth (ISO 13473-1 / " // &
+      call w%def("mpd", nf90_double, [d_p], "m", "mean profile depth (ISO 13473-1 / " // &
          & "ASTM E1845, 100 mm segments, slope suppression)", v_mpd)
-      call defv("rms_height", nf90_double, [d_p], "m", "RMS profile height about the mean", v_rh)
-      call defv("rms_slope", nf90_double, [d_p], "1", "RMS slope at the profile spacing", v_rs)
-      call defv("status", nf90_byte, [d_p], "", "whether the profile was computed", v_status)
-      call check(nf90_put_att(ncid, v_status, "flag_values", [1_1, 2_1]), "flags")
-      call check(nf90_put_att(ncid, v_status, "flag_meanings", "computed failed"), "flags")
-      call defv("error_message", nf90_char, [d_msg, d_p], "", "why a profile failed", v_err)
-      call check(nf90_put_att(ncid, v_err, "_Encoding", "utf-8"), "encoding")
+      call w%def("rms_height", nf90_double, [d_p], "m", "RMS profile height about the mean", v_rh)
+      call w%def("rms_slope", nf90_double, [d_p], "1", "RMS slope at the profile spacing", v_rs)
+      call w%def("status", nf90_byte, [d_p], "", "whether the profile was computed", v_status)
+      call w%check(nf90_put_att(w%ncid, v_status, "flag_values", [1_1, 2_1]), "flags")
+      call w%check(nf90_put_att(w%ncid, v_status, "flag_meanings", "computed failed"), "flags")
+      call w%def("error_message", nf90_char, [d_msg, d_p], "", "why a profile failed", v_err)
+      call w%check(nf90_put_att(w%ncid, v_err, "_Encoding", "utf-8"), "encoding")
       do i = 1, 7
          call fillatt([v_mu, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], i)
       end do
       ! the profile names label every per-profile variable (CF auxiliary coordinate)
       ids = [v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh, v_rs, v_status, v_err]
       do i = 1, size(ids)
-         call check(nf90_put_att(ncid, ids(i), "coordinates", "profile_name"), "coordinates")
+         call w%check(nf90_put_att(w%ncid, ids(i), "coordinates", "profile_name"), "coordinates")
       end do
-      call gatt("Conventions", "CF-1.10")
-      call gatt("title", "pavefric batch " // batch%scene%name)
-      call gatt("source", "pavefric " // pavefric_version)
-      call gatt("pavefric_version", pavefric_version)
-      call gatt("history", history)
-      call gatt("effects", effects)
-      call gatt("input_namelist", batch%scene%text)
-      call check(nf90_put_att(ncid, nf90_global, "profiles_failed", count([(blocks(i)%status &
+      call w%gatt("Conventions", "CF-1.10")
+      call w%gatt("title", "pavefric batch " // batch%scene%name)
+      call w%gatt("source", "pavefric " // pavefric_version)
+      call w%gatt("pavefric_version", pavefric_version)
+      call w%gatt("history", history)
+      call w%gatt("effects", effects)
+      call w%gatt("input_namelist", batch%scene%text)
+      call w%check(nf90_put_att(w%ncid, nf90_global, "profiles_failed", count([(blocks(i)%status &
          & == 2, i = 1, np)])), "att")
-      if (allocated(error)) goto 99
-      call check(nf90_enddef(ncid), "end of definitions")
-      if (allocated(error)) goto 99
+      if (allocated(w%error)) goto 99
+      call w%check(nf90_enddef(w%ncid), "end of definitions")
+      if (allocated(w%error)) goto 99
 
-      call check(nf90_put_var(ncid, v_name, names), "profile_name")
-      call check(nf90_put_var(ncid, v_depth, batch%depths), "depth")
-      call check(nf90_put_var(ncid, v_speed, batch%speeds / 3.6_wp), "speed")
-      call check(nf90_put_var(ncid, v_kmh, batch%speeds), "speed_kmh")
+      call w%check(nf90_put_var(w%ncid, v_name, names), "profile_name")
+      call w%check(nf90_put_var(w%ncid, v_depth, batch%depths), "depth")
+      call w%check(nf90_put_var(w%ncid, v_speed, batch%speeds / 3.6_wp), "speed")
+      call w%check(nf90_put_var(w%ncid, v_kmh, batch%speeds), "speed_kmh")
       allocate(a(ns, nd, np), c(ns, nd, np), t(np))
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%mu, fill, blocks(i)%status == 1)
       end do
-      call check(nf90_put_var(ncid, v_mu, a), "mu")
+      call w%check(nf90_put_var(w%ncid, v_mu, a), "mu")
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%wet, fill, blocks(i)%status == 1)
       end do
-      call check(nf90_put_var(ncid, v_wet, a), "wet_fraction")
+      call w%check(nf90_put_var(w%ncid, v_wet, a), "wet_fraction")
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%hydroplaning, fill, blocks(i)%status == 1)
       end do
-      call check(nf90_put_var(ncid, v_hyd, a), "hydroplaning_fraction")
+      call w%check(nf90_put_var(w%ncid, v_hyd, a), "hydroplaning_fraction")
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%residual, fill, blocks(i)%status == 1)
          c(:, :, i) = nint(blocks(i)%n_clamped, i8)
       end do
-      call check(nf90_put_var(ncid, v_res, a), "max_balance_residual")
-      call check(nf90_put_var(ncid, v_ncl, c), "n_clamped")
+      call w%check(nf90_put_var(w%ncid, v_res, a), "max_balance_residual")
+      call w%check(nf90_put_var(w%ncid, v_ncl, c), "n_clamped")
       t = [(merge(blocks(i)%mpd, fill, blocks(i)%has_texture), i = 1, np)]
-      call check(nf90_put_var(ncid, v_mpd, t), "mpd")
+      call w%check(nf90_put_var(w%ncid, v_mpd, t), "mpd")
       t = [(merge(blocks(i)%rms_height, fill, blocks(i)%has_texture), i = 1, np)]
-      call check(nf90_put_var(ncid, v_rh, t), "rms_height")
+      call w%check(nf90_put_var(w%ncid, v_rh, t), "rms_height")
       t = [(merge(blocks(i)%rms_slope, fill, blocks(i)%has_texture), i = 1, np)]
-      call check(nf90_put_var(ncid, v_rs, t), "rms_slope")
-      call check(nf90_put_var(ncid, v_status, [(blocks(i)%status, i = 1, np)]), "status")
-      call check(nf90_put_var(ncid, v_err, msgs), "error_message")
+      call w%check(nf90_put_var(w%ncid, v_rs, t), "rms_slope")
+      call w%check(nf90_put_var(w%ncid, v_status, [(blocks(i)%status, i = 1, np)]), "status")
+      call w%check(nf90_put_var(w%ncid, v_err, msgs), "error_message")
 99    continue
-      stat = nf90_close(ncid)
-      if (.not. allocated(error) .and. stat /= nf90_noerr) &
-         & call fatal_error(error, "&output file: closing '" // path // "' failed (" // &
-         & trim(nf90_strerror(stat)) // ")")
+      call w%close(error)
    contains
-      subroutine check(status, what)
-         integer, intent(in) :: status
-         character(len=*), intent(in) :: what
-         if (allocated(error)) return
-         if (status /= nf90_noerr) call fatal_error(error, "&output file: writing " // what // &
-            & " to '" // path // "' failed (" // trim(nf90_strerror(status)) // ")")
-      end subroutine check
-      subroutine defv(name, xtype, dims, units, long_name, varid)
-         character(len=*), intent(in) :: name, units, long_name
-         integer, intent(in) :: xtype, dims(:)
-         integer, intent(out) :: varid
-         varid = -1
-         if (allocated(error)) return
-         call check(nf90_def_var(ncid, name, xtype, dims, varid), "variable " // name)
-         if (len(units) > 0) call check(nf90_put_att(ncid, varid, "units", units), name)
-         call check(nf90_put_att(ncid, varid, "long_name", long_name), name)
-      end subroutine defv
       subroutine fillatt(ids, k)
          integer, intent(in) :: ids(:), k
-         call check(nf90_def_var_fill(ncid, ids(k), 0, fill), "fill value")
+         call w%check(nf90_def_var_fill(w%ncid, ids(k), 0, fill), "fill value")
       end subroutine fillatt
-      subroutine gatt(name, text)
-         character(len=*), intent(in) :: name, text
-         call check(nf90_put_att(ncid, nf90_global, name, text), "attribute " // name)
-      end subroutine gatt
    end subroutine write_batch_file
 
 end module pavefric_netcdf

@@ -30,12 +30,14 @@ contains
    !> All metrics of heights z (m) at spacing dx (m); MPD over segments of
    !> `segment_length` (m, ISO: 0.1), with or without slope suppression.
    subroutine texture_metrics(z, dx, closed, segment_length, slope_suppression, tex, error, &
-         & dropout_fraction, spike)
+         & dropout_fraction, spike, msd)
       real(wp), intent(in) :: z(:), dx, segment_length
       logical, intent(in) :: closed, slope_suppression
       !> Optional per-sample quality from preprocessing (see mean_profile_depth).
       real(wp), intent(in), optional :: dropout_fraction(:)
       logical, intent(in), optional :: spike(:)
+      !> Optional: each segment's mean segment depth (m), valid or not.
+      real(wp), intent(out), optional :: msd(:)
       type(texture_type), intent(out) :: tex
       type(error_type), allocatable, intent(out) :: error
       real(wp) :: mean
@@ -46,7 +48,7 @@ contains
          return
       end if
       call mean_profile_depth(z, dx, segment_length, slope_suppression, tex%mpd, &
-         & tex%n_segments, error, dropout_fraction=dropout_fraction, spike=spike, &
+         & tex%n_segments, error, msd=msd, dropout_fraction=dropout_fraction, spike=spike, &
          & n_valid=tex%n_valid)
       if (allocated(error)) return
       mean = sum(z) / real(n, wp)

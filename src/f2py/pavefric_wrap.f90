@@ -365,7 +365,7 @@ subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg
       & use_quality, dropout_fraction, spike, mpd, n_segments, n_valid, rms_height, rms_slope, &
       & msd, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_texture, only: texture_type, texture_metrics, mean_profile_depth
+   use pavefric_texture, only: texture_type, texture_metrics
    use pavefric_error, only: error_type
    implicit none
    integer(c_int), intent(in) :: np, closed, slope_suppression, nseg_max, use_quality
@@ -380,12 +380,11 @@ subroutine pf_texture(np, z, dx, closed, segment_length, slope_suppression, nseg
    status = 0; message = ""
    if (use_quality /= 0) then
       call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, &
-         & error, dropout_fraction=dropout_fraction, spike=spike /= 0)
+         & error, dropout_fraction=dropout_fraction, spike=spike /= 0, msd=msd)
    else
-      call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, error)
+      call texture_metrics(z, dx, closed /= 0, segment_length, slope_suppression /= 0, tex, &
+         & error, msd=msd)
    end if
-   if (.not. allocated(error)) call mean_profile_depth(z, dx, segment_length, &
-      & slope_suppression /= 0, mpd, n_segments, error, msd)
    if (allocated(error)) then
       status = error%stat
       message = error%message
