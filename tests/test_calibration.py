@@ -93,6 +93,7 @@ def test_validate_reduced(tmp_path, paper):
     assert r.returncode == 0, r.stderr
     text = report.read_text()
     assert "## Statistics" in text and "| all speeds | 18 |" in text
+    assert "wet at 20 km/h |" in text and "bearing acts at GSP" in text
     for fig in ("validation_fig10.png", "validation_fig11.png", "validation_fig12.png"):
         assert (tmp_path / "docs" / "figures" / fig).stat().st_size > 10_000
     with open(tmp_path / "out" / "comparison.csv") as fh:

@@ -20,9 +20,9 @@ stiffness the pad sinks about 0.26 mm into a flat surface, so on shallow
 textures it touches almost everywhere and the hysteresis comes only from the
 convexity of tan(alpha + atan(mu_loc)). Reproducing V13 on the polished
 granite (0.431 with mu_loc 0.30) then needs an RMS facet slope near 1, which
-at 0.87 mm spacing means an MPD of at least 1.4 mm (``python -m pavefric
-surfaces`` prints each surface's floor). The ranking of the paper is kept
-above that floor.
+at 0.87 mm spacing means an MPD of about 1.4 mm (the GSP profile made here:
+MPD 1.45 mm, RMS slope 1.02, as ``python -m pavefric surfaces`` prints). The
+ranking of the paper is kept above that.
 """
 from __future__ import annotations
 
@@ -46,7 +46,7 @@ DESCRIPTION = {
 
 # Target mean profile depths (mm): the paper ranks the surfaces (granite
 # slabs smooth, real asphalts coarse, VTAC the coarsest) but gives no MPD.
-# Ranked, and above the floor V13 imposes (see the module's docstring).
+# Ranked, and above the depth V13 imposes (see the module's docstring).
 MPD_MM = {"GSP": 1.45, "GSS": 1.55, "GSSB": 1.75, "RSBA": 1.95, "MCA": 2.15, "VTAC": 2.60}
 
 # Skewness of the macrotexture: negative for the asphalts and the aggregate
