@@ -186,3 +186,33 @@ def test_mpi_broken_profile_same_as_serial(tmp_path):
                         str(out)], capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stderr + r.stdout
     same_contents(serial, out)       # the failed profile's message crossed MPI intact
+
+
+def test_profile_list_restart_off_and_progress_every(tmp_path):
+    scene = make_batch(tmp_path, n=8)
+    names = sorted((tmp_path / "profiles").glob("*.txt"))[::2]        # every other one
+    (tmp_path / "list.txt").write_text("# chosen segments\n" +
+                                        "\n".join(f"profiles/{p.name}" for p in names) + "\n")
+    scene.write_text(scene.read_text().replace(
+        "profiles = 'profiles/*.txt'", "profile_list = 'list.txt', progress_every = 1"))
+    out = tmp_path / "l.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert len([l for l in r.stdout.splitlines() if "profiles/s" in l]) == 4   # one a profile
+    with xr.open_dataset(out) as ds:
+        assert list(ds["profile_name"].values) == [p.stem for p in names]
+    # restart = .false.: an old journal is ignored and overwritten
+    assert run_program(scene, "-o", out, "--max-profiles", "2").returncode == 3
+    scene.write_text(scene.read_text().replace("progress_every = 1",
+                                               "progress_every = 1, restart = .false."))
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0 and "resuming" not in r.stdout
+    assert len([l for l in r.stdout.splitlines() if "profiles/s" in l]) == 4   # all four again
+
+
+def test_batch_unwritable_output_and_bad_max_profiles(tmp_path):
+    scene = make_batch(tmp_path, n=3)
+    r = run_program(scene, "-o", "/nonexistent-dir/b.nc")
+    assert r.returncode == 1 and "&output file = '/nonexistent-dir/b.nc'" in r.stderr
+    r = run_program(scene, "-o", tmp_path / "o.nc", "--max-profiles", "many")
+    assert r.returncode == 1 and "--max-profiles 'many'" in r.stderr

@@ -200,3 +200,25 @@ def test_lines_longer_than_the_read_buffer(tmp_path):
     p = pavefric.read_profile(f)
     assert p.report["points_read"] == 61
     assert p.heights[0] == pytest.approx(0.1111111111111111e-3, rel=1e-15)
+
+
+@pytest.mark.parametrize("body,needle", [
+    ("plate_threshold = 0", "&preprocess plate_threshold = 0"),
+    ("plate_min_length = -1e-3", "&preprocess plate_min_length = -0.001"),
+    ("plate_buffer = -1e-3", "&preprocess plate_buffer = -0.001"),
+    ("spike_slope = -3", "&preprocess spike_slope = -3"),
+    ("lowpass_wavelength = -2.4e-3", "&preprocess lowpass_wavelength = -0.0024"),
+    ("lowpass_wavelength = 1e-3", "&preprocess lowpass_wavelength = 0.001"),   # < 2 samples
+])
+def test_preprocess_bounds(tmp_path, body, needle):
+    scene = write_scene(tmp_path, groups={"preprocess": body})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and needle in r.stderr, r.stderr
+    assert not (tmp_path / "o.nc").exists()
+
+
+def test_csv_named_x_column_missing(tmp_path):
+    csv = tmp_path / "road.csv"
+    csv.write_text("distance (mm),height (mm)\n0,0.1\n0.5,0.2\n1.0,0.1\n")
+    with pytest.raises(pavefric.PavefricError, match="x_column = 'chainage'"):
+        pavefric.read_profile(csv, x_column="chainage")
