@@ -14,6 +14,10 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))  # the NumPy reference lives beside the tests
 
 DX = 0.87e-3
+# Data shipped in the repository (inputs/data): a fresh clone needs nothing beside it.
+DATA = ROOT / "inputs" / "data"
+CAPTIF = DATA / "captif"
+TABLE = DATA / "kane2017_tables.csv"
 
 
 def program() -> str:

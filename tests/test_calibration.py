@@ -7,16 +7,13 @@ import numpy as np
 import pytest
 
 import pavefric
-from conftest import ROOT
+from conftest import ROOT, TABLE
 
-TABLE = ROOT.parent / "shared" / "data" / "kane2017_tables.csv"
 SURFACES = ROOT / "inputs" / "surfaces"
 
 
 @pytest.fixture(scope="module")
 def paper():
-    if not TABLE.exists():
-        pytest.skip("shared/data/kane2017_tables.csv is not beside the checkout")
     from pavefric.reference_surfaces import paper_table
 
     return paper_table(TABLE)

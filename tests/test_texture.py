@@ -6,9 +6,8 @@ import numpy as np
 import pytest
 
 import pavefric
-from conftest import ROOT
+from conftest import CAPTIF, ROOT
 
-CAPTIF = ROOT.parent / "shared" / "data" / "captif"
 DX = 0.5e-3
 
 
@@ -62,8 +61,6 @@ def test_texture_errors():
 def test_msd_matches_captif_slp_on_real_profiles(name):
     import captif_slp  # a test dependency (setup.sh installs it): fail, never skip
     path = CAPTIF / name
-    if not path.exists():
-        pytest.skip(f"{path} not found (the shared data sits beside the checkout)")
     reading = captif_slp.Reading.from_file(path, detect_plates=True,
                                            target_sample_spacing_mm=0.5)
     ours, theirs, valid = [], [], []

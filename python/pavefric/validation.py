@@ -24,12 +24,14 @@ FIT_SPEED = 20.0
 
 
 def default_table() -> str:
+    """The paper's tables shipped with pavefric (inputs/data/kane2017_tables.csv
+    of the checkout the command runs in, or of the source tree)."""
     for base in (Path.cwd(), Path(__file__).resolve().parents[2]):
-        p = base.parent / "shared" / "data" / "kane2017_tables.csv"
+        p = base / "inputs" / "data" / "kane2017_tables.csv"
         if p.exists():
             return str(p)
-    raise FileNotFoundError("kane2017_tables.csv not found: give --table (it is in "
-                            "shared/data/ beside the checkout)")
+    raise FileNotFoundError("inputs/data/kane2017_tables.csv not found: run from the "
+                            "pavefric checkout or give --table")
 
 
 def statistics(measured, model) -> dict:
