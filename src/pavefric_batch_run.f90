@@ -7,7 +7,7 @@ module pavefric_batch_run
    use pavefric_format, only: to_str
    use pavefric_batch, only: batch_type, block_type, batch_prepare, batch_compute, &
       & journal_append, journal_close
-   use pavefric_netcdf, only: write_batch_results
+   use pavefric_batch_netcdf, only: write_batch_results
    use pavefric_run, only: timestamp
    use pavefric_fsys, only: remove_file
    implicit none
