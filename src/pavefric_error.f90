@@ -1,16 +1,28 @@
 !> Error handling: fallible routines return an allocatable error_type.
 !>
 !> Library code never stops; a caller tests `if (allocated(error)) return`.
+!> The status says what kind of failure it was, so the program can choose
+!> its exit code and Python its exception (MemoryError for stat_memory).
 module pavefric_error
    implicit none
    private
 
    public :: error_type, fatal_error
+   public :: stat_input, stat_internal, stat_memory, stat_io
+
+   !> Bad input: a namelist value, a profile file, a scene that cannot run.
+   integer, parameter :: stat_input = 1
+   !> An inconsistency inside pavefric (a bug): please report it.
+   integer, parameter :: stat_internal = 2
+   !> Not enough memory for the work asked for (estimated or failed allocation).
+   integer, parameter :: stat_memory = 3
+   !> A file could not be written or read back (disk full, permissions).
+   integer, parameter :: stat_io = 4
 
    !> An error with a status code and a one-line message.
    type :: error_type
-      !> Non-zero status code.
-      integer :: stat = 1
+      !> Non-zero status code (stat_input, stat_internal, stat_memory, stat_io).
+      integer :: stat = stat_input
       !> Human-readable message naming what was wrong.
       character(len=:), allocatable :: message
    end type error_type
