@@ -11,7 +11,7 @@ program pavefric_main
    type(error_type), allocatable :: error
    logical :: finished
    integer :: max_profiles, ios
-   character(len=:), allocatable :: scene_path, out_override, out_path, arg, command
+   character(len=:), allocatable :: scene_path, out_override, out_path, arg, command, warnings
    integer :: i, nargs, j
 
    max_profiles = 0
@@ -78,7 +78,7 @@ program pavefric_main
    else if (.not. is_root()) then
       call parallel_finalize()       ! a single scene runs on rank 0 only
    else
-      call run_scene(scene_path, out_override, command, out_path, res, error)
+      call run_scene(scene_path, out_override, command, out_path, res, error, warnings=warnings)
       if (allocated(error)) call fail(error%message)
       call parallel_finalize()
       call report_scene()
@@ -88,12 +88,7 @@ contains
 
    subroutine report_scene()
 
-   do j = 1, size(res%mu)
-      if (res%max_compression(j) > res%thickness) write(error_unit, '(a)') "pavefric: warning: " // &
-         & "an element is compressed by " // to_str(res%max_compression(j)) // " m at " // &
-         & to_str(res%speed_kmh(j)) // " km/h, beyond the rubber thickness (&pad thickness = " // &
-         & to_str(res%thickness) // " m); the linear model has no floor there"
-   end do
+   call print_warnings(warnings)
    write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
       & out_path
    write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &
@@ -104,6 +99,20 @@ contains
          & res%wet_fraction(j), res%hydroplaning_fraction(j)
    end do
    end subroutine report_scene
+
+   !> Each warning line on stderr (they are also in the output's `warnings`).
+   subroutine print_warnings(text)
+      character(len=*), intent(in) :: text
+      integer :: start, k
+      start = 1
+      do while (start <= len(text))
+         k = index(text(start:), achar(10))
+         if (k == 0) k = len(text) - start + 2
+         write(error_unit, '(a)') "pavefric: warning: " // text(start:start+k-2)
+         start = start + k
+      end do
+      flush(error_unit)
+   end subroutine print_warnings
 
    subroutine get_arg(k, value)
       integer, intent(in) :: k

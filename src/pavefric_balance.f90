@@ -7,12 +7,12 @@
 !> penetration beyond the first contact, not to the profile's absolute height.
 module pavefric_balance
    use pavefric_kinds, only: wp
-   use pavefric_bearing, only: hydro_load
+   use pavefric_film, only: film_model, film_step_type
    use pavefric_lapack, only: dlasrt
    implicit none
    private
 
-   public :: dry_root, mean_gap, wet_root, wet_state_type
+   public :: dry_root, wet_root, wet_state_type, gap_field
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -90,35 +90,38 @@ contains
       end do
    end subroutine sorted_root
 
-   !> Mean gap under the pad, (1/N) sum max(0, d_i - x): the water volume per
-   !> unit width trapped under the deformed pad divided by its length.
-   pure function mean_gap(d, x) result(h_m)
+   !> The gap under each element at penetration x: max(0, d_i - x); the film
+   !> components see this whole field.
+   pure subroutine gap_field(d, x, gap)
       real(wp), intent(in) :: d(:), x
-      real(wp) :: h_m
+      real(wp), intent(out) :: gap(:)
       integer :: i
-      h_m = 0.0_wp
       do i = 1, size(d)
-         h_m = h_m + max(0.0_wp, d(i) - x)
+         gap(i) = max(0.0_wp, d(i) - x)
       end do
-      h_m = h_m / real(size(d), wp)
-   end function mean_gap
+   end subroutine gap_field
 
-   !> Root of f(x) = kel sum max(0, x - d_i) + Wh(h_m(x)) - W on [lo, x_dry],
-   !> where f(lo) = -W (no contact, film thicker than Hin: Wh = 0) and
-   !> f(x_dry) = Wh >= 0. Both terms are non-decreasing in x, so the root is
-   !> unique. Newton with the analytic derivative, safeguarded by bisection
-   !> whenever a step leaves the bracket or does not halve |f|.
-   pure subroutine wet_root(d, kel, load, prefactor, h_in, x_dry, tol, x, state)
-      real(wp), intent(in) :: d(:), kel, load, prefactor, h_in, x_dry, tol
+   !> Root of f(x) = kel sum max(0, x - d_i) + Wh(gap(x)) - W on [lo, x_dry],
+   !> where Wh is the film's load for the gap field gap_i = max(0, d_i - x),
+   !> f(lo) = -W (no contact, no film load: lo from the film) and f(x_dry) =
+   !> Wh >= 0. Both terms are non-decreasing in x, so the root is unique.
+   !> Newton with the analytic derivative, safeguarded by bisection whenever
+   !> a step leaves the bracket or does not halve |f|.
+   pure subroutine wet_root(d, kel, load, film, fstep, x_dry, tol, x, state, gap)
+      real(wp), intent(in) :: d(:), kel, load, x_dry, tol
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fstep
       real(wp), intent(out) :: x
       type(wet_state_type), intent(out) :: state
+      !> Workspace of size(d): the gap field of the last evaluation.
+      real(wp), intent(inout) :: gap(:)
       real(wp) :: lo, hi, f, df, f_old, x_new, wh
       logical :: use_newton
       integer :: it
-      lo = min(0.0_wp, sum(d) / real(size(d), wp) - h_in)
+      lo = min(0.0_wp, film%lower_bound(fstep, d))
       hi = x_dry
       x = hi
-      call evaluate(x, f, df, wh)
+      call evaluate(x, f, df, wh, gap)
       state%evaluations = state%evaluations + 1
       f_old = huge(1.0_wp)
       do it = 1, max_iter_wet
@@ -139,7 +142,7 @@ contains
          if (.not. use_newton) x_new = 0.5_wp * (lo + hi)
          f_old = abs(f)
          x = x_new
-         call evaluate(x, f, df, wh)
+         call evaluate(x, f, df, wh, gap)
          state%evaluations = state%evaluations + 1
       end do
       if (abs(f) > tol * load) then
@@ -152,7 +155,7 @@ contains
          ! intermediate value of Wh between the two ends, balanced exactly.
          if (f < 0.0_wp) then
             x = hi
-            call evaluate(x, f, df, wh)
+            call evaluate(x, f, df, wh, gap)
             state%evaluations = state%evaluations + 1
          end if
          wh = max(0.0_wp, load - kel * pushed_at(x))
@@ -169,29 +172,24 @@ contains
          end do
       end function pushed_at
 
-      pure subroutine evaluate(xe, fe, dfe, whe)
+      pure subroutine evaluate(xe, fe, dfe, whe, g)
          real(wp), intent(in) :: xe
          real(wp), intent(out) :: fe, dfe, whe
-         real(wp) :: pushed, gap, dwh
-         integer :: i, n_contact, n_gap
+         real(wp), intent(inout) :: g(:)
+         real(wp) :: pushed, dwh_dx
+         integer :: i, n_contact
          pushed = 0.0_wp
-         gap = 0.0_wp
          n_contact = 0
-         n_gap = 0
          do i = 1, size(d)
             if (d(i) < xe) then
                pushed = pushed + (xe - d(i))
                n_contact = n_contact + 1
-            else if (d(i) > xe) then
-               gap = gap + (d(i) - xe)
-               n_gap = n_gap + 1
             end if
+            g(i) = max(0.0_wp, d(i) - xe)
          end do
-         gap = gap / real(size(d), wp)
-         call hydro_load(prefactor, h_in, gap, whe, dwh)
+         call film%load(fstep, g, whe, dwh_dx)
          fe = kel * pushed + whe - load
-         ! dh_m/dx = -n_gap/N
-         dfe = kel * real(n_contact, wp) - dwh * real(n_gap, wp) / real(size(d), wp)
+         dfe = kel * real(n_contact, wp) + dwh_dx
       end subroutine evaluate
    end subroutine wet_root
 

@@ -7,7 +7,7 @@ module pavefric_error
    implicit none
    private
 
-   public :: error_type, fatal_error
+   public :: error_type, fatal_error, add_warning
    public :: stat_input, stat_internal, stat_memory, stat_io
 
    !> Bad input: a namelist value, a profile file, a scene that cannot run.
@@ -38,5 +38,16 @@ contains
       error%message = message
       if (present(stat)) error%stat = stat
    end subroutine fatal_error
+
+   !> Append one line to a list of warnings (lines separated by newlines):
+   !> plausible-but-suspicious input or results, printed by the program,
+   !> raised as warnings in Python and recorded in the output.
+   pure subroutine add_warning(warnings, line)
+      character(len=:), allocatable, intent(inout) :: warnings
+      character(len=*), intent(in) :: line
+      if (.not. allocated(warnings)) warnings = ""
+      if (len(warnings) > 0) warnings = warnings // achar(10)
+      warnings = warnings // line
+   end subroutine add_warning
 
 end module pavefric_error

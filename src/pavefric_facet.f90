@@ -4,7 +4,7 @@ module pavefric_facet
    implicit none
    private
 
-   public :: facet_friction
+   public :: facet_friction, facet_tangent
 
 contains
 
@@ -13,11 +13,14 @@ contains
    !> closed profile, one-sided at the ends of an open one), theta clamped to
    !> [-theta_max, theta_max]; `clamped(k)` says whether the clamp acted.
    !> FF = F tan(theta) equals F (sin a + mu cos a)/(cos a - mu sin a) (Eq. 10).
-   pure subroutine facet_friction(z, dx, closed, mu_loc, theta_max_deg, tan_theta, clamped)
+   pure subroutine facet_friction(z, dx, closed, mu_loc, theta_max_deg, tan_theta, clamped, &
+         & slopes)
       real(wp), intent(in) :: z(:), dx, mu_loc, theta_max_deg
       logical, intent(in) :: closed
       real(wp), intent(out) :: tan_theta(:)
       logical, intent(out) :: clamped(:)
+      !> Optional: the facet slopes tan(alpha_k) themselves.
+      real(wp), intent(out), optional :: slopes(:)
       real(wp) :: slope, theta, theta_max, phi
       integer :: k, n
       n = size(z)
@@ -41,11 +44,33 @@ contains
          else
             slope = (z(k+1) - z(k-1)) / (2.0_wp * dx)
          end if
+         if (present(slopes)) slopes(k) = slope
          theta = atan(slope) + phi
          clamped(k) = abs(theta) > theta_max
          theta = max(-theta_max, min(theta_max, theta))
          tan_theta(k) = tan(theta)
       end do
    end subroutine facet_friction
+
+   !> tan(alpha + atan(mu)) for a facet of slope s = tan(alpha) and a local
+   !> friction mu >= 0, with theta = alpha + atan(mu) clamped to
+   !> [-theta_max, theta_max] (tan_max = tan(theta_max)): the addition formula
+   !> (s + mu) / (1 - s mu), no trigonometric call. 1 - s mu <= 0 means theta
+   !> >= 90 degrees (clamped); otherwise the tangent is monotone in theta.
+   elemental subroutine facet_tangent(s, mu, tan_max, t, clamped)
+      real(wp), intent(in) :: s, mu, tan_max
+      real(wp), intent(out) :: t
+      logical, intent(out) :: clamped
+      real(wp) :: den
+      den = 1.0_wp - s * mu
+      if (den <= 0.0_wp) then
+         t = tan_max
+         clamped = .true.
+         return
+      end if
+      t = (s + mu) / den
+      clamped = abs(t) > tan_max
+      t = max(-tan_max, min(tan_max, t))
+   end subroutine facet_tangent
 
 end module pavefric_facet

@@ -1,61 +1,906 @@
-!> Physical and numerical parameters of a scene, with their defaults and
-!> their validation. Every message names the namelist group, the variable
-!> and the value, so the program and the Python layer report bad input alike.
+!> The one description of pavefric's inputs: every namelist variable is
+!> declared once here, with its group, unit, default, valid range, plausible
+!> range and meaning. Namelist reading, validation messages, the echo into
+!> the output, docs/inputs.md, the Python keywords and the C API all come
+!> from this table, so they cannot drift. The physical parameters are then
+!> gathered into `model_type` for the physics modules.
+!>
+!> A new parameter touches this module only: an id, a row in
+!> `parameter_table`, and (for a model parameter) a field of model_type and
+!> a line in `model_from_parameters`.
 module pavefric_model
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use pavefric_kinds, only: wp
-   use pavefric_error, only: error_type, fatal_error
-   use pavefric_format, only: to_str
+   use pavefric_error, only: error_type, fatal_error, add_warning
+   use pavefric_format, only: to_str, to_lower
+   use pavefric_numbers, only: parse_real, parse_integer
+   use pavefric_namelist, only: nml_group_type, nml_item_type, nml_token_type, parse_namelist, at
    implicit none
    private
 
    public :: model_type, validate_model, shape_flat, shape_rounded, shape_code
+   public :: param_spec_type, param_value_type, param_set_type, group_spec_type
+   public :: parameter_table, group_table, default_parameters, apply_namelist, find_parameter
+   public :: model_from_parameters, parameters_namelist, plausibility_warnings, format_value
+   public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
+   public :: n_parameters, n_groups
 
    integer, parameter :: shape_flat = 0, shape_rounded = 1
 
+   !> Kinds of value.
+   integer, parameter :: kind_real = 1, kind_integer = 2, kind_logical = 3, kind_text = 4, &
+      & kind_real_list = 5
+
+   ! Parameter ids, in the order of the groups and of docs/inputs.md.
+   integer, parameter, public :: &
+      & p_profile_file = 1, p_profile_name = 2, p_format = 3, p_height_unit = 4, &
+      & p_x_column = 5, p_z_column = 6, p_dx = 7, p_closed = 8, p_mu_loc = 9, &
+      & p_dropouts = 10, p_trim_plates = 11, p_plate_threshold = 12, &
+      & p_plate_min_length = 13, p_plate_buffer = 14, p_spike_slope = 15, &
+      & p_resample_dx = 16, p_lowpass_wavelength = 17, &
+      & p_length = 18, p_width = 19, p_thickness = 20, p_load = 21, p_shape = 22, &
+      & p_radius = 23, &
+      & p_stiffness = 24, p_viscosity = 25, &
+      & p_depth = 26, p_water_viscosity = 27, p_alpha = 28, p_beta = 29, &
+      & p_speeds_kmh = 30, &
+      & p_theta_max_deg = 31, p_substeps = 32, p_elements_per_sample = 33, &
+      & p_position_stride = 34, p_wet_tolerance = 35, &
+      & p_output_file = 36, p_series = 37, &
+      & p_batch_profiles = 38, p_batch_profile_list = 39, p_batch_depths = 40, &
+      & p_batch_restart = 41, p_batch_progress_every = 42
+   integer, parameter :: n_parameters = 42
+   integer, parameter :: n_groups = 9
+
+   !> A namelist group and what it is for (docs/inputs.md sections).
+   type :: group_spec_type
+      character(len=:), allocatable :: name, title, description
+   end type group_spec_type
+
+   !> The declaration of one namelist variable.
+   type :: param_spec_type
+      !> Namelist group and variable name.
+      character(len=:), allocatable :: group, name
+      !> Keyword of pavefric.simulate() / read_profile() ('' when the variable
+      !> is not one: file names, batch settings).
+      character(len=:), allocatable :: keyword
+      !> 'model' (simulate keywords), 'profile' (read_profile keywords),
+      !> 'scene', 'output' or 'batch'.
+      character(len=:), allocatable :: scope
+      integer :: kind = kind_real
+      !> Unit (SI unless the name says otherwise); '' for none.
+      character(len=:), allocatable :: unit
+      !> The default as namelist text ('' when the variable has none).
+      character(len=:), allocatable :: default
+      !> Text values allowed (space-separated; '' = any text).
+      character(len=:), allocatable :: choices
+      !> Hard range: outside is an error.
+      real(wp) :: lower = -huge(1.0_wp), upper = huge(1.0_wp)
+      logical :: lower_strict = .false., upper_strict = .false.
+      !> Plausible range: outside is a warning (what a road or a DFT can be).
+      real(wp) :: plausible_lower = -huge(1.0_wp), plausible_upper = huge(1.0_wp)
+      character(len=:), allocatable :: plausible_note
+      !> Largest number of values of a list.
+      integer :: max_values = 1
+      !> Whether a single scene must give it.
+      logical :: required = .false.
+      !> One-line meaning (and notes) for the docs.
+      character(len=:), allocatable :: meaning
+   end type param_spec_type
+
+   !> The value of one variable.
+   type :: param_value_type
+      real(wp) :: r = 0.0_wp
+      integer :: i = 0
+      logical :: b = .false.
+      character(len=:), allocatable :: t
+      real(wp), allocatable :: list(:)
+      !> Whether the input gave it (else the default, or unset).
+      logical :: given = .false.
+      !> Whether it has a value (false for an optional variable not given).
+      logical :: set = .false.
+   end type param_value_type
+
+   !> The values of every variable.
+   type :: param_set_type
+      type(param_value_type) :: v(n_parameters)
+   end type param_set_type
+
    !> Everything the friction model needs besides the profile and speeds.
-   !> SI units throughout.
+   !> SI units; built from the table by model_from_parameters.
    type :: model_type
-      !> &surface mu_loc: local friction below the profile's resolution (-).
-      real(wp) :: mu_loc = 0.5_wp
-      !> &pad length: pad length along the sliding direction (m).
-      real(wp) :: length = 0.020_wp
-      !> &pad width: pad width across the sliding direction (m).
-      real(wp) :: width = 0.016_wp
-      !> &pad thickness: rubber thickness (m); compression beyond it is flagged.
-      real(wp) :: thickness = 0.006_wp
-      !> &pad load: normal load on the pad W (N).
-      real(wp) :: load = 11.8_wp
-      !> &pad shape: 'flat' or 'rounded' (a circular arc of radius `radius`).
-      character(len=16) :: shape = "flat"
-      !> &pad radius: radius of the rounded pad's arc (m).
-      real(wp) :: radius = 0.05_wp
-      !> &rubber stiffness: spring modulus per unit length K (N m-3).
-      real(wp) :: stiffness = 1.4e8_wp
-      !> &rubber viscosity: dashpot viscosity per unit length C (N s m-3).
-      real(wp) :: viscosity = 1.0e2_wp
-      !> &water depth: water depth, the bearing's inlet film Hin (m); 0 = dry.
-      real(wp) :: depth = 0.0_wp
-      !> &water viscosity: dynamic viscosity of water eta (Pa s).
-      real(wp) :: water_viscosity = 1.0e-3_wp
-      !> &water alpha: empirical bearing coefficient (-). Default: the value
-      !> fitted on the paper's 20 km/h DFT data (docs/validation.md); the
-      !> paper's 105 is in unstated units.
-      real(wp) :: alpha = 11.8_wp
-      !> &water beta: empirical speed exponent of the bearing (-).
-      real(wp) :: beta = 1.75_wp
-      !> &numerics theta_max_deg: steepest facet+friction angle (degrees).
-      real(wp) :: theta_max_deg = 85.0_wp
-      !> &numerics substeps: Kelvin-Voigt time steps per element spacing.
-      integer :: substeps = 1
-      !> &numerics elements_per_sample: pad elements per profile spacing.
-      integer :: elements_per_sample = 1
-      !> &numerics position_stride: advance of the pad per step, in steps.
-      integer :: position_stride = 1
-      !> &numerics wet_tolerance: wet load balance |residual| / W to stop at.
-      real(wp) :: wet_tolerance = 1.0e-14_wp
+      real(wp) :: mu_loc = 0.0_wp
+      real(wp) :: length = 0.0_wp, width = 0.0_wp, thickness = 0.0_wp, load = 0.0_wp
+      character(len=:), allocatable :: shape
+      real(wp) :: radius = 0.0_wp
+      real(wp) :: stiffness = 0.0_wp, viscosity = 0.0_wp
+      real(wp) :: depth = 0.0_wp, water_viscosity = 0.0_wp, alpha = 0.0_wp, beta = 0.0_wp
+      real(wp) :: theta_max_deg = 0.0_wp
+      integer :: substeps = 1, elements_per_sample = 1, position_stride = 1
+      real(wp) :: wet_tolerance = 0.0_wp
    end type model_type
 
 contains
+
+   !> The namelist groups, in order.
+   pure function group_table() result(g)
+      type(group_spec_type) :: g(n_groups)
+      g(1) = group_spec_type("surface", "the texture profile", &
+         & "The profile file, its units and spacing, and the local friction of its facets.")
+      g(2) = group_spec_type("preprocess", "making an instrument profile fit for analysis", &
+         & "ISO 13473-1's steps, each optional; docs/profiles.md says what each does.")
+      g(3) = group_spec_type("pad", "the DFT rubber slider", &
+         & "The pad of N = nint(length / dx) independent elements.")
+      g(4) = group_spec_type("rubber", "Kelvin–Voigt elements", &
+         & "The rubber of each element, per unit length of pad (paper, Table 1).")
+      g(5) = group_spec_type("water", "the hydrodynamic pseudo-bearing", &
+         & "Water on the road (Eqs. 13-15). depth = 0 is a dry road: no film is simulated.")
+      g(6) = group_spec_type("operation", "the speeds", "The sliding speeds of the run.")
+      g(7) = group_spec_type("numerics", "accuracy knobs", &
+         & "With substeps, elements_per_sample and position_stride at 1 the computation " // &
+         & "is exactly MODEL.md's; docs/accuracy.md measures what each buys and costs.")
+      g(8) = group_spec_type("output", "the NetCDF file", "Where the results go and what they hold.")
+      g(9) = group_spec_type("batch", "many profiles into one file", &
+         & "A scene with a &batch group runs many profiles at several water depths and " // &
+         & "the scene's speeds into one NetCDF file (docs/cluster.md).")
+   end function group_table
+
+   !> The declarations of every namelist variable.
+   pure function parameter_table() result(s)
+      type(param_spec_type) :: s(n_parameters)
+      real(wp), parameter :: big = huge(1.0_wp)
+
+      ! &surface
+      s(p_profile_file) = text("surface", "profile_file", "", "path", "scene", &
+         & "profile file, relative to the namelist's directory: plain text (one column " // &
+         & "of heights, or distance and height), CSV with named columns, a laser profiler " // &
+         & "export, or NetCDF (docs/profiles.md). Required unless the scene has a &batch group.")
+      s(p_profile_file)%required = .true.
+      s(p_profile_name) = text("surface", "profile_name", "", "", "scene", &
+         & "which profile of a NetCDF file holding several (empty: the file must hold one)")
+      s(p_format) = text("surface", "format", "auto", "", "profile", &
+         & "profile file format: 'plain', 'captif' (laser profiler export), 'csv' or " // &
+         & "'netcdf'; 'auto' detects it (docs/profiles.md)", &
+         & choices="auto plain captif csv netcdf")
+      s(p_height_unit) = text("surface", "height_unit", "mm", "", "profile", &
+         & "unit of the file's heights and distances when the file does not state it: " // &
+         & "'mm', 'um' or 'm'", choices="mm um m")
+      s(p_x_column) = text("surface", "x_column", "", "", "profile", &
+         & "CSV column name of the distance (empty: found by name)")
+      s(p_z_column) = text("surface", "z_column", "", "", "profile", &
+         & "CSV column name of the height (empty: found by name)")
+      s(p_dx) = real_param("surface", "dx", "", "m", "scene", &
+         & "sample spacing. Taken from the distances when the file has them (then a " // &
+         & "given dx must agree within 1 %); without distances and without dx: 0.87e-3, " // &
+         & "a Circular Track Meter's spacing.", lower=0.0_wp, lower_strict=.true., upper=1.0_wp, &
+         & plausible_lower=5.0e-6_wp, plausible_upper=5.0e-3_wp, &
+         & plausible_note="texture profiles are sampled every 0.005 to 5 mm")
+      s(p_closed) = logical_param("surface", "closed", ".true.", "scene", &
+         & ".true.: a closed Circular Track Meter circle (the pad wraps round; N spin-up " // &
+         & "positions before averaging over all Np positions). .false.: an open profile " // &
+         & "(Np - N + 1 positions, elements start relaxed).")
+      s(p_mu_loc) = real_param("surface", "mu_loc", "0.5", "1", "model", &
+         & "local friction of the facets: all texture scales finer than dx (British " // &
+         & "Pendulum SRT in the paper: 0.30-0.75). Set it for your surface.", &
+         & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=2.0_wp, &
+         & plausible_note="pendulum values of roads lie between 0.2 and 1.2")
+
+      ! &preprocess
+      s(p_dropouts) = text("preprocess", "dropouts", "error", "", "profile", &
+         & "'error': a dropout (empty or NaN height) stops the run naming file and line; " // &
+         & "'interpolate': linear interpolation (ISO 13473-1)", choices="error interpolate")
+      s(p_trim_plates) = logical_param("preprocess", "trim_plates", ".true.", "profile", &
+         & "cut reference plates (long runs far from the surface's heights) at the ends")
+      s(p_plate_threshold) = real_param("preprocess", "plate_threshold", "0.010", "m", "profile", &
+         & "a point this far from the median height is off the surface", lower=0.0_wp, &
+         & lower_strict=.true., upper=big)
+      s(p_plate_min_length) = real_param("preprocess", "plate_min_length", "0.005", "m", &
+         & "profile", "shortest run of such points that is a plate, not a spike", &
+         & lower=0.0_wp, upper=big)
+      s(p_plate_buffer) = real_param("preprocess", "plate_buffer", "0.002", "m", "profile", &
+         & "distance cut beyond a plate's edge", lower=0.0_wp, upper=big)
+      s(p_spike_slope) = real_param("preprocess", "spike_slope", "0", "1", "profile", &
+         & "a jump >= spike_slope x spacing flags both its points as a spike (0: off; " // &
+         & "ISO 13473-1: 3 at 0.5-1 mm spacing)", lower=0.0_wp, upper=big)
+      s(p_resample_dx) = real_param("preprocess", "resample_dx", "0", "m", "profile", &
+         & "resample by averaging into bins of this spacing (0: keep the spacing)", &
+         & lower=0.0_wp, upper=big)
+      s(p_lowpass_wavelength) = real_param("preprocess", "lowpass_wavelength", "0", "m", &
+         & "profile", "cut-off wavelength of a 2nd-order Butterworth low-pass run forwards " // &
+         & "and backwards (0: off; ISO 13473-1: 2.4e-3)", lower=0.0_wp, upper=big)
+
+      ! &pad
+      s(p_length) = real_param("pad", "length", "0.020", "m", "model", &
+         & "pad length L along the sliding direction; the pad has N = nint(L / dx) " // &
+         & "elements (23 at 0.87 mm)", lower=0.0_wp, lower_strict=.true., upper=100.0_wp, &
+         & plausible_lower=1.0e-3_wp, plausible_upper=1.0_wp, &
+         & plausible_note="a DFT pad is 20 mm long, a tyre's contact about 0.15 m")
+      s(p_width) = real_param("pad", "width", "0.016", "m", "model", &
+         & "pad width l across the sliding direction", lower=0.0_wp, lower_strict=.true., &
+         & upper=100.0_wp, plausible_lower=1.0e-3_wp, plausible_upper=1.0_wp, &
+         & plausible_note="a DFT pad is 16 mm wide, a tyre about 0.2 m")
+      s(p_thickness) = real_param("pad", "thickness", "0.006", "m", "model", &
+         & "rubber thickness; compression beyond it is reported (max_compression, a " // &
+         & "warning): the linear model has no hard floor", lower=0.0_wp, lower_strict=.true., &
+         & upper=100.0_wp, plausible_lower=1.0e-4_wp, plausible_upper=0.1_wp, &
+         & plausible_note="rubber treads are millimetres thick")
+      s(p_load) = real_param("pad", "load", "11.8", "N", "model", &
+         & "normal load W on the pad", lower=0.0_wp, lower_strict=.true., upper=1.0e9_wp, &
+         & plausible_lower=0.1_wp, plausible_upper=1.0e5_wp, &
+         & plausible_note="a DFT slider carries 11.8 N, a car tyre about 4e3 N")
+      s(p_shape) = text("pad", "shape", "flat", "", "model", &
+         & "'flat' (h_i = 0) or 'rounded' (a circular arc of radius across the length: " // &
+         & "h_i = R - sqrt(R^2 - x_i^2), x_i from the pad centre)", choices="flat rounded")
+      s(p_radius) = real_param("pad", "radius", "0.05", "m", "model", &
+         & "arc radius of a rounded pad; must exceed length / 2", lower=0.0_wp, &
+         & lower_strict=.true., upper=1.0e12_wp)
+
+      ! &rubber
+      s(p_stiffness) = real_param("rubber", "stiffness", "1.4e8", "N m-3", "model", &
+         & "spring modulus per unit length K (paper, Table 1)", lower=0.0_wp, &
+         & lower_strict=.true., upper=1.0e15_wp, plausible_lower=1.0e5_wp, &
+         & plausible_upper=1.0e11_wp, plausible_note="tread rubber gives about 1e7 to 1e9")
+      s(p_viscosity) = real_param("rubber", "viscosity", "1.0e2", "N s m-3", "model", &
+         & "dashpot viscosity per unit length C (paper: fitted on GSSB at 20 km/h); 0 = " // &
+         & "elastic rubber: no viscous memory is kept", lower=0.0_wp, upper=1.0e12_wp)
+
+      ! &water
+      s(p_depth) = real_param("water", "depth", "0.0", "m", "model", &
+         & "water depth, the bearing's inlet film H_in. 0 = dry: no film is simulated.", &
+         & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=0.02_wp, &
+         & plausible_note="water films on roads are millimetres deep; depth is in metres")
+      s(p_water_viscosity) = real_param("water", "viscosity", "1.0e-3", "Pa s", "model", &
+         & "dynamic viscosity of water eta", lower=0.0_wp, lower_strict=.true., &
+         & upper=1.0e6_wp, plausible_lower=1.0e-4_wp, plausible_upper=1.0e-2_wp, &
+         & plausible_note="water's viscosity is 1.8e-3 at 0 C, 0.3e-3 at 90 C")
+      s(p_water_viscosity)%keyword = "water_viscosity"
+      s(p_alpha) = real_param("water", "alpha", "11.8", "1", "model", &
+         & "empirical bearing coefficient of Eq. 15, a calibration parameter. The default " // &
+         & "is the value fitted on the paper's six 20 km/h DFT measurements with the " // &
+         & "reference surfaces (python -m pavefric validate, docs/validation.md); the " // &
+         & "paper's 105 (units unstated) lifts the pad off every CTM-like surface by " // &
+         & "10-20 km/h with SI units.", lower=0.0_wp, upper=1.0e12_wp)
+      s(p_beta) = real_param("water", "beta", "1.75", "1", "model", &
+         & "empirical speed exponent of Eq. 15 (speed in m/s)", lower=0.0_wp, upper=10.0_wp, &
+         & plausible_lower=0.0_wp, plausible_upper=4.0_wp, &
+         & plausible_note="the paper's value is 1.75")
+
+      ! &operation
+      s(p_speeds_kmh) = list_param("operation", "speeds_kmh", "", "km h-1", "scene", &
+         & "sliding speeds. 0 is the static limit: no viscous stiffening, no memory, no " // &
+         & "film.", lower=0.0_wp, upper=1.0e5_wp, max_values=100000, &
+         & plausible_lower=0.0_wp, plausible_upper=400.0_wp, &
+         & plausible_note="road vehicles and friction testers slide below 400 km/h")
+      s(p_speeds_kmh)%required = .true.
+
+      ! &numerics
+      s(p_theta_max_deg) = real_param("numerics", "theta_max_deg", "85", "degree", "model", &
+         & "steepest facet angle plus friction angle; steeper facets are clamped to " // &
+         & "+-theta_max_deg and counted in n_clamped", lower=0.0_wp, lower_strict=.true., &
+         & upper=90.0_wp, upper_strict=.true.)
+      s(p_substeps) = int_param("numerics", "substeps", "1", "model", &
+         & "time steps per element spacing: the pad advances dx / substeps per step; " // &
+         & "heights and facet tangents are interpolated linearly between samples", 1, 4096)
+      s(p_elements_per_sample) = int_param("numerics", "elements_per_sample", "1", "model", &
+         & "pad elements per profile spacing: element width dx / elements_per_sample; " // &
+         & "heights and facet tangents interpolated linearly between samples", 1, 4096)
+      s(p_position_stride) = int_param("numerics", "position_stride", "1", "model", &
+         & "the pad advances this many (refined) samples per step and only those " // &
+         & "positions are averaged: exact for elastic dry scenes up to sampling, a " // &
+         & "coarser time step otherwise", 1, 1000000)
+      s(p_wet_tolerance) = real_param("numerics", "wet_tolerance", "1e-14", "1", "model", &
+         & "the wet load balance stops when |residual| <= wet_tolerance x W (or when the " // &
+         & "bracket has closed to adjacent doubles)", lower=epsilon(1.0_wp), upper=1.0_wp, &
+         & upper_strict=.true.)
+
+      ! &output
+      s(p_output_file) = text("output", "file", "", "path", "output", &
+         & "NetCDF output, relative to the working directory (empty: outputs/<scene " // &
+         & "name>.nc, the directory created if missing). The command line's -o overrides it.")
+      s(p_series) = logical_param("output", "series", ".false.", "output", &
+         & "also write per-position mu_inst, hydro_load, penetration, contact_elements " // &
+         & "(memory: 4 x positions x speeds values)")
+
+      ! &batch
+      s(p_batch_profiles) = text("batch", "profiles", "", "path", "batch", &
+         & "a file-name pattern ('segments/*.txt') or a directory, relative to the " // &
+         & "namelist's directory; give this or profile_list")
+      s(p_batch_profile_list) = text("batch", "profile_list", "", "path", "batch", &
+         & "a file naming one profile a line ('#' comments), relative to the list")
+      s(p_batch_depths) = list_param("batch", "depths", "", "m", "batch", &
+         & "water depths to run every profile at (empty: &water depth)", lower=0.0_wp, &
+         & upper=100.0_wp, max_values=1000, plausible_lower=0.0_wp, plausible_upper=0.02_wp, &
+         & plausible_note="water films on roads are millimetres deep; depths are in metres")
+      s(p_batch_restart) = logical_param("batch", "restart", ".true.", "batch", &
+         & "resume from the journal of an interrupted run")
+      s(p_batch_progress_every) = int_param("batch", "progress_every", "0", "batch", &
+         & "profiles between progress lines (0: about 20 lines)", 0, huge(1))
+   end function parameter_table
+
+   ! --- declaration helpers ------------------------------------------------
+
+   pure function base(group, name, default, unit, scope, meaning, kind) result(s)
+      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
+      integer, intent(in) :: kind
+      type(param_spec_type) :: s
+      s%group = group
+      s%name = name
+      s%default = default
+      s%unit = unit
+      s%scope = scope
+      s%meaning = meaning
+      s%kind = kind
+      s%choices = ""
+      s%plausible_note = ""
+      s%keyword = ""
+      if (scope == "model" .or. scope == "profile") s%keyword = name
+   end function base
+
+   pure function text(group, name, default, unit, scope, meaning, choices) result(s)
+      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
+      character(len=*), intent(in), optional :: choices
+      type(param_spec_type) :: s
+      s = base(group, name, "'" // default // "'", unit, scope, meaning, kind_text)
+      if (present(choices)) s%choices = choices
+   end function text
+
+   pure function logical_param(group, name, default, scope, meaning) result(s)
+      character(len=*), intent(in) :: group, name, default, scope, meaning
+      type(param_spec_type) :: s
+      s = base(group, name, default, "", scope, meaning, kind_logical)
+   end function logical_param
+
+   pure function int_param(group, name, default, scope, meaning, lower, upper) result(s)
+      character(len=*), intent(in) :: group, name, default, scope, meaning
+      integer, intent(in) :: lower, upper
+      type(param_spec_type) :: s
+      s = base(group, name, default, "", scope, meaning, kind_integer)
+      s%lower = real(lower, wp)
+      s%upper = real(upper, wp)
+   end function int_param
+
+   pure function real_param(group, name, default, unit, scope, meaning, lower, upper, &
+         & lower_strict, upper_strict, plausible_lower, plausible_upper, plausible_note) &
+         & result(s)
+      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
+      real(wp), intent(in) :: lower, upper
+      logical, intent(in), optional :: lower_strict, upper_strict
+      real(wp), intent(in), optional :: plausible_lower, plausible_upper
+      character(len=*), intent(in), optional :: plausible_note
+      type(param_spec_type) :: s
+      s = base(group, name, default, unit, scope, meaning, kind_real)
+      s%lower = lower
+      s%upper = upper
+      if (present(lower_strict)) s%lower_strict = lower_strict
+      if (present(upper_strict)) s%upper_strict = upper_strict
+      if (present(plausible_lower)) s%plausible_lower = plausible_lower
+      if (present(plausible_upper)) s%plausible_upper = plausible_upper
+      if (present(plausible_note)) s%plausible_note = plausible_note
+   end function real_param
+
+   pure function list_param(group, name, default, unit, scope, meaning, lower, upper, &
+         & max_values, plausible_lower, plausible_upper, plausible_note) result(s)
+      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
+      real(wp), intent(in) :: lower, upper
+      integer, intent(in) :: max_values
+      real(wp), intent(in), optional :: plausible_lower, plausible_upper
+      character(len=*), intent(in), optional :: plausible_note
+      type(param_spec_type) :: s
+      s = real_param(group, name, default, unit, scope, meaning, lower, upper, &
+         & plausible_lower=plausible_lower, plausible_upper=plausible_upper, &
+         & plausible_note=plausible_note)
+      s%kind = kind_real_list
+      s%max_values = max_values
+   end function list_param
+
+   ! --- values ----------------------------------------------------------------
+
+   !> Id of &group name (0 when there is none).
+   pure integer function find_parameter(specs, group, name)
+      type(param_spec_type), intent(in) :: specs(:)
+      character(len=*), intent(in) :: group, name
+      integer :: k
+      find_parameter = 0
+      do k = 1, size(specs)
+         if (specs(k)%group == group .and. specs(k)%name == name) then
+            find_parameter = k
+            return
+         end if
+      end do
+   end function find_parameter
+
+   !> Every variable at its default (optional ones without a default unset).
+   pure subroutine default_parameters(specs, set, error)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(out) :: set
+      type(error_type), allocatable, intent(out) :: error
+      type(nml_token_type) :: tok(1)
+      integer :: k
+      do k = 1, size(specs)
+         if (len(specs(k)%default) == 0) then
+            if (specs(k)%kind == kind_real_list) allocate(set%v(k)%list(0))
+            cycle
+         end if
+         tok(1)%text = specs(k)%default
+         tok(1)%quoted = specs(k)%kind == kind_text
+         if (tok(1)%quoted) tok(1)%text = specs(k)%default(2:len(specs(k)%default)-1)
+         call store_scalar(specs(k), tok, 1, "", set%v(k), error)
+         if (allocated(error)) then
+            error%message = "internal: the default of &" // specs(k)%group // " " // &
+               & specs(k)%name // " is not valid: " // error%message
+            return
+         end if
+         set%v(k)%given = .false.
+      end do
+   end subroutine default_parameters
+
+   !> Apply namelist `text` (from `path`, named in messages) to `set`. Groups
+   !> not in `allowed` (space-separated; '' = any) are errors; a group or a
+   !> variable given twice in the text is an error.
+   pure subroutine apply_namelist(specs, text, path, set, error, allowed, groups_seen)
+      type(param_spec_type), intent(in) :: specs(:)
+      character(len=*), intent(in) :: text, path
+      type(param_set_type), intent(inout) :: set
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), intent(in), optional :: allowed
+      !> The groups the text holds, space-separated with blanks around.
+      character(len=:), allocatable, intent(out), optional :: groups_seen
+      type(nml_group_type), allocatable :: groups(:)
+      type(group_spec_type) :: gs(n_groups)
+      character(len=:), allocatable :: known, seen, names
+      integer :: n, g, j, id, k, first_line(n_groups)
+      logical :: assigned(n_parameters)
+      ! a list being built: element values and which were given
+      real(wp), allocatable :: elems(:, :)
+      logical, allocatable :: elem_set(:, :)
+
+      call parse_namelist(text, path, groups, n, error)
+      if (allocated(error)) return
+      gs = group_table()
+      known = " "
+      do g = 1, n_groups
+         known = known // gs(g)%name // " "
+      end do
+      if (present(allowed)) then
+         if (len_trim(allowed) > 0) known = " " // trim(adjustl(allowed)) // " "
+      end if
+      seen = " "
+      first_line = 0
+      assigned = .false.
+      allocate(elems(0, 0), elem_set(0, 0))
+      do g = 1, n
+         associate(grp => groups(g))
+            if (index(known, " " // grp%name // " ") == 0) then
+               call fatal_error(error, "&" // grp%name // ": unknown namelist group " // &
+                  & where(path, grp%line) // "(known:" // known // ")")
+               return
+            end if
+            if (index(seen, " " // grp%name // " ") > 0) then
+               do k = 1, n_groups
+                  if (gs(k)%name == grp%name) exit
+               end do
+               call fatal_error(error, "&" // grp%name // ": given twice " // &
+                  & where(path, first_line(k)) // "and " // trim(where(path, grp%line)) // &
+                  & "; merge the two groups")
+               return
+            end if
+            seen = seen // grp%name // " "
+            do k = 1, n_groups
+               if (gs(k)%name == grp%name) first_line(k) = grp%line
+            end do
+            do j = 1, grp%n_items
+               associate(item => grp%items(j))
+                  id = find_parameter(specs, grp%name, item%name)
+                  if (id == 0) then
+                     names = ""
+                     do k = 1, size(specs)
+                        if (specs(k)%group == grp%name) names = names // " " // specs(k)%name
+                     end do
+                     call fatal_error(error, "&" // grp%name // " " // item%name // " = " // &
+                        & item%written // ": unknown variable " // where(path, item%line) // &
+                        & "(known:" // names // ")")
+                     return
+                  end if
+                  call apply_item(specs(id), id, item, path, set, assigned, elems, elem_set, &
+                     & error)
+                  if (allocated(error)) return
+               end associate
+            end do
+         end associate
+      end do
+      ! lists: the elements given form the new list, without gaps
+      do id = 1, size(specs)
+         if (specs(id)%kind /= kind_real_list .or. .not. assigned(id)) cycle
+         call finish_list(specs(id), id, elems, elem_set, set%v(id), error)
+         if (allocated(error)) return
+      end do
+      if (present(groups_seen)) groups_seen = seen
+   end subroutine apply_namelist
+
+   !> One assignment into the set.
+   pure subroutine apply_item(spec, id, item, path, set, assigned, elems, elem_set, error)
+      type(param_spec_type), intent(in) :: spec
+      integer, intent(in) :: id
+      type(nml_item_type), intent(in) :: item
+      character(len=*), intent(in) :: path
+      type(param_set_type), intent(inout) :: set
+      logical, intent(inout) :: assigned(:)
+      real(wp), allocatable, intent(inout) :: elems(:, :)
+      logical, allocatable, intent(inout) :: elem_set(:, :)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: where_
+      integer :: n, k, r, pos, total
+      real(wp) :: v
+
+      where_ = where(path, item%line)
+      if (spec%kind /= kind_real_list) then
+         if (assigned(id)) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // ": given twice " // &
+               & "in the group " // trim(where_))
+            return
+         end if
+         if (item%subscript /= 0) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // "(" // &
+               & to_str(item%subscript) // ") = " // item%written // ": " // spec%name // &
+               & " is not a list " // trim(where_))
+            return
+         end if
+         total = 0
+         do k = 1, item%n_values
+            total = total + item%values(k)%repeat
+         end do
+         if (total /= 1) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // " = " // &
+               & item%written // ": one value expected, " // to_str(total) // " given " // &
+               & trim(where_))
+            return
+         end if
+         call store_scalar(spec, item%values, item%n_values, item%written, set%v(id), error)
+         if (allocated(error)) then
+            error%message = error%message // " " // trim(where_)
+            return
+         end if
+         assigned(id) = .true.
+         return
+      end if
+      ! a list: collect the elements, from the subscript on
+      if (size(elems, 2) < id) call grow_lists(elems, elem_set, n_parameters)
+      pos = max(item%subscript, 1)
+      do k = 1, item%n_values
+         associate(tok => item%values(k))
+            call list_element(spec, tok, pos, v, error)
+            if (allocated(error)) then
+               error%message = error%message // " " // trim(where_)
+               return
+            end if
+            do r = 1, tok%repeat
+               if (pos > spec%max_values) then
+                  call fatal_error(error, "&" // spec%group // " " // spec%name // ": more " // &
+                     & "than " // to_str(spec%max_values) // " values " // trim(where_))
+                  return
+               end if
+               n = size(elems, 1)
+               if (pos > n) call grow_rows(elems, elem_set, max(2 * n, pos, 8))
+               if (elem_set(pos, id)) then
+                  call fatal_error(error, "&" // spec%group // " " // spec%name // "(" // &
+                     & to_str(pos) // "): given twice " // trim(where_))
+                  return
+               end if
+               elems(pos, id) = v
+               elem_set(pos, id) = .true.
+               pos = pos + 1
+            end do
+         end associate
+      end do
+      assigned(id) = .true.
+   end subroutine apply_item
+
+   !> One element of a list, checked.
+   pure subroutine list_element(spec, tok, pos, v, error)
+      type(param_spec_type), intent(in) :: spec
+      type(nml_token_type), intent(in) :: tok
+      integer, intent(in) :: pos
+      real(wp), intent(out) :: v
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: label
+      integer :: stat
+      label = "&" // spec%group // " " // spec%name // "(" // to_str(pos) // ") = "
+      v = 0.0_wp
+      if (tok%quoted) then
+         call fatal_error(error, label // "'" // tok%text // "': cannot be read as a number")
+         return
+      end if
+      call parse_real(tok%text, v, stat)
+      if (stat /= 0) then
+         call fatal_error(error, label // tok%text // ": cannot be read as a number")
+         return
+      end if
+      call check_range(spec, v, label // to_str(v), error)
+   end subroutine list_element
+
+   !> The elements given for list `id` become its value; gaps are errors.
+   pure subroutine finish_list(spec, id, elems, elem_set, value, error)
+      type(param_spec_type), intent(in) :: spec
+      integer, intent(in) :: id
+      real(wp), intent(in) :: elems(:, :)
+      logical, intent(in) :: elem_set(:, :)
+      type(param_value_type), intent(inout) :: value
+      type(error_type), allocatable, intent(out) :: error
+      integer :: n, k
+      n = 0
+      do k = size(elem_set, 1), 1, -1
+         if (elem_set(k, id)) then
+            n = k
+            exit
+         end if
+      end do
+      do k = 1, n
+         if (.not. elem_set(k, id)) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // ": element " // &
+               & to_str(k) // " is not given (the list has gaps)")
+            return
+         end if
+      end do
+      value%list = elems(1:n, id)
+      value%given = .true.
+      value%set = n > 0
+   end subroutine finish_list
+
+   !> A scalar value from its token, checked against the declaration.
+   pure subroutine store_scalar(spec, toks, n, written, value, error)
+      type(param_spec_type), intent(in) :: spec
+      type(nml_token_type), intent(in) :: toks(:)
+      integer, intent(in) :: n
+      character(len=*), intent(in) :: written
+      type(param_value_type), intent(inout) :: value
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: label, t, shown
+      integer :: stat, i
+      real(wp) :: r
+      logical :: b
+      associate(tok => toks(1))
+         shown = written
+         if (len(shown) == 0) shown = tok%text
+         label = "&" // spec%group // " " // spec%name // " = "
+         select case (spec%kind)
+         case (kind_real, kind_real_list)
+            if (tok%quoted) then
+               call fatal_error(error, label // shown // ": cannot be read as a number")
+               return
+            end if
+            call parse_real(tok%text, r, stat)
+            if (stat /= 0) then
+               call fatal_error(error, label // shown // ": cannot be read as a number")
+               return
+            end if
+            call check_range(spec, r, label // to_str(r), error)
+            if (allocated(error)) return
+            if (spec%kind == kind_real) then
+               value%r = r
+            else
+               value%list = [r]
+            end if
+         case (kind_integer)
+            if (tok%quoted) then
+               call fatal_error(error, label // shown // ": cannot be read as a whole number")
+               return
+            end if
+            call parse_integer(tok%text, i, stat)
+            if (stat == 2) then
+               call fatal_error(error, label // shown // ": too large (must lie in [" // &
+                  & to_str(nint(spec%lower)) // ", " // int_upper(spec) // "])")
+               return
+            end if
+            if (stat /= 0) then
+               call fatal_error(error, label // shown // ": cannot be read as a whole number")
+               return
+            end if
+            if (real(i, wp) < spec%lower .or. real(i, wp) > spec%upper) then
+               if (spec%upper >= real(huge(1), wp)) then
+                  call fatal_error(error, label // to_str(i) // ": must be >= " // &
+                     & to_str(nint(spec%lower)))
+               else
+                  call fatal_error(error, label // to_str(i) // ": must lie in [" // &
+                     & to_str(nint(spec%lower)) // ", " // int_upper(spec) // "]")
+               end if
+               return
+            end if
+            value%i = i
+         case (kind_logical)
+            call parse_logical(tok, b, stat)
+            if (stat /= 0) then
+               call fatal_error(error, label // shown // ": cannot be read as a logical " // &
+                  & "(.true. or .false.)")
+               return
+            end if
+            value%b = b
+         case (kind_text)
+            if (.not. tok%quoted) then
+               call fatal_error(error, label // shown // ": text must be quoted ('" // &
+                  & tok%text // "')")
+               return
+            end if
+            t = tok%text
+            if (len(spec%choices) > 0) then
+               if (index(" " // spec%choices // " ", " " // t // " ") == 0 .or. &
+                     & len_trim(t) == 0 .or. index(t, " ") > 0) then
+                  call fatal_error(error, label // "'" // t // "': unknown (expected " // &
+                     & choice_list(spec%choices) // ")")
+                  return
+               end if
+            end if
+            value%t = t
+         end select
+      end associate
+      if (n > 1) continue
+      value%given = .true.
+      value%set = .true.
+   end subroutine store_scalar
+
+   !> Hard range check, with the message style of every range error.
+   pure subroutine check_range(spec, r, label, error)
+      type(param_spec_type), intent(in) :: spec
+      real(wp), intent(in) :: r
+      character(len=*), intent(in) :: label
+      type(error_type), allocatable, intent(out) :: error
+      logical :: ok
+      ok = .not. ieee_is_nan(r) .and. abs(r) <= huge(r)
+      if (ok) then
+         if (spec%lower_strict) then
+            ok = r > spec%lower
+         else
+            ok = r >= spec%lower
+         end if
+      end if
+      if (ok) then
+         if (spec%upper_strict) then
+            ok = r < spec%upper
+         else
+            ok = r <= spec%upper
+         end if
+      end if
+      if (ok) return
+      call fatal_error(error, label // ": " // range_text(spec))
+   end subroutine check_range
+
+   !> 'must be finite and > 0', 'must be > 0 and < 90 degree' ...
+   pure function range_text(spec) result(t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable :: t
+      character(len=:), allocatable :: unit
+      unit = ""
+      if (len(spec%unit) > 0 .and. spec%unit /= "1" .and. spec%unit /= "path") &
+         & unit = " " // spec%unit
+      t = "must be finite and " // trim(merge("> ", ">=", spec%lower_strict)) // " " // &
+         & to_str(spec%lower)
+      if (spec%upper < huge(1.0_wp)) t = t // " and " // &
+         & trim(merge("< ", "<=", spec%upper_strict)) // " " // to_str(spec%upper)
+      t = t // unit
+   end function range_text
+
+   pure function int_upper(spec) result(t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable :: t
+      if (spec%upper >= real(huge(1), wp)) then
+         t = to_str(huge(1))
+      else
+         t = to_str(nint(spec%upper))
+      end if
+   end function int_upper
+
+   !> "'a', 'b' or 'c'" from "a b c".
+   pure function choice_list(choices) result(t)
+      character(len=*), intent(in) :: choices
+      character(len=:), allocatable :: t, rest
+      integer :: k, n, total
+      total = 0
+      rest = trim(adjustl(choices))
+      do while (len(rest) > 0)
+         total = total + 1
+         k = index(rest // " ", " ")
+         rest = trim(adjustl(rest(k:)))
+      end do
+      t = ""
+      n = 0
+      rest = trim(adjustl(choices))
+      do while (len(rest) > 0)
+         n = n + 1
+         k = index(rest // " ", " ")
+         if (n > 1) t = t // trim(merge(" or", ",  ", n == total)) // " "
+         t = t // "'" // rest(1:k-1) // "'"
+         rest = trim(adjustl(rest(k:)))
+      end do
+   end function choice_list
+
+   !> .true./.false./t/f/true/false/.t./.f. in any case.
+   pure subroutine parse_logical(tok, b, stat)
+      type(nml_token_type), intent(in) :: tok
+      logical, intent(out) :: b
+      integer, intent(out) :: stat
+      character(len=:), allocatable :: t
+      b = .false.
+      stat = 1
+      if (tok%quoted) return
+      t = to_lower(tok%text)
+      select case (t)
+      case (".true.", "true", "t", ".t.", ".t")
+         b = .true.
+         stat = 0
+      case (".false.", "false", "f", ".f.", ".f")
+         b = .false.
+         stat = 0
+      end select
+   end subroutine parse_logical
+
+   pure subroutine grow_lists(elems, elem_set, n)
+      real(wp), allocatable, intent(inout) :: elems(:, :)
+      logical, allocatable, intent(inout) :: elem_set(:, :)
+      integer, intent(in) :: n
+      real(wp), allocatable :: e(:, :)
+      logical, allocatable :: s(:, :)
+      allocate(e(size(elems, 1), n), s(size(elems, 1), n))
+      e = 0.0_wp
+      s = .false.
+      e(:, 1:size(elems, 2)) = elems
+      s(:, 1:size(elems, 2)) = elem_set
+      call move_alloc(e, elems)
+      call move_alloc(s, elem_set)
+   end subroutine grow_lists
+
+   pure subroutine grow_rows(elems, elem_set, n)
+      real(wp), allocatable, intent(inout) :: elems(:, :)
+      logical, allocatable, intent(inout) :: elem_set(:, :)
+      integer, intent(in) :: n
+      real(wp), allocatable :: e(:, :)
+      logical, allocatable :: s(:, :)
+      allocate(e(n, size(elems, 2)), s(n, size(elems, 2)))
+      e = 0.0_wp
+      s = .false.
+      e(1:size(elems, 1), :) = elems
+      s(1:size(elems, 1), :) = elem_set
+      call move_alloc(e, elems)
+      call move_alloc(s, elem_set)
+   end subroutine grow_rows
+
+   !> "at path:line " (or "in path " without a line) for messages; nothing
+   !> for keywords (no file).
+   pure function where(path, line) result(t)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: line
+      character(len=:), allocatable :: t
+      if (len(path) == 0) then
+         t = ""
+      else if (line > 0) then
+         t = "at " // path // ":" // to_str(line) // " "
+      else
+         t = "in " // path // " "
+      end if
+   end function where
+
+   ! --- the model -------------------------------------------------------------
+
+   !> The physical and numerical parameters of a set.
+   pure function model_from_parameters(set) result(m)
+      type(param_set_type), intent(in) :: set
+      type(model_type) :: m
+      m%mu_loc = set%v(p_mu_loc)%r
+      m%length = set%v(p_length)%r
+      m%width = set%v(p_width)%r
+      m%thickness = set%v(p_thickness)%r
+      m%load = set%v(p_load)%r
+      m%shape = set%v(p_shape)%t
+      m%radius = set%v(p_radius)%r
+      m%stiffness = set%v(p_stiffness)%r
+      m%viscosity = set%v(p_viscosity)%r
+      m%depth = set%v(p_depth)%r
+      m%water_viscosity = set%v(p_water_viscosity)%r
+      m%alpha = set%v(p_alpha)%r
+      m%beta = set%v(p_beta)%r
+      m%theta_max_deg = set%v(p_theta_max_deg)%r
+      m%substeps = set%v(p_substeps)%i
+      m%elements_per_sample = set%v(p_elements_per_sample)%i
+      m%position_stride = set%v(p_position_stride)%i
+      m%wet_tolerance = set%v(p_wet_tolerance)%r
+   end function model_from_parameters
 
    !> Integer code of a pad shape name; -1 when unknown.
    pure function shape_code(name) result(code)
@@ -71,77 +916,136 @@ contains
       end select
    end function shape_code
 
-   !> Check every parameter's range; the first violation is reported.
+   !> Checks that involve several parameters (each value's own range is
+   !> checked when it is read).
    pure subroutine validate_model(m, error)
       type(model_type), intent(in) :: m
       type(error_type), allocatable, intent(out) :: error
-
-      call nonneg("surface", "mu_loc", m%mu_loc, error); if (allocated(error)) return
-      call positive("pad", "length", m%length, error); if (allocated(error)) return
-      call positive("pad", "width", m%width, error); if (allocated(error)) return
-      call positive("pad", "thickness", m%thickness, error); if (allocated(error)) return
-      call positive("pad", "load", m%load, error); if (allocated(error)) return
+      if (.not. allocated(m%shape)) then
+         call fatal_error(error, "internal: a model_type not made by model_from_parameters")
+         return
+      end if
       if (shape_code(m%shape) < 0) then
-         call fatal_error(error, "&pad shape = '" // trim(m%shape) // &
-            & "': unknown (expected 'flat' or 'rounded')")
+         call fatal_error(error, "&pad shape = '" // m%shape // "': unknown (expected " // &
+            & "'flat' or 'rounded')")
          return
       end if
       if (shape_code(m%shape) == shape_rounded) then
-         call positive("pad", "radius", m%radius, error); if (allocated(error)) return
          if (.not. (m%radius > 0.5_wp * m%length)) then
             call fatal_error(error, "&pad radius = " // to_str(m%radius) // &
                & ": must exceed half the pad length (" // to_str(0.5_wp*m%length) // " m)")
             return
          end if
       end if
-      call positive("rubber", "stiffness", m%stiffness, error); if (allocated(error)) return
-      call nonneg("rubber", "viscosity", m%viscosity, error); if (allocated(error)) return
-      call nonneg("water", "depth", m%depth, error); if (allocated(error)) return
-      call positive("water", "viscosity", m%water_viscosity, error); if (allocated(error)) return
-      call nonneg("water", "alpha", m%alpha, error); if (allocated(error)) return
-      call nonneg("water", "beta", m%beta, error); if (allocated(error)) return
-      if (.not. (m%theta_max_deg > 0.0_wp .and. m%theta_max_deg < 90.0_wp)) then
-         call fatal_error(error, "&numerics theta_max_deg = " // to_str(m%theta_max_deg) // &
-            & ": must lie in (0, 90) degrees")
-         return
-      end if
-      call at_least_one("substeps", m%substeps, error); if (allocated(error)) return
-      call at_least_one("elements_per_sample", m%elements_per_sample, error)
-      if (allocated(error)) return
-      call at_least_one("position_stride", m%position_stride, error); if (allocated(error)) return
-      if (.not. (m%wet_tolerance >= epsilon(1.0_wp) .and. m%wet_tolerance < 1.0_wp)) then
-         call fatal_error(error, "&numerics wet_tolerance = " // to_str(m%wet_tolerance) // &
-            & ": must lie in [" // to_str(epsilon(1.0_wp)) // ", 1)")
-         return
-      end if
    end subroutine validate_model
 
-   !> Finite and > 0 (NaN fails every comparison, so `.not. (x > 0)` catches it).
-   pure subroutine positive(group, name, x, error)
-      character(len=*), intent(in) :: group, name
-      real(wp), intent(in) :: x
-      type(error_type), allocatable, intent(out) :: error
-      if (.not. (x > 0.0_wp .and. x <= huge(x))) &
-         & call fatal_error(error, "&" // group // " " // name // " = " // to_str(x) // &
-         & ": must be finite and > 0")
-   end subroutine positive
+   ! --- echo and plausibility -------------------------------------------------
 
-   !> Finite and >= 0.
-   pure subroutine nonneg(group, name, x, error)
-      character(len=*), intent(in) :: group, name
-      real(wp), intent(in) :: x
-      type(error_type), allocatable, intent(out) :: error
-      if (.not. (x >= 0.0_wp .and. x <= huge(x))) &
-         & call fatal_error(error, "&" // group // " " // name // " = " // to_str(x) // &
-         & ": must be finite and >= 0")
-   end subroutine nonneg
+   !> A value as namelist text (shortest round-trip numbers).
+   pure function format_value(spec, value) result(t)
+      type(param_spec_type), intent(in) :: spec
+      type(param_value_type), intent(in) :: value
+      character(len=:), allocatable :: t
+      integer :: k
+      select case (spec%kind)
+      case (kind_real)
+         t = to_str(value%r)
+      case (kind_integer)
+         t = to_str(value%i)
+      case (kind_logical)
+         t = to_str(value%b)
+      case (kind_text)
+         t = "'" // doubled_quotes(value%t) // "'"
+      case default
+         t = ""
+         do k = 1, size(value%list)
+            if (k > 1) t = t // ", "
+            t = t // to_str(value%list(k))
+         end do
+      end select
+   end function format_value
 
-   pure subroutine at_least_one(name, i, error)
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: i
-      type(error_type), allocatable, intent(out) :: error
-      if (i < 1) call fatal_error(error, "&numerics " // name // " = " // to_str(i) // &
-         & ": must be >= 1")
-   end subroutine at_least_one
+   !> The values used, as a namelist that reproduces them (defaults
+   !> included); optional variables not set are left out. `groups`
+   !> (space-separated) selects the groups; default all.
+   pure function parameters_namelist(specs, set, groups) result(t)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in), optional :: groups
+      character(len=:), allocatable :: t
+      type(group_spec_type) :: gs(n_groups)
+      integer :: g, k
+      logical :: any_value
+      character(len=:), allocatable :: body
+      gs = group_table()
+      t = ""
+      do g = 1, n_groups
+         if (present(groups)) then
+            if (index(" " // groups // " ", " " // gs(g)%name // " ") == 0) cycle
+         end if
+         body = ""
+         any_value = .false.
+         do k = 1, size(specs)
+            if (specs(k)%group /= gs(g)%name) cycle
+            if (.not. set%v(k)%set) cycle
+            body = body // "  " // specs(k)%name // " = " // format_value(specs(k), set%v(k)) // &
+               & achar(10)
+            any_value = .true.
+         end do
+         if (any_value) t = t // "&" // gs(g)%name // achar(10) // body // "/" // achar(10)
+      end do
+   end function parameters_namelist
+
+   pure function doubled_quotes(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: t
+      integer :: k
+      t = ""
+      do k = 1, len(s)
+         t = t // s(k:k)
+         if (s(k:k) == "'") t = t // "'"
+      end do
+   end function doubled_quotes
+
+   !> Warnings for values outside what a road, its water or a friction
+   !> tester can be (the declarations' plausible ranges).
+   pure subroutine plausibility_warnings(specs, set, warnings)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(in) :: set
+      character(len=:), allocatable, intent(inout) :: warnings
+      integer :: k, j
+      do k = 1, size(specs)
+         if (.not. set%v(k)%set) cycle
+         select case (specs(k)%kind)
+         case (kind_real)
+            if (.not. plausible(specs(k), set%v(k)%r)) &
+               & call add_warning(warnings, implausible(specs(k), set%v(k)%r, ""))
+         case (kind_real_list)
+            do j = 1, size(set%v(k)%list)
+               if (.not. plausible(specs(k), set%v(k)%list(j))) call add_warning(warnings, &
+                  & implausible(specs(k), set%v(k)%list(j), "(" // to_str(j) // ")"))
+            end do
+         end select
+      end do
+   end subroutine plausibility_warnings
+
+   pure logical function plausible(spec, r)
+      type(param_spec_type), intent(in) :: spec
+      real(wp), intent(in) :: r
+      plausible = r >= spec%plausible_lower .and. r <= spec%plausible_upper
+   end function plausible
+
+   !> The warning for value r (element `sub`) outside the plausible range.
+   pure function implausible(spec, r, sub) result(line)
+      type(param_spec_type), intent(in) :: spec
+      real(wp), intent(in) :: r
+      character(len=*), intent(in) :: sub
+      character(len=:), allocatable :: line, unit
+      unit = ""
+      if (len(spec%unit) > 0 .and. spec%unit /= "1") unit = " " // spec%unit
+      line = "&" // spec%group // " " // spec%name // sub // " = " // to_str(r) // unit // &
+         & ": outside the plausible range [" // to_str(spec%plausible_lower) // ", " // &
+         & to_str(spec%plausible_upper) // "]" // unit // " (" // spec%plausible_note // ")"
+   end function implausible
 
 end module pavefric_model

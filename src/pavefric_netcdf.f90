@@ -7,31 +7,19 @@ module pavefric_netcdf
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
    use pavefric_error, only: error_type, fatal_error
-   use pavefric_simulate, only: sim_result_type, effects_text
-   use pavefric_texture, only: texture_type
-   use pavefric_preprocess, only: preprocess_report_type
+   use pavefric_simulate, only: sim_result_type
+   use pavefric_outputs, only: output_metadata_type, output_var_type, output_table, &
+      & output_present, output_values, n_outputs, out_double, out_int64, out_int, out_flag, &
+      & dim_speed
+   use pavefric_model, only: param_spec_type, parameter_table, kind_real, &
+      & kind_integer, kind_logical, kind_text, kind_real_list
    use pavefric_fsys, only: rename_file, remove_file, process_id
    use pavefric_format, only: to_str
    implicit none
    private
 
-   public :: write_results, output_metadata_type, temporary_name, commit_temporary
+   public :: write_results, temporary_name, commit_temporary
    public :: nc_writer_type
-
-   !> Text that describes where the results came from.
-   type :: output_metadata_type
-      character(len=:), allocatable :: title, history, input_namelist, profile_file
-      real(wp) :: dx = 0.0_wp
-      integer :: profile_points = 0
-      logical :: closed = .true.
-      !> Texture metrics of the profile, when they could be computed.
-      logical :: has_texture = .false.
-      type(texture_type) :: texture
-      character(len=:), allocatable :: texture_note
-      !> What preprocessing did to the profile.
-      type(preprocess_report_type) :: preprocess
-      character(len=:), allocatable :: preprocessing
-   end type output_metadata_type
 
    !> A NetCDF file being written and the first error met: every call goes
    !> through `check`, which adds context to nf90_strerror; after an error the
@@ -43,8 +31,8 @@ module pavefric_netcdf
    contains
       procedure :: check => writer_check
       procedure :: def => writer_def
-      procedure, private :: gatt_text, gatt_int
-      generic :: gatt => gatt_text, gatt_int
+      procedure, private :: gatt_text, gatt_int, gatt_real
+      generic :: gatt => gatt_text, gatt_int, gatt_real
       procedure :: close => writer_close
    end type nc_writer_type
 
@@ -85,6 +73,13 @@ contains
       integer, intent(in) :: value
       call w%check(nf90_put_att(w%ncid, nf90_global, name, value), "attribute " // name)
    end subroutine gatt_int
+
+   subroutine gatt_real(w, name, value)
+      class(nc_writer_type), intent(inout) :: w
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: value
+      call w%check(nf90_put_att(w%ncid, nf90_global, name, value), "attribute " // name)
+   end subroutine gatt_real
 
    !> Close the file; `error` receives the first error met, if any.
    subroutine writer_close(w, error)
@@ -134,18 +129,27 @@ contains
       end if
    end subroutine commit_temporary
 
+   !> The scene file: dimension speed_kmh (a coordinate in km/h, so that
+   !> ds.sel(speed_kmh=60) works) with the speed in m/s as an auxiliary
+   !> coordinate; every result variable of pavefric_outputs that the run
+   !> produced; texture metrics; the parameters used (defaults included).
    subroutine write_file(path, res, meta, error)
       character(len=*), intent(in) :: path
       type(sim_result_type), intent(in) :: res
       type(output_metadata_type), intent(in) :: meta
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      integer :: d_speed, d_pos, stat
-      integer :: v_speed, v_kmh, v_mu, v_ncl, v_hyd, v_wet, v_res, v_mwh, v_comp, v_nbe
-      integer :: v_mem, v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce, v_mpd, v_rh, v_rs
+      type(output_var_type) :: table(n_outputs)
+      integer :: d_speed, d_pos, stat, k, ns, np
+      integer :: v_speed, v_kmh, v_pos, v_mpd, v_rh, v_rs, ids(n_outputs)
+      real(wp), allocatable :: values(:)
       logical :: series
 
+      table = output_table()
       series = allocated(res%mu_inst)
+      ns = size(res%mu)
+      np = 0
+      if (series) np = res%n_positions
       w%path = path
       stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
       if (stat /= nf90_noerr) then
@@ -154,35 +158,30 @@ contains
          return
       end if
 
-      call w%check(nf90_def_dim(w%ncid, "speed", size(res%speed), d_speed), "dimension speed")
+      call w%check(nf90_def_dim(w%ncid, "speed_kmh", ns, d_speed), "dimension speed_kmh")
+      if (series) call w%check(nf90_def_dim(w%ncid, "position", np, d_pos), "dimension position")
       if (allocated(w%error)) goto 99
-      call w%def("speed", nf90_double, [d_speed], "m s-1", "sliding speed of the pad", v_speed)
-      if (allocated(w%error)) goto 99
-      call w%check(nf90_put_att(w%ncid, v_speed, "axis", "X"), "speed axis")
       call w%def("speed_kmh", nf90_double, [d_speed], "km h-1", "sliding speed of the pad", &
          & v_kmh)
-      call w%def("mu", nf90_double, [d_speed], "1", &
-         & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
-      call w%def("n_clamped", nf90_int64, [d_speed], "1", &
-         & "contacts on facets clamped at theta_max, summed over averaged positions", v_ncl)
-      call w%def("hydroplaning_fraction", nf90_double, [d_speed], "1", &
-         & "share of averaged positions where no element touched the profile", v_hyd)
-      call w%def("wet_fraction", nf90_double, [d_speed], "1", &
-         & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
-      call w%def("max_balance_residual", nf90_double, [d_speed], "1", &
-         & "largest |sum F + Wh - W| / W over averaged positions", v_res)
-      call w%def("mean_hydro_load", nf90_double, [d_speed], "N", &
-         & "load carried by the hydrodynamic bearing, averaged over positions", v_mwh)
-      call w%def("max_compression", nf90_double, [d_speed], "m", &
-         & "largest compression of a rubber element (compare with the pad thickness)", v_comp)
-      call w%def("bearing_evaluations", nf90_int64, [d_speed], "1", &
-         & "evaluations of the bearing load formula (0: the bearing did not run)", v_nbe)
-      call w%def("memory_updates", nf90_int64, [d_speed], "1", &
-         & "element-steps that updated viscous memory (0: no viscous memory kept)", v_mem)
-      call w%def("viscous_memory_ran", nf90_byte, [d_speed], "", &
-         & "whether the rubber elements carried viscous memory", v_vis)
-      call w%def("bearing_ran", nf90_byte, [d_speed], "", &
-         & "whether the hydrodynamic bearing took part in the load balance", v_bea)
+      call w%def("speed", nf90_double, [d_speed], "m s-1", "sliding speed of the pad", v_speed)
+      if (series) call w%def("position", nf90_double, [d_pos], "m", &
+         & "distance slid from the first averaged position", v_pos)
+      ids = -1
+      do k = 1, n_outputs
+         if (.not. output_present(res, k)) cycle
+         associate(v => table(k))
+            if (v%dims == dim_speed) then
+               call w%def(v%name, xtype(v%type), [d_speed], v%units, v%long_name, ids(k))
+            else
+               call w%def(v%name, xtype(v%type), [d_pos, d_speed], v%units, v%long_name, ids(k))
+            end if
+            call w%check(nf90_put_att(w%ncid, ids(k), "coordinates", "speed"), v%name)
+            if (v%type == out_flag) then
+               call w%check(nf90_put_att(w%ncid, ids(k), "flag_values", [0_1, 1_1]), v%name)
+               call w%check(nf90_put_att(w%ncid, ids(k), "flag_meanings", "no yes"), v%name)
+            end if
+         end associate
+      end do
       if (meta%has_texture) then
          call w%def("mpd", nf90_double, [integer ::], "m", &
             & "mean profile depth (ISO 13473-1 / ASTM E1845, 100 mm segments, slope " // &
@@ -195,34 +194,23 @@ contains
             & "RMS slope between neighbouring samples at the profile spacing", v_rs)
       end if
       if (allocated(w%error)) goto 99
-      call flags(v_vis)
-      call flags(v_bea)
-      if (series) then
-         call w%check(nf90_def_dim(w%ncid, "position", res%n_positions, d_pos), "dimension position")
-         call w%def("position", nf90_double, [d_pos], "m", &
-            & "distance slid from the first averaged position", v_pos)
-         call w%def("mu_inst", nf90_double, [d_pos, d_speed], "1", &
-            & "instantaneous friction coefficient (Kane et al. 2017, Eq. 11)", v_mui)
-         call w%def("hydro_load", nf90_double, [d_pos, d_speed], "N", &
-            & "load carried by the hydrodynamic bearing (Eq. 15)", v_hl)
-         call w%def("penetration", nf90_double, [d_pos, d_speed], "m", &
-            & "global penetration delta of the pad (Eq. 4)", v_pen)
-         call w%def("contact_elements", nf90_int, [d_pos, d_speed], "1", &
-            & "pad elements in contact with the profile", v_ce)
-      end if
-      if (allocated(w%error)) goto 99
 
       call w%gatt("Conventions", "CF-1.10")
       call w%gatt("title", meta%title)
+      call w%gatt("institution", "pavefric (open-source pavement friction model)")
       call w%gatt("source", "pavefric " // pavefric_version)
       call w%gatt("pavefric_version", pavefric_version)
       call w%gatt("references", "Kane, Do, Cerezo, Rado & Khelifi (2017), Contribution to " // &
          & "pavement friction modelling: an introduction of the wetting effect, " // &
          & "Int. J. Pavement Eng., doi:10.1080/10298436.2017.1369776")
       call w%gatt("history", meta%history)
-      call w%gatt("effects", effects_text(res))
+      call w%gatt("comment", "Friction of a Dynamic Friction Tester pad on a texture profile; " // &
+         & "parameters in the attribute 'parameters' (a namelist) and param_<group>_<name>")
+      call w%gatt("effects", res%effects)
+      call w%gatt("warnings", meta%warnings)
       call w%gatt("profile_file", meta%profile_file)
       call w%gatt("input_namelist", meta%input_namelist)
+      call put_parameters(w, meta)
       if (allocated(meta%texture_note)) call w%gatt("texture_note", meta%texture_note)
       if (allocated(meta%preprocessing)) then
          call w%gatt("preprocessing", meta%preprocessing)
@@ -235,56 +223,97 @@ contains
          call w%gatt("preprocess_points_out", meta%preprocess%points_out)
          call w%gatt("preprocess_resampled", merge(1, 0, meta%preprocess%resampled))
          call w%gatt("preprocess_filtered", merge(1, 0, meta%preprocess%filtered))
-         call w%check(nf90_put_att(w%ncid, nf90_global, "preprocess_dx_in", meta%preprocess%dx_in), &
-            & "att")
+         call w%gatt("preprocess_dx_in", meta%preprocess%dx_in)
       end if
-      call w%check(nf90_put_att(w%ncid, nf90_global, "profile_points", meta%profile_points), "att")
-      call w%check(nf90_put_att(w%ncid, nf90_global, "profile_dx", meta%dx), "att")
-      call w%check(nf90_put_att(w%ncid, nf90_global, "profile_closed", merge(1, 0, meta%closed)), &
-         & "att")
-      call w%check(nf90_put_att(w%ncid, nf90_global, "pad_elements", res%n_elements), "att")
-      call w%check(nf90_put_att(w%ncid, nf90_global, "averaged_positions", res%n_positions), "att")
-      call w%check(nf90_put_att(w%ncid, nf90_global, "spinup_positions", res%n_spinup), "att")
+      call w%gatt("profile_points", meta%profile_points)
+      call w%gatt("profile_dx", meta%dx)
+      call w%gatt("profile_closed", merge(1, 0, meta%closed))
+      call w%gatt("pad_elements", res%n_elements)
+      call w%gatt("averaged_positions", res%n_positions)
+      call w%gatt("spinup_positions", res%n_spinup)
       if (allocated(w%error)) goto 99
       call w%check(nf90_enddef(w%ncid), "end of definitions")
       if (allocated(w%error)) goto 99
 
-      call w%check(nf90_put_var(w%ncid, v_speed, res%speed), "speed")
       call w%check(nf90_put_var(w%ncid, v_kmh, res%speed_kmh), "speed_kmh")
-      call w%check(nf90_put_var(w%ncid, v_mu, res%mu), "mu")
-      call w%check(nf90_put_var(w%ncid, v_ncl, res%n_clamped), "n_clamped")
-      call w%check(nf90_put_var(w%ncid, v_hyd, res%hydroplaning_fraction), "hydroplaning_fraction")
-      call w%check(nf90_put_var(w%ncid, v_wet, res%wet_fraction), "wet_fraction")
-      call w%check(nf90_put_var(w%ncid, v_res, res%max_balance_residual), "max_balance_residual")
-      call w%check(nf90_put_var(w%ncid, v_mwh, res%mean_hydro_load), "mean_hydro_load")
-      call w%check(nf90_put_var(w%ncid, v_comp, res%max_compression), "max_compression")
-      call w%check(nf90_put_var(w%ncid, v_nbe, res%bearing_evaluations), "bearing_evaluations")
-      call w%check(nf90_put_var(w%ncid, v_mem, res%memory_updates), "memory_updates")
-      call w%check(nf90_put_var(w%ncid, v_vis, merge(1, 0, res%viscous_memory_ran)), "flags")
-      call w%check(nf90_put_var(w%ncid, v_bea, merge(1, 0, res%bearing_ran)), "flags")
+      call w%check(nf90_put_var(w%ncid, v_speed, res%speed), "speed")
+      if (series) call w%check(nf90_put_var(w%ncid, v_pos, res%position), "position")
+      allocate(values(max(ns, ns * np)))
+      do k = 1, n_outputs
+         if (ids(k) < 0) cycle
+         call output_values(res, k, values)
+         associate(v => table(k))
+            select case (v%type)
+            case (out_double)
+               if (v%dims == dim_speed) then
+                  call w%check(nf90_put_var(w%ncid, ids(k), values(1:ns)), v%name)
+               else
+                  call w%check(nf90_put_var(w%ncid, ids(k), reshape(values(1:np*ns), [np, ns])), &
+                     & v%name)
+               end if
+            case (out_int64)
+               call w%check(nf90_put_var(w%ncid, ids(k), nint(values(1:ns), i8)), v%name)
+            case (out_int)
+               call w%check(nf90_put_var(w%ncid, ids(k), reshape(nint(values(1:np*ns)), &
+                  & [np, ns])), v%name)
+            case (out_flag)
+               call w%check(nf90_put_var(w%ncid, ids(k), nint(values(1:ns))), v%name)
+            end select
+         end associate
+      end do
       if (meta%has_texture) then
          call w%check(nf90_put_var(w%ncid, v_mpd, meta%texture%mpd), "mpd")
          call w%check(nf90_put_var(w%ncid, v_rh, meta%texture%rms_height), "rms_height")
          call w%check(nf90_put_var(w%ncid, v_rs, meta%texture%rms_slope), "rms_slope")
       end if
-      if (series) then
-         call w%check(nf90_put_var(w%ncid, v_pos, res%position), "position")
-         call w%check(nf90_put_var(w%ncid, v_mui, res%mu_inst), "mu_inst")
-         call w%check(nf90_put_var(w%ncid, v_hl, res%hydro_load), "hydro_load")
-         call w%check(nf90_put_var(w%ncid, v_pen, res%penetration), "penetration")
-         call w%check(nf90_put_var(w%ncid, v_ce, res%contact_elements), "contact_elements")
-      end if
 99    continue
       call w%close(error)
-
-   contains
-
-      subroutine flags(varid)
-         integer, intent(in) :: varid
-         call w%check(nf90_put_att(w%ncid, varid, "flag_values", [0_1, 1_1]), "flag_values")
-         call w%check(nf90_put_att(w%ncid, varid, "flag_meanings", "no yes"), "flag_meanings")
-      end subroutine flags
-
    end subroutine write_file
+
+   !> The NetCDF type of an output type.
+   pure integer function xtype(type)
+      integer, intent(in) :: type
+      select case (type)
+      case (out_int64)
+         xtype = nf90_int64
+      case (out_int)
+         xtype = nf90_int
+      case (out_flag)
+         xtype = nf90_byte
+      case default
+         xtype = nf90_double
+      end select
+   end function xtype
+
+   !> The parameters used: the namelist text and one typed attribute each
+   !> (param_<group>_<name>), defaults included; optional ones not set are left out.
+   subroutine put_parameters(w, meta)
+      type(nc_writer_type), intent(inout) :: w
+      type(output_metadata_type), intent(in) :: meta
+      type(param_spec_type), allocatable :: specs(:)
+      character(len=:), allocatable :: name
+      integer :: k
+      if (.not. meta%has_parameters) return
+      call w%gatt("parameters", meta%parameters_text)
+      specs = parameter_table()
+      do k = 1, size(specs)
+         associate(v => meta%parameters%v(k))
+            if (.not. v%set) cycle
+            name = "param_" // specs(k)%group // "_" // specs(k)%name
+            select case (specs(k)%kind)
+            case (kind_real)
+               call w%gatt(name, v%r)
+            case (kind_integer)
+               call w%gatt(name, v%i)
+            case (kind_logical)
+               call w%gatt(name, merge(1, 0, v%b))
+            case (kind_text)
+               call w%gatt(name, v%t)
+            case (kind_real_list)
+               call w%check(nf90_put_att(w%ncid, nf90_global, name, v%list), name)
+            end select
+         end associate
+      end do
+   end subroutine put_parameters
 
 end module pavefric_netcdf

@@ -16,8 +16,10 @@ module pavefric_numbers
 
    public :: parse_real, parse_integer, is_real_syntax, is_nan_word, is_inf_word
 
+   ! strtod reads its argument and sets only errno: declared pure so that
+   ! pure readers can use it.
    interface
-      function c_strtod(str, endptr) bind(C, name="strtod") result(v)
+      pure function c_strtod(str, endptr) bind(C, name="strtod") result(v)
          import :: c_char, c_double, c_ptr
          character(kind=c_char), intent(in) :: str(*)
          type(c_ptr), value :: endptr
@@ -77,7 +79,7 @@ contains
    !> A real from `tok` (surrounding blanks allowed). stat = 0 on success, 1
    !> when the token is not a number by the grammar. Overflow gives
    !> +-Infinity with stat = 0: callers that need finite values check.
-   subroutine parse_real(tok, value, stat)
+   pure subroutine parse_real(tok, value, stat)
       character(len=*), intent(in) :: tok
       real(wp), intent(out) :: value
       integer, intent(out) :: stat

@@ -1,39 +1,164 @@
-!> Kelvin-Voigt rubber elements, backward Euler in time (paper Eqs. 3, 8).
+!> Rubber components: how one pad element's pressure answers its
+!> compression over a time step (paper Eqs. 3, 8).
+!>
+!> Any linear viscoelastic element integrated implicitly over a step gives,
+!> at the step's end, a pressure linear in the new compression u:
+!>     p = k_eff (u - u_free),
+!> where k_eff is the same for every element and u_free, the compression at
+!> which the element would carry no pressure, depends on the element's own
+!> history (its internal state). The element touches the road iff its
+!> geometric compression g exceeds u_free; then u = g, else it recovers
+!> freely to u = u_free. The driver and the load balance see only this
+!> form (`rubber_model`), so Kelvin-Voigt, a generalised Maxwell element or
+!> any other linear model sit side by side behind one interface.
 module pavefric_rubber
    use pavefric_kinds, only: wp
    implicit none
    private
 
-   public :: kv_step_type, kv_step
+   public :: rubber_model, rubber_step_type, kelvin_voigt_rubber, kv_step
 
-   !> Coefficients of one time step of length dt = advance/V.
-   type :: kv_step_type
-      !> Effective stiffness K + C/dt (N m-3): the slope of p(u) over a step.
+   !> What one speed's time step makes of the rubber: the same for every element.
+   type :: rubber_step_type
+      !> Slope of p(u) over a step (N m-3), the effective stiffness.
       real(wp) :: k_eff = 0.0_wp
-      !> Relaxation factor: free compression u_free = relax * u_prev (Eq. 8).
-      real(wp) :: relax = 0.0_wp
-      !> True when the elements carry viscous memory (C > 0 and V > 0).
+      !> Whether the elements carry memory from step to step.
       logical :: memory = .false.
-   end type kv_step_type
+      !> Coefficients of the model's state update (meaning is the model's).
+      real(wp), allocatable :: coef(:)
+   end type rubber_step_type
+
+   !> A rubber element model.
+   type, abstract :: rubber_model
+   contains
+      !> Internal state values per element (>= 1; the first is the compression).
+      procedure(state_size_interface), deferred :: state_size
+      !> Step coefficients at speed V when the pad advances `advance` per step.
+      procedure(prepare_interface), deferred :: prepare
+      !> u_free of every element from its state (only called with memory).
+      procedure(free_interface), deferred :: free_compression
+      !> New state after a step whose compression ends at u_free + push.
+      procedure(update_interface), deferred :: update
+      !> The effect the element's memory stands for, for the output ('viscous_memory').
+      procedure(name_interface), deferred :: memory_effect
+   end type rubber_model
+
+   abstract interface
+      pure integer function state_size_interface(self)
+         import :: rubber_model
+         class(rubber_model), intent(in) :: self
+      end function state_size_interface
+
+      pure subroutine prepare_interface(self, speed, advance, step)
+         import :: rubber_model, rubber_step_type, wp
+         class(rubber_model), intent(in) :: self
+         real(wp), intent(in) :: speed, advance
+         type(rubber_step_type), intent(out) :: step
+      end subroutine prepare_interface
+
+      pure subroutine free_interface(self, step, state, u_free)
+         import :: rubber_model, rubber_step_type, wp
+         class(rubber_model), intent(in) :: self
+         type(rubber_step_type), intent(in) :: step
+         !> (state_size, elements)
+         real(wp), intent(in) :: state(:, :)
+         real(wp), intent(out) :: u_free(:)
+      end subroutine free_interface
+
+      pure subroutine update_interface(self, step, state, u_free, push)
+         import :: rubber_model, rubber_step_type, wp
+         class(rubber_model), intent(in) :: self
+         type(rubber_step_type), intent(in) :: step
+         real(wp), intent(inout) :: state(:, :)
+         !> The free compression of the step and how far beyond it each
+         !> element was pushed (0 out of contact): u = u_free + push.
+         real(wp), intent(in) :: u_free(:), push(:)
+      end subroutine update_interface
+
+      pure function name_interface(self) result(name)
+         import :: rubber_model
+         class(rubber_model), intent(in) :: self
+         character(len=:), allocatable :: name
+      end function name_interface
+   end interface
+
+   !> The paper's Kelvin-Voigt element p = K u + C du/dt, backward Euler.
+   type, extends(rubber_model) :: kelvin_voigt_rubber
+      !> Spring modulus K (N m-3) and dashpot viscosity C (N s m-3), per unit length.
+      real(wp) :: stiffness = 0.0_wp, viscosity = 0.0_wp
+   contains
+      procedure :: state_size => kv_state_size
+      procedure :: prepare => kv_prepare
+      procedure :: free_compression => kv_free
+      procedure :: update => kv_update
+      procedure :: memory_effect => kv_memory_effect
+   end type kelvin_voigt_rubber
 
 contains
 
-   !> Step coefficients for stiffness K, viscosity C, speed V and the distance
-   !> the pad advances in one step. Backward Euler of K u + C du/dt = 0 gives
-   !> u_free = u_prev / (1 + K dt/C) = u_prev C V / (C V + K advance), which is
-   !> 0 for C = 0 or V = 0 (no division by zero in either limit).
+   pure integer function kv_state_size(self)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      kv_state_size = 1
+   end function kv_state_size
+
+   !> Backward Euler of K u + C du/dt = p over dt = advance / V:
+   !> k_eff = K + C/dt, and with p = 0 (Eq. 8) u_free = u_prev / (1 + K dt/C)
+   !> = u_prev C V / (C V + K advance), 0 for C = 0 or V = 0 (no division by
+   !> zero in either limit). coef(1) is that relaxation factor.
+   pure subroutine kv_prepare(self, speed, advance, step)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      real(wp), intent(in) :: speed, advance
+      type(rubber_step_type), intent(out) :: step
+      real(wp) :: cv
+      cv = self%viscosity * speed
+      step%k_eff = self%stiffness + cv / advance            ! K + C/dt
+      step%memory = cv > 0.0_wp
+      allocate(step%coef(1))
+      if (step%memory) then
+         step%coef(1) = cv / (cv + self%stiffness * advance)
+      else
+         step%coef(1) = 0.0_wp
+      end if
+   end subroutine kv_prepare
+
+   pure subroutine kv_free(self, step, state, u_free)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in) :: state(:, :)
+      real(wp), intent(out) :: u_free(:)
+      integer :: i
+      do i = 1, size(u_free)
+         u_free(i) = step%coef(1) * state(1, i)
+      end do
+   end subroutine kv_free
+
+   !> The compression is the whole state: u = max(g, u_free) = u_free + push.
+   pure subroutine kv_update(self, step, state, u_free, push)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+      real(wp), intent(in) :: u_free(:), push(:)
+      integer :: i
+      do i = 1, size(u_free)
+         state(1, i) = u_free(i) + push(i)
+      end do
+   end subroutine kv_update
+
+   pure function kv_memory_effect(self) result(name)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = "viscous_memory"
+   end function kv_memory_effect
+
+   !> Kelvin-Voigt step coefficients (kept for callers that need only the
+   !> stiffness of a step, e.g. the bearing's tests).
    pure function kv_step(stiffness, viscosity, speed, advance) result(step)
       real(wp), intent(in) :: stiffness, viscosity, speed, advance
-      type(kv_step_type) :: step
-      real(wp) :: cv
-      cv = viscosity * speed
-      step%k_eff = stiffness + cv / advance            ! K + C/dt
-      step%memory = cv > 0.0_wp
-      if (step%memory) then
-         step%relax = cv / (cv + stiffness * advance)
-      else
-         step%relax = 0.0_wp
-      end if
+      type(rubber_step_type) :: step
+      type(kelvin_voigt_rubber) :: kv
+      kv%stiffness = stiffness
+      kv%viscosity = viscosity
+      call kv%prepare(speed, advance, step)
    end function kv_step
 
 end module pavefric_rubber

@@ -8,16 +8,24 @@ module pavefric_run
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate
-   use pavefric_netcdf, only: write_results, output_metadata_type, temporary_name
+   use pavefric_outputs, only: output_metadata_type
+   use pavefric_netcdf, only: write_results, temporary_name
    use pavefric_fsys, only: make_directory, dir_name, remove_file
    use pavefric_texture, only: texture_metrics
+   use pavefric_model, only: parameter_table, parameters_namelist
+   use pavefric_error, only: add_warning
    implicit none
    private
 
-   public :: run_scene, load_scene_profile, ctm_dx, preprocess_summary, timestamp
+   public :: run_scene, run_profile, load_scene_profile, ctm_dx, preprocess_summary, timestamp
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
    real(wp), parameter :: ctm_dx = 0.87e-3_wp
+   !> Plausible RMS height of a road texture profile (m): below, the heights
+   !> are most likely in another unit than declared; above, not a texture.
+   real(wp), parameter :: rms_plausible_low = 1.0e-5_wp, rms_plausible_high = 0.02_wp
+   !> Largest plausible friction coefficient (DFT and skid testers read up to ~1.3).
+   real(wp), parameter :: mu_plausible_high = 2.0_wp
 
 contains
 
@@ -76,14 +84,15 @@ contains
    !> Run the scene in `path`; write its NetCDF output to `output_override`
    !> when that is not empty, else to the namelist's &output file, else to
    !> outputs/<scene name>.nc. `command` goes into the history attribute.
-   subroutine run_scene(path, output_override, command, out_path, res, error)
+   subroutine run_scene(path, output_override, command, out_path, res, error, warnings)
       character(len=*), intent(in) :: path, output_override, command
       character(len=:), allocatable, intent(out) :: out_path
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
+      !> The warnings recorded in the output, one a line.
+      character(len=:), allocatable, intent(out), optional :: warnings
       type(scene_type) :: scene
       type(output_metadata_type) :: meta
-      type(error_type), allocatable :: texture_error
       type(clean_profile_type) :: clean
 
       call read_scene(path, scene, error)
@@ -106,26 +115,87 @@ contains
 
       call load_scene_profile(scene, clean, error)
       if (allocated(error)) return
+      call run_profile(scene, clean, res, meta, error)
+      if (allocated(error)) return
+      meta%title = "pavefric friction-speed curve of scene " // scene%name
+      meta%history = timestamp() // " pavefric " // pavefric_version // ": " // command
+      meta%preprocess = clean%report
+      meta%preprocessing = preprocess_summary(clean%report)
+      if (present(warnings)) warnings = meta%warnings
+      call write_results(out_path, res, meta, error)
+   end subroutine run_scene
+
+   !> The one path from a scene and a profile to results: the model, the
+   !> texture metrics and every warning, shared by the program, Python and
+   !> the C API. `clean` holds heights (m), spacing and, for instrument
+   !> files, their quality flags.
+   subroutine run_profile(scene, clean, res, meta, error)
+      type(scene_type), intent(in) :: scene
+      type(clean_profile_type), intent(in) :: clean
+      type(sim_result_type), intent(out) :: res
+      type(output_metadata_type), intent(out) :: meta
+      type(error_type), allocatable, intent(out) :: error
+      type(error_type), allocatable :: texture_error
+      integer :: j
+
       call simulate(scene%model, clean%z, clean%dx, scene%closed, scene%speeds_kmh, &
          & scene%series, res, error)
       if (allocated(error)) return
-
-      meta%title = "pavefric friction-speed curve of scene " // scene%name
-      meta%history = timestamp() // " pavefric " // pavefric_version // ": " // command
+      meta%title = "pavefric friction-speed curve"
+      meta%history = ""
       meta%input_namelist = scene%text
       meta%profile_file = scene%profile_file
       meta%dx = clean%dx
       meta%profile_points = size(clean%z)
       meta%closed = scene%closed
-      meta%preprocess = clean%report
-      meta%preprocessing = preprocess_summary(clean%report)
+      meta%has_parameters = .true.
+      meta%parameters = scene%parameters
+      meta%parameters_text = parameters_namelist(parameter_table(), scene%parameters)
+      meta%warnings = scene%warnings
       ! Texture metrics: reported when the profile holds a whole valid segment.
-      call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., meta%texture, &
-         & texture_error, dropout_fraction=clean%dropout_fraction, spike=clean%spike)
+      if (allocated(clean%dropout_fraction)) then
+         call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., meta%texture, &
+            & texture_error, dropout_fraction=clean%dropout_fraction, spike=clean%spike)
+      else
+         call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., meta%texture, &
+            & texture_error)
+      end if
       meta%has_texture = .not. allocated(texture_error)
       if (allocated(texture_error)) meta%texture_note = texture_error%message
-      call write_results(out_path, res, meta, error)
-   end subroutine run_scene
+      ! What a road can be: the texture, and the results.
+      call texture_warning(clean%z, meta%warnings)
+      do j = 1, size(res%mu)
+         if (res%max_compression(j) > res%thickness) call add_warning(meta%warnings, &
+            & "an element is compressed by " // to_str(res%max_compression(j)) // " m at " // &
+            & to_str(res%speed_kmh(j)) // " km/h, beyond the rubber thickness (&pad " // &
+            & "thickness = " // to_str(res%thickness) // " m); the linear model has no floor there")
+         if (res%mu(j) > mu_plausible_high) call add_warning(meta%warnings, "mu = " // &
+            & to_str(res%mu(j)) // " at " // to_str(res%speed_kmh(j)) // " km/h: above " // &
+            & "what any road gives (" // to_str(mu_plausible_high) // "); check &surface " // &
+            & "mu_loc and the profile's units")
+      end do
+   end subroutine run_profile
+
+   !> A warning when the profile's RMS height is outside what a road texture
+   !> can be (most often heights in another unit than &surface height_unit says).
+   pure subroutine texture_warning(z, warnings)
+      real(wp), intent(in) :: z(:)
+      character(len=:), allocatable, intent(inout) :: warnings
+      real(wp) :: mean, scale, rms
+      if (size(z) < 2) return
+      scale = maxval(abs(z))
+      if (scale > 0.0_wp) then
+         mean = sum(z / scale) / real(size(z), wp)
+         rms = scale * sqrt(sum((z / scale - mean)**2) / real(size(z), wp))
+      else
+         rms = 0.0_wp
+      end if
+      if (rms < rms_plausible_low .or. rms > rms_plausible_high) call add_warning(warnings, &
+         & "the profile's RMS height is " // to_str(rms) // " m, outside what a road " // &
+         & "texture can be [" // to_str(rms_plausible_low) // ", " // &
+         & to_str(rms_plausible_high) // "] m: are the heights in the unit declared " // &
+         & "(&surface height_unit, or the file's header)?")
+   end subroutine texture_warning
 
    !> Error unless a file can be created beside `path`.
    subroutine check_writable(path, error)

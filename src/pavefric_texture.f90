@@ -40,7 +40,7 @@ contains
       real(wp), intent(out), optional :: msd(:)
       type(texture_type), intent(out) :: tex
       type(error_type), allocatable, intent(out) :: error
-      real(wp) :: mean
+      real(wp) :: mean, scale
       integer :: n
       n = size(z)
       if (n < 2) then
@@ -51,6 +51,20 @@ contains
          & tex%n_segments, error, msd=msd, dropout_fraction=dropout_fraction, spike=spike, &
          & n_valid=tex%n_valid)
       if (allocated(error)) return
+      scale = maxval(abs(z))
+      if (scale > 1.0e100_wp) then
+         ! squares would overflow: the same sums on heights scaled to <= 1
+         mean = sum(z / scale) / real(n, wp)
+         tex%rms_height = scale * sqrt(sum((z / scale - mean)**2) / real(n, wp))
+         if (closed) then
+            tex%rms_slope = scale * (sqrt((sum((z(2:n) / scale - z(1:n-1) / scale)**2) + &
+               & (z(1) / scale - z(n) / scale)**2) / real(n, wp)) / dx)
+         else
+            tex%rms_slope = scale * (sqrt(sum((z(2:n) / scale - z(1:n-1) / scale)**2) / &
+               & real(n - 1, wp)) / dx)
+         end if
+         return
+      end if
       mean = sum(z) / real(n, wp)
       tex%rms_height = sqrt(sum((z - mean)**2) / real(n, wp))
       if (closed) then

@@ -111,7 +111,7 @@ def main(path: str) -> None:
         series = kw.pop("series", False)
         ds = pavefric.simulate(z, dx, speeds, closed=closed, series=series, **kw)
         if series:
-            ds = ds.transpose(..., "speed")       # (position, speed), as the file has it
+            ds = ds.transpose(..., "speed_kmh")   # (position, speed), as the file has it
         record["simulate"][name] = record_dataset(ds, SCENE_VARS)
         print("recorded simulate", name)
     Path(path).parent.mkdir(parents=True, exist_ok=True)

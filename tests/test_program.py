@@ -44,7 +44,7 @@ def test_ncdump_reads_the_header(tmp_path):
     out = tmp_path / "o.nc"
     assert run_program(ROOT / "inputs" / "ctm_wet.nml", "-o", out).returncode == 0
     head = subprocess.run(["ncdump", "-h", str(out)], capture_output=True, text=True).stdout
-    assert "double mu(speed)" in head and ':effects = "' in head
+    assert "double mu(speed_kmh)" in head and ':effects = "' in head
 
 
 def test_series_variables(tmp_path, profile_m):
@@ -55,7 +55,7 @@ def test_series_variables(tmp_path, profile_m):
     assert r.returncode == 0, r.stderr
     ds = xr.open_dataset(out)
     for var in ("mu_inst", "hydro_load", "penetration", "contact_elements"):
-        assert ds[var].dims == ("speed", "position")
+        assert ds[var].dims == ("speed_kmh", "position")
     np.testing.assert_allclose(ds["mu_inst"].mean("position").values, ds["mu"].values,
                                rtol=1e-12)
     ds.close()

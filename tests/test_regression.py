@@ -45,7 +45,7 @@ def test_simulate_outputs_are_unchanged(case):
     series = kw.pop("series", False)
     ds = pavefric.simulate(z, dx, speeds, closed=closed, series=series, **kw)
     if series:
-        ds = ds.transpose(..., "speed")
+        ds = ds.transpose(..., "speed_kmh")
     # 0.1.0 computed simulate()'s `speed` coordinate in Python (speeds / 3.6),
     # which differed from the program's in the last bit at 3, 7 and 21 km/h;
     # it now comes from the core (test_boundaries checks they agree).

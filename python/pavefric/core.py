@@ -21,6 +21,10 @@ from . import _core
 
 __all__ = [
     "PavefricError",
+    "PavefricKeywordError",
+    "PavefricWarning",
+    "parameters",
+    "groups",
     "defaults",
     "simulate",
     "run",
@@ -38,6 +42,15 @@ class PavefricError(ValueError):
     """Bad input or a failed run; the message names the group, variable and value."""
 
 
+class PavefricKeywordError(PavefricError, TypeError):
+    """An unknown keyword argument (also a TypeError, as Python reports those)."""
+
+
+class PavefricWarning(UserWarning):
+    """Plausible-but-suspicious input or results (also recorded in the output's
+    ``warnings`` attribute)."""
+
+
 def _text(raw: Any) -> str:
     if isinstance(raw, bytes):
         raw = raw.decode("utf-8", "replace")
@@ -46,76 +59,234 @@ def _text(raw: Any) -> str:
     return str(raw).rstrip("\x00 ").strip()
 
 
+# status kinds of the core (pavefric_error)
+_STAT_MEMORY = 3
+
+
 def _check(status: int, message: Any) -> None:
+    if int(status) == _STAT_MEMORY:
+        raise MemoryError(_text(message))
     if int(status) != 0:
         raise PavefricError(_text(message))
 
 
-# The model's parameters: Python keyword -> namelist group and variable.
-PARAMETERS: dict[str, tuple[str, str]] = {
-    "mu_loc": ("surface", "mu_loc"),
-    "length": ("pad", "length"),
-    "width": ("pad", "width"),
-    "thickness": ("pad", "thickness"),
-    "load": ("pad", "load"),
-    "shape": ("pad", "shape"),
-    "radius": ("pad", "radius"),
-    "stiffness": ("rubber", "stiffness"),
-    "viscosity": ("rubber", "viscosity"),
-    "depth": ("water", "depth"),
-    "water_viscosity": ("water", "viscosity"),
-    "alpha": ("water", "alpha"),
-    "beta": ("water", "beta"),
-    "theta_max_deg": ("numerics", "theta_max_deg"),
-    "substeps": ("numerics", "substeps"),
-    "elements_per_sample": ("numerics", "elements_per_sample"),
-    "position_stride": ("numerics", "position_stride"),
-    "wet_tolerance": ("numerics", "wet_tolerance"),
-}
+def _warn(text: str) -> None:
+    import warnings
+
+    for line in text.splitlines():
+        if line.strip():
+            warnings.warn(line, PavefricWarning, stacklevel=3)
+
+
+# --- the one table of parameters, read from the core (pavefric_model) ---------
+
+KIND_REAL, KIND_INTEGER, KIND_LOGICAL, KIND_TEXT, KIND_LIST = 1, 2, 3, 4, 5
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """The declaration of one namelist variable, as the core has it."""
+
+    group: str
+    name: str
+    keyword: str
+    scope: str
+    unit: str
+    default_text: str
+    choices: tuple
+    meaning: str
+    kind: int
+    lower: float
+    upper: float
+    lower_strict: bool
+    upper_strict: bool
+    plausible_lower: float
+    plausible_upper: float
+    max_values: int
+    required: bool
+
+    @property
+    def default(self):
+        """The default as a Python value (None when there is none)."""
+        if self.default_text in ("", "''") and self.kind != KIND_TEXT:
+            return None
+        return _value_from_text(self, self.default_text)
+
+
+@dataclass(frozen=True)
+class Group:
+    name: str
+    title: str
+    description: str
+
+
+def _value_from_text(spec: Parameter, text: str):
+    """A value from the core's canonical namelist text (its own output)."""
+    text = text.strip()
+    if spec.kind == KIND_REAL:
+        return float(text)
+    if spec.kind == KIND_INTEGER:
+        return int(text)
+    if spec.kind == KIND_LOGICAL:
+        return text.lower() in (".true.", "t", "true")
+    if spec.kind == KIND_TEXT:
+        return text[1:-1].replace("''", "'")
+    return [float(v) for v in text.split(",") if v.strip()]
 
 
 @functools.lru_cache(maxsize=1)
-def _core_defaults() -> dict[str, Any]:
-    out = _core.pf_defaults()
-    names = ["mu_loc", "length", "width", "thickness", "load", "radius", "stiffness",
-             "viscosity", "depth", "water_viscosity", "alpha", "beta", "theta_max_deg",
-             "substeps", "elements_per_sample", "position_stride", "wet_tolerance",
-             "ctm_dx", "version"]
-    values = dict(zip(names, out))
-    values["version"] = _text(values["version"])
-    for key in ("substeps", "elements_per_sample", "position_stride"):
-        values[key] = int(values[key])
-    for key in names:
-        if key not in ("version", "substeps", "elements_per_sample", "position_stride"):
-            values[key] = float(values[key])
-    values["shape"] = "flat"
-    return values
+def _tables() -> tuple:
+    n_par, n_groups = _core.pf_parameter_count()
+    params = []
+    for i in range(1, int(n_par) + 1):
+        (group, name, keyword, scope, unit, default, choices, meaning, kind, bounds, strict,
+         max_values, required) = _core.pf_parameter_info(i)
+        params.append(Parameter(_text(group), _text(name), _text(keyword), _text(scope),
+                                _text(unit), _text(default), tuple(_text(choices).split()),
+                                _text(meaning), int(kind), float(bounds[0]), float(bounds[1]),
+                                bool(strict[0]), bool(strict[1]), float(bounds[2]),
+                                float(bounds[3]), int(max_values), bool(required)))
+    groups = []
+    for i in range(1, int(n_groups) + 1):
+        name, title, description = _core.pf_group_info(i)
+        groups.append(Group(_text(name), _text(title), _text(description)))
+    n_out = int(_core.pf_output_count())
+    outputs = []
+    for i in range(1, n_out + 1):
+        name, units, long_name, var_type, dims = _core.pf_output_info(i)
+        outputs.append((_text(name), _text(units), _text(long_name), int(var_type), int(dims)))
+    return tuple(params), tuple(groups), tuple(outputs)
+
+
+def parameters() -> tuple:
+    """Every namelist variable's declaration (``Parameter``), from the core."""
+    return _tables()[0]
+
+
+def groups() -> tuple:
+    """The namelist groups (``Group``), from the core."""
+    return _tables()[1]
+
+
+def _keywords(scope: str) -> dict:
+    return {p.keyword: p for p in parameters() if p.scope == scope and p.keyword}
+
+
+# simulate() keywords -> (namelist group, variable), from the core's table
+PARAMETERS: dict[str, tuple[str, str]] = {}
+
+
+def _init_keywords() -> None:
+    PARAMETERS.update({k: (p.group, p.name) for k, p in _keywords("model").items()})
+
+
+@functools.lru_cache(maxsize=1)
+def _version() -> str:
+    return _text(_core.pf_version()[0])
+
+
+#: Spacing of a Circular Track Meter profile (m): the core's default dx.
+CTM_DX = float(_core.pf_version()[1])
 
 
 def defaults() -> dict[str, Any]:
-    """The model's default parameters, read from the Fortran core (SI units)."""
-    values = dict(_core_defaults())
-    values.pop("version")
-    values.pop("ctm_dx")
-    return values
+    """The model's default parameters (simulate keywords), from the core (SI units)."""
+    return {k: p.default for k, p in _keywords("model").items()}
+
+
+# --- formatting Python values as namelist text (parsed by the core) -----------
+
+def _is_real(v) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+
+
+def _format(spec: Parameter, value, label: str) -> str:
+    where = f"&{spec.group} {spec.name}"
+    if spec.kind == KIND_REAL:
+        if not _is_real(value):
+            raise PavefricError(f"{where} = {value!r}: {label} must be a number")
+        return repr(float(value))
+    if spec.kind == KIND_INTEGER:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer, float,
+                                                                          np.floating)):
+            raise PavefricError(f"{where} = {value!r}: {label} must be a whole number")
+        if isinstance(value, (float, np.floating)):
+            return repr(float(value))          # the core refuses 2.9 (and says so)
+        return str(int(value))
+    if spec.kind == KIND_LOGICAL:
+        if not isinstance(value, (bool, np.bool_)):
+            raise PavefricError(f"{where} = {value!r}: {label} must be True or False")
+        return ".true." if value else ".false."
+    if spec.kind == KIND_TEXT:
+        if not isinstance(value, str):
+            raise PavefricError(f"{where} = {value!r}: {label} must be text")
+        if "\n" in value or "\r" in value:
+            raise PavefricError(f"{where} = {value!r}: {label} must be one line")
+        return "'" + value.replace("'", "''") + "'"
+    values = np.atleast_1d(np.asarray(value))
+    if values.ndim != 1 or values.dtype.kind not in "iuf":
+        raise PavefricError(f"{where} = {value!r}: {label} must be a list of numbers")
+    return ", ".join(repr(float(v)) for v in values) if values.size else ""
+
+
+def _settings_text(assignments: dict[tuple[str, str], str]) -> str:
+    """Namelist text of (group, name) -> value text, groups in the core's order."""
+    lines = []
+    for g in groups():
+        body = [f"  {n} = {v}" for (gg, n), v in assignments.items() if gg == g.name]
+        if body:
+            lines += [f"&{g.name}", *body, "/"]
+    return "\n".join(lines) + "\n"
+
+
+def _parameters(given: dict[str, Any], scope: str = "model") -> dict[tuple[str, str], str]:
+    known = _keywords(scope)
+    unknown = sorted(set(given) - set(known))
+    if unknown:
+        raise PavefricKeywordError(f"unknown parameter(s) {', '.join(unknown)}; known: "
+                                   f"{', '.join(known)}")
+    return {(known[k].group, known[k].name): _format(known[k], v, k) for k, v in given.items()}
+
+
+def _heights(heights_m) -> np.ndarray:
+    if np.ma.isMaskedArray(heights_m) and np.ma.getmaskarray(heights_m).any():
+        raise PavefricError("heights: a masked array with masked values (fill or remove them: "
+                            "pavefric does not guess a height)")
+    try:
+        z = np.asarray(heights_m, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise PavefricError(f"heights: not an array of numbers ({exc})") from None
+    if z.ndim != 1:
+        raise PavefricError(f"heights: a 1-D array of heights is expected, got shape {z.shape} "
+                            "(pass one profile at a time)")
+    if z.size == 0:
+        raise PavefricError("&surface profile_file: the profile holds no heights")
+    return np.ascontiguousarray(z)
+
+
+def _flag(value, name: str) -> bool:
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise PavefricError(f"{name} = {value!r}: must be True or False")
 
 
 def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> tuple[int, int]:
     """(pad elements, averaged positions) of a profile; 0 positions if the pad does not fit."""
-    p = _parameters(parameters)
-    n_el, n_pos = _core.pf_layout(int(n_points), float(dx), int(bool(closed)), p["length"],
-                                  p["elements_per_sample"], p["substeps"], p["position_stride"])
+    settings = {**_parameters(parameters),
+                ("surface", "dx"): _format(_spec("surface", "dx"), dx, "dx"),
+                ("surface", "closed"): _format(_spec("surface", "closed"),
+                                               _flag(closed, "closed"), "closed"),
+                ("operation", "speeds_kmh"): "0"}
+    n_el, n_pos, status, message = _core.pf_layout(_settings_text(settings), int(n_points))
+    _check(status, message)
     return int(n_el), int(n_pos)
 
 
-def _parameters(given: dict[str, Any]) -> dict[str, Any]:
-    unknown = sorted(set(given) - set(PARAMETERS))
-    if unknown:
-        raise TypeError(f"unknown parameter(s) {', '.join(unknown)}; known: "
-                        f"{', '.join(PARAMETERS)}")
-    p = defaults()
-    p.update(given)
-    return p
+def _spec(group: str, name: str) -> Parameter:
+    for p in parameters():
+        if p.group == group and p.name == name:
+            return p
+    raise KeyError((group, name))
 
 
 def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] | float, *,
@@ -124,73 +295,135 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
 
     Parameters
     ----------
-    heights_m : profile heights in metres, at uniform spacing ``dx`` (m).
+    heights_m : profile heights in metres (1-D), at uniform spacing ``dx`` (m).
     speeds_kmh : sliding speeds in km/h.
     closed : a closed Circular Track Meter circle (True) or an open profile.
     series : also return per-position ``mu_inst``, ``hydro_load``,
         ``penetration`` and ``contact_elements``.
-    **parameters : the namelist's variables (SI units); ``viscosity`` is the
-        rubber's C, ``water_viscosity`` the water's eta. See ``defaults()``
+    **parameters : the namelist's model variables (SI units); ``viscosity`` is
+        the rubber's C, ``water_viscosity`` the water's eta. See ``defaults()``
         and docs/inputs.md.
 
-    The variables and attributes are those of the program's NetCDF output.
+    The values go to the core as namelist text and are read, checked and
+    run exactly as the program reads a scene file, so the variables and
+    attributes are those of the program's NetCDF output, bit for bit.
+    Suspicious values raise a ``PavefricWarning`` (also in
+    ``ds.attrs["warnings"]``).
     """
     import xarray as xr
 
-    p = _parameters(parameters)
-    z = np.ascontiguousarray(np.asarray(heights_m, dtype=np.float64).ravel())
-    speeds = np.ascontiguousarray(np.atleast_1d(np.asarray(speeds_kmh, dtype=np.float64)).ravel())
-    if z.size == 0:
-        raise PavefricError("&surface profile_file: the profile holds no heights")
+    z = _heights(heights_m)
+    speeds = np.atleast_1d(np.asarray(speeds_kmh))
+    if speeds.ndim != 1 or speeds.dtype.kind not in "iuf":
+        raise PavefricError(f"&operation speeds_kmh = {speeds_kmh!r}: a list of numbers "
+                            "is expected")
+    settings = {**_parameters(parameters),
+                ("surface", "dx"): _format(_spec("surface", "dx"), dx, "dx"),
+                ("surface", "closed"): _format(_spec("surface", "closed"),
+                                               _flag(closed, "closed"), "closed"),
+                ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"), speeds,
+                                                     "speeds_kmh"),
+                ("output", "series"): ".true." if _flag(series, "series") else ".false."}
+    text = _settings_text(settings)
     npos = 1
     if series:
-        _, npos = layout(z.size, dx, closed, **{k: p[k] for k in
-                         ("length", "elements_per_sample", "substeps", "position_stride")})
+        n_el, npos, status, message = _core.pf_layout(text, z.size)
+        _check(status, message)
         npos = max(npos, 1)
-    out = _core.pf_simulate(
-        z, float(dx), int(bool(closed)), speeds,
-        float(p["mu_loc"]), float(p["length"]), float(p["width"]), float(p["thickness"]),
-        float(p["load"]), str(p["shape"]), float(p["radius"]), float(p["stiffness"]),
-        float(p["viscosity"]), float(p["depth"]), float(p["water_viscosity"]),
-        float(p["alpha"]), float(p["beta"]), float(p["theta_max_deg"]), int(p["substeps"]),
-        int(p["elements_per_sample"]), int(p["position_stride"]), float(p["wet_tolerance"]),
-        int(bool(series)), npos)
-    (mu, hyd, wet, resid, mwh, comp, ncl, nbe, nmem, vis, bea, position, mu_inst, hload, pen, ce,
-     n_el, n_pos, n_spin, effects, status, message) = out
-    _check(status, message)
-    coords = {"speed": ("speed", speeds / 3.6, {"units": "m s-1",
-                                                "long_name": "sliding speed of the pad"}),
-              "speed_kmh": ("speed", speeds, {"units": "km h-1",
-                                              "long_name": "sliding speed of the pad"})}
-    data = {
-        "mu": ("speed", mu.copy()),
-        "n_clamped": ("speed", ncl.copy()),
-        "hydroplaning_fraction": ("speed", hyd.copy()),
-        "wet_fraction": ("speed", wet.copy()),
-        "max_balance_residual": ("speed", resid.copy()),
-        "mean_hydro_load": ("speed", mwh.copy()),
-        "max_compression": ("speed", comp.copy()),
-        "bearing_evaluations": ("speed", nbe.copy()),
-        "memory_updates": ("speed", nmem.copy()),
-        "viscous_memory_ran": ("speed", vis.astype(np.int8)),
-        "bearing_ran": ("speed", bea.astype(np.int8)),
-    }
+    _, _, outputs = _tables()
+    ntext = 4096 + 2 * len(text)
+    while True:
+        (speed, speed_kmh, values, series_values, present, position, counts, texture, texts,
+         lengths, status, message) = _core.pf_simulate(z, text, speeds.size, npos, len(outputs),
+                                                        ntext)
+        _check(status, message)
+        if int(lengths.sum()) <= ntext:
+            break
+        ntext = int(lengths.sum())
+    raw = texts.tobytes()[:int(lengths.sum())].decode("utf-8", "replace")
+    effects = raw[:lengths[0]]
+    warning_text = raw[lengths[0]:lengths[0] + lengths[1]]
+    parameters_text = raw[lengths[0] + lengths[1]:]
+    coords = {"speed_kmh": ("speed_kmh", speed_kmh.copy(),
+                            {"units": "km h-1", "long_name": "sliding speed of the pad"}),
+              "speed": ("speed_kmh", speed.copy(),
+                        {"units": "m s-1", "long_name": "sliding speed of the pad"})}
     if series:
-        coords["position"] = ("position", position.copy(), {"units": "m"})
-        for name, arr in (("mu_inst", mu_inst), ("hydro_load", hload), ("penetration", pen),
-                          ("contact_elements", ce)):
-            data[name] = (("speed", "position"), np.ascontiguousarray(arr.T))
+        coords["position"] = ("position", position.copy(),
+                              {"units": "m",
+                               "long_name": "distance slid from the first averaged position"})
+    dtypes = {1: np.float64, 2: np.int64, 3: np.int32, 4: np.int8}
+    data = {}
+    for k, (name, units, long_name, var_type, dims) in enumerate(outputs):
+        if not present[k]:
+            continue
+        attrs = {"long_name": long_name}
+        if units:
+            attrs["units"] = units
+        if var_type == 4:
+            attrs.update(flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="no yes")
+        if dims == 1:
+            data[name] = ("speed_kmh", values[:, k].astype(dtypes[var_type]), attrs)
+        else:
+            data[name] = (("speed_kmh", "position"),
+                          np.ascontiguousarray(series_values[:, :, k].T).astype(dtypes[var_type]),
+                          attrs)
+    n_el, n_pos, n_spin, has_texture, n_seg, n_valid = (int(c) for c in counts)
+    if has_texture:
+        data["mpd"] = ((), float(texture[0]), {"units": "m", "long_name": "mean profile depth "
+                       "(ISO 13473-1 / ASTM E1845, 100 mm segments, slope suppression)",
+                       "n_segments": n_seg, "n_valid_segments": n_valid})
+        data["rms_height"] = ((), float(texture[1]), {"units": "m", "long_name": "RMS profile "
+                              "height about the mean"})
+        data["rms_slope"] = ((), float(texture[2]), {"units": "1", "long_name": "RMS slope "
+                             "between neighbouring samples at the profile spacing"})
     attrs = {
-        "effects": _text(effects),
-        "pavefric_version": _core_defaults()["version"],
-        "pad_elements": int(n_el),
-        "averaged_positions": int(n_pos),
-        "spinup_positions": int(n_spin),
+        "effects": effects,
+        "warnings": warning_text,
+        "parameters": parameters_text,
+        "pavefric_version": _version(),
+        "pad_elements": n_el,
+        "averaged_positions": n_pos,
+        "spinup_positions": n_spin,
         "profile_points": int(z.size),
         "profile_dx": float(dx),
         "profile_closed": int(bool(closed)),
     }
+    attrs.update(_parameter_attributes(parameters_text))
+    if warning_text:
+        _warn(warning_text)
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _parse_echo(text: str) -> dict[tuple[str, str], Any]:
+    """The core's canonical namelist echo (one ``name = value`` a line) as
+    typed values keyed by (group, name)."""
+    table = {(p.group, p.name): p for p in parameters()}
+    out = {}
+    group = None
+    for line in text.splitlines():
+        line = line.strip()
+        if line.startswith("&"):
+            group = line[1:]
+        elif line == "/":
+            group = None
+        elif "=" in line and group:
+            name, value = line.split("=", 1)
+            spec = table[(group, name.strip())]
+            out[(group, spec.name)] = _value_from_text(spec, value)
+    return out
+
+
+def _parameter_attributes(text: str) -> dict[str, Any]:
+    """param_<group>_<name> attributes, as the program writes them."""
+    attrs = {}
+    for (group, name), value in _parse_echo(text).items():
+        if isinstance(value, bool):
+            value = int(value)
+        elif isinstance(value, list):
+            value = np.array(value)
+        attrs[f"param_{group}_{name}"] = value
+    return attrs
 
 
 def hydro_load(h_out, h_in: float, prefactor: float = 1.0):
@@ -217,8 +450,11 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
     _check(status, message)
     if is_batch:
         return _run_batch(str(path), str(output or ""), command, progress)
-    out_path, status, message = _core.pf_run_scene(str(path), str(output or ""), command)
+    out_path, warnings_text, status, message = _core.pf_run_scene(str(path), str(output or ""),
+                                                                  command)
     _check(status, message)
+    if _text(warnings_text):
+        _warn(_text(warnings_text))
     return Path(_text(out_path))
 
 
@@ -314,22 +550,20 @@ class Scene:
 
 
 def load_scene(path: str | os.PathLike) -> Scene:
-    """Read a scene namelist and its profile with the core's readers."""
-    out = _core.pf_scene_info(str(path))
-    (np_, ns, dx, closed, series, mu_loc, length, width, thickness, load, shape, radius,
-     stiffness, viscosity, depth, water_viscosity, alpha, beta, theta_max_deg, substeps,
-     elements_per_sample, position_stride, wet_tolerance, profile_file, output_file,
-     status, message) = out
+    """Read a scene namelist and its profile with the core's readers.
+
+    ``parameters`` holds the scene's model variables (every ``simulate``
+    keyword, defaults included) exactly as the core read them, so
+    ``scene.simulate()`` gives the program's numbers bit for bit."""
+    (np_, ns, dx, closed, series, ntext, profile_file, output_file,
+     status, message) = _core.pf_scene_info(str(path))
     _check(status, message)
-    z, speeds, status, message = _core.pf_scene_arrays(str(path), int(np_), int(ns))
+    z, speeds, text, status, message = _core.pf_scene_arrays(str(path), int(np_), int(ns),
+                                                             int(ntext))
     _check(status, message)
-    params = dict(mu_loc=float(mu_loc), length=float(length), width=float(width),
-                  thickness=float(thickness), load=float(load), shape=_text(shape),
-                  radius=float(radius), stiffness=float(stiffness), viscosity=float(viscosity),
-                  depth=float(depth), water_viscosity=float(water_viscosity),
-                  alpha=float(alpha), beta=float(beta), theta_max_deg=float(theta_max_deg),
-                  substeps=int(substeps), elements_per_sample=int(elements_per_sample),
-                  position_stride=int(position_stride), wet_tolerance=float(wet_tolerance))
+    values = _parse_echo(text.tobytes().decode("utf-8"))
+    params = {k: values[(p.group, p.name)] for k, p in _keywords("model").items()
+              if (p.group, p.name) in values}
     return Scene(name=Path(path).stem, heights=z.copy(), dx=float(dx), closed=bool(closed),
                  speeds_kmh=speeds.copy(), parameters=params, series=bool(series),
                  profile_file=_text(profile_file), output_file=_text(output_file))
@@ -354,13 +588,13 @@ class Profile:
     spike: np.ndarray
 
 
-PREPROCESS_DEFAULTS = dict(dropouts="error", trim_plates=True, plate_threshold=0.010,
-                           plate_min_length=0.005, plate_buffer=0.002, spike_slope=0.0,
-                           resample_dx=0.0, lowpass_wavelength=0.0)
+def _preprocess_defaults() -> dict:
+    return {p.name: p.default for p in parameters() if p.group == "preprocess"}
 
 
-def read_profile(path: str | os.PathLike, height_unit: str = "mm", *, format: str = "auto",
-                 x_column: str = "", z_column: str = "", dx: float | None = None,
+def read_profile(path: str | os.PathLike, height_unit: str | None = None, *,
+                 format: str | None = None, x_column: str | None = None,
+                 z_column: str | None = None, dx: float | None = None,
                  **preprocess) -> Profile:
     """Read a profile file (plain text, laser profiler export, CSV) and make
     it fit for analysis with the core's ISO 13473-1 preprocessing (keywords
@@ -368,12 +602,22 @@ def read_profile(path: str | os.PathLike, height_unit: str = "mm", *, format: st
     plate_min_length, plate_buffer, spike_slope, resample_dx,
     lowpass_wavelength). ``dx`` (m) is used when the file has no distances
     (default: the CTM's 0.87 mm)."""
-    unknown = sorted(set(preprocess) - set(PREPROCESS_DEFAULTS))
+    defaults_ = _preprocess_defaults()
+    unknown = sorted(set(preprocess) - set(defaults_))
     if unknown:
-        raise TypeError(f"unknown preprocessing option(s) {', '.join(unknown)}; known: "
-                        f"{', '.join(PREPROCESS_DEFAULTS)}")
-    p = {**PREPROCESS_DEFAULTS, **preprocess}
-    dx_default = float(dx) if dx else float(_core_defaults()["ctm_dx"])
+        raise PavefricKeywordError(f"unknown preprocessing option(s) {', '.join(unknown)}; "
+                                   f"known: {', '.join(defaults_)}")
+    for key, value in preprocess.items():
+        _format(_spec("preprocess", key), value, key)          # type check, clear message
+    p = {**defaults_, **preprocess}
+    surface = {name: (value if value is not None else _spec("surface", name).default)
+               for name, value in (("height_unit", height_unit), ("format", format),
+                                   ("x_column", x_column), ("z_column", z_column))}
+    for name, value in surface.items():
+        _format(_spec("surface", name), value, name)
+    height_unit, format, x_column, z_column = (surface[k] for k in
+                                               ("height_unit", "format", "x_column", "z_column"))
+    dx_default = float(dx) if dx else CTM_DX
     args = (str(path), format, height_unit, x_column, z_column, dx_default, str(p["dropouts"]),
             int(bool(p["trim_plates"])), float(p["plate_threshold"]),
             float(p["plate_min_length"]), float(p["plate_buffer"]), float(p["spike_slope"]),
@@ -395,3 +639,6 @@ def read_profile(path: str | os.PathLike, height_unit: str = "mm", *, format: st
     return Profile(heights=z.copy(), dx=float(dx_out), path=str(path), report=report,
                    raw_x=x_raw.copy(), raw_heights=raw_h, dropout_fraction=frac.copy(),
                    spike=spike.astype(bool))
+
+
+_init_keywords()

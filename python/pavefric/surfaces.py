@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .core import CTM_DX  # noqa: F401  (the core's one constant, re-exported)
+
 CTM_POINTS = 1024
-CTM_DX = 0.87e-3
 
 
 def spectral_profile(n: int = CTM_POINTS, dx: float = CTM_DX, *, rms: float = 0.5e-3,

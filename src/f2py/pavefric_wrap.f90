@@ -4,140 +4,225 @@
 !> (real(c_double), not real(wp): f2py maps kind parameters it does not know
 !> to C float and returns wrong numbers in silence.)
 
-!> Default parameters of the model, as the namelist has them.
-subroutine pf_defaults(mu_loc, length, width, thickness, load, radius, stiffness, viscosity, &
-      & depth, water_viscosity, alpha, beta, theta_max_deg, substeps, elements_per_sample, &
-      & position_stride, wet_tolerance, ctm_dx_out, version)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_model, only: model_type
-   use pavefric_run, only: ctm_dx
+
+
+
+
+!> The version of the core and its constants: the spacing of a Circular
+!> Track Meter profile (m), the default dx.
+subroutine pf_version(version, ctm_dx_out)
+   use, intrinsic :: iso_c_binding, only: c_double
    use pavefric_kinds, only: pavefric_version
+   use pavefric_run, only: ctm_dx
    implicit none
-   real(c_double), intent(out) :: mu_loc, length, width, thickness, load, radius, stiffness
-   real(c_double), intent(out) :: viscosity, depth, water_viscosity, alpha, beta, theta_max_deg
-   real(c_double), intent(out) :: wet_tolerance, ctm_dx_out
-   integer(c_int), intent(out) :: substeps, elements_per_sample, position_stride
    character(len=32), intent(out) :: version
-   type(model_type) :: m
-   mu_loc = m%mu_loc; length = m%length; width = m%width; thickness = m%thickness
-   load = m%load; radius = m%radius; stiffness = m%stiffness; viscosity = m%viscosity
-   depth = m%depth; water_viscosity = m%water_viscosity; alpha = m%alpha; beta = m%beta
-   theta_max_deg = m%theta_max_deg; substeps = m%substeps
-   elements_per_sample = m%elements_per_sample; position_stride = m%position_stride
-   wet_tolerance = m%wet_tolerance; ctm_dx_out = ctm_dx
+   real(c_double), intent(out) :: ctm_dx_out
    version = pavefric_version
-end subroutine pf_defaults
+   ctm_dx_out = ctm_dx
+end subroutine pf_version
 
-!> Pad elements and averaged positions of a scene (to size the series).
-subroutine pf_layout(np, dx, closed, length, elements_per_sample, substeps, position_stride, &
-      & n_elements, n_positions)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_model, only: model_type
-   use pavefric_simulate, only: pad_elements, averaged_positions
+!> Number of declared namelist variables and groups (pavefric_model).
+subroutine pf_parameter_count(n_parameters_out, n_groups_out)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_model, only: n_parameters, n_groups
    implicit none
-   integer(c_int), intent(in) :: np, closed, elements_per_sample, substeps, position_stride
-   real(c_double), intent(in) :: dx, length
-   integer(c_int), intent(out) :: n_elements, n_positions
-   type(model_type) :: m
-   m%length = length
-   m%elements_per_sample = max(1, elements_per_sample)
-   m%substeps = max(1, substeps)
-   m%position_stride = max(1, position_stride)
-   n_elements = 0
-   n_positions = 0
-   if (.not. (dx > 0.0_c_double) .or. .not. (length > 0.0_c_double)) return
-   if (length / dx * m%elements_per_sample > 2.0e9_c_double) return
-   n_elements = pad_elements(m, dx)
-   n_positions = averaged_positions(m, np, dx, closed /= 0)
-end subroutine pf_layout
+   integer(c_int), intent(out) :: n_parameters_out, n_groups_out
+   n_parameters_out = n_parameters
+   n_groups_out = n_groups
+end subroutine pf_parameter_count
 
-!> Run the model on heights z (m); see pavefric.simulate for the arguments.
-subroutine pf_simulate(np, z, dx, closed, ns, speeds_kmh, mu_loc, length, width, thickness, &
-      & load, pad_shape, radius, stiffness, viscosity, depth, water_viscosity, alpha, beta, &
-      & theta_max_deg, substeps, elements_per_sample, position_stride, wet_tolerance, &
-      & want_series, npos, mu, hydroplaning_fraction, wet_fraction, max_balance_residual, &
-      & mean_hydro_load, max_compression, n_clamped, bearing_evaluations, memory_updates, &
-      & viscous_memory_ran, &
-      & bearing_ran, position, mu_inst, hydro_load, penetration, contact_elements, n_elements, &
-      & n_positions, n_spinup, effects, status, message)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int, c_int64_t
-   use pavefric_model, only: model_type
-   use pavefric_simulate, only: sim_result_type, simulate, effects_text
+!> The declaration of variable i (1-based): texts, kind (1 real, 2 integer,
+!> 3 logical, 4 text, 5 list of reals), hard and plausible ranges.
+subroutine pf_parameter_info(i, group, name, keyword, scope, unit, default_text, choices, meaning, &
+      & kind, bounds, strict, max_values, required)
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use pavefric_model, only: param_spec_type, parameter_table
+   implicit none
+   integer(c_int), intent(in) :: i
+   character(len=32), intent(out) :: group, name, keyword, scope, unit
+   character(len=64), intent(out) :: default_text
+   character(len=256), intent(out) :: choices
+   character(len=1024), intent(out) :: meaning
+   integer(c_int), intent(out) :: kind, strict(2), max_values, required
+   real(c_double), intent(out) :: bounds(4)
+   type(param_spec_type), allocatable :: specs(:)
+   specs = parameter_table()
+   group = ""; name = ""; keyword = ""; scope = ""; unit = ""; default_text = ""; choices = ""
+   meaning = ""; kind = 0; strict = 0; max_values = 0; required = 0; bounds = 0
+   if (i < 1 .or. i > size(specs)) return
+   associate(sp => specs(i))
+      group = sp%group; name = sp%name; keyword = sp%keyword; scope = sp%scope
+      unit = sp%unit; default_text = sp%default; choices = sp%choices; meaning = sp%meaning
+      kind = sp%kind
+      bounds = [sp%lower, sp%upper, sp%plausible_lower, sp%plausible_upper]
+      strict = merge(1, 0, [sp%lower_strict, sp%upper_strict])
+      max_values = sp%max_values
+      required = merge(1, 0, sp%required)
+   end associate
+end subroutine pf_parameter_info
+
+!> Namelist group i (1-based): name, title and description.
+subroutine pf_group_info(i, name, title, description)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_model, only: group_spec_type, group_table, n_groups
+   implicit none
+   integer(c_int), intent(in) :: i
+   character(len=32), intent(out) :: name
+   character(len=128), intent(out) :: title
+   character(len=1024), intent(out) :: description
+   type(group_spec_type) :: g(n_groups)
+   name = ""; title = ""; description = ""
+   if (i < 1 .or. i > n_groups) return
+   g = group_table()
+   name = g(i)%name; title = g(i)%title; description = g(i)%description
+end subroutine pf_group_info
+
+!> Number of result variables (pavefric_outputs).
+subroutine pf_output_count(n)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_outputs, only: n_outputs
+   implicit none
+   integer(c_int), intent(out) :: n
+   n = n_outputs
+end subroutine pf_output_count
+
+!> Result variable i (1-based): name, units, long name, type (1 double,
+!> 2 int64, 3 int, 4 flag) and dimensions (1 speed, 2 position x speed).
+subroutine pf_output_info(i, name, units, long_name, var_type, dims)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_outputs, only: output_var_type, output_table, n_outputs
+   implicit none
+   integer(c_int), intent(in) :: i
+   character(len=64), intent(out) :: name, units
+   character(len=256), intent(out) :: long_name
+   integer(c_int), intent(out) :: var_type, dims
+   type(output_var_type) :: t(n_outputs)
+   name = ""; units = ""; long_name = ""; var_type = 0; dims = 0
+   if (i < 1 .or. i > n_outputs) return
+   t = output_table()
+   name = t(i)%name; units = t(i)%units; long_name = t(i)%long_name
+   var_type = t(i)%type; dims = t(i)%dims
+end subroutine pf_output_info
+
+!> Pad elements and averaged positions of a profile of np points for the
+!> settings (namelist text, as pf_simulate takes it), to size the series.
+subroutine pf_layout(settings, np, n_elements, n_positions, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_simulate, only: pad_elements, averaged_positions
    use pavefric_error, only: error_type
    implicit none
-   integer(c_int), intent(in) :: np, ns, closed, substeps, elements_per_sample, position_stride
-   integer(c_int), intent(in) :: want_series, npos
-   real(c_double), intent(in) :: z(np), dx, speeds_kmh(ns), mu_loc, length, width, thickness
-   real(c_double), intent(in) :: load, radius, stiffness, viscosity, depth, water_viscosity
-   real(c_double), intent(in) :: alpha, beta, theta_max_deg, wet_tolerance
-   character(len=*), intent(in) :: pad_shape
-   real(c_double), intent(out) :: mu(ns), hydroplaning_fraction(ns), wet_fraction(ns)
-   real(c_double), intent(out) :: max_balance_residual(ns), mean_hydro_load(ns)
-   real(c_double), intent(out) :: max_compression(ns)
-   integer(c_int64_t), intent(out) :: n_clamped(ns), bearing_evaluations(ns), memory_updates(ns)
-   integer(c_int), intent(out) :: viscous_memory_ran(ns), bearing_ran(ns)
-   real(c_double), intent(out) :: position(npos), mu_inst(npos, ns), hydro_load(npos, ns)
-   real(c_double), intent(out) :: penetration(npos, ns)
-   integer(c_int), intent(out) :: contact_elements(npos, ns)
-   integer(c_int), intent(out) :: n_elements, n_positions, n_spinup, status
-   character(len=256), intent(out) :: effects
+   character(len=*), intent(in) :: settings
+   integer(c_int), intent(in) :: np
+   integer(c_int), intent(out) :: n_elements, n_positions, status
    character(len=2048), intent(out) :: message
-   type(model_type) :: m
-   type(sim_result_type) :: res
+   type(scene_type) :: scene
    type(error_type), allocatable :: error
-
-   status = 0
-   message = ""
-   effects = ""
-   mu = 0; hydroplaning_fraction = 0; wet_fraction = 0; max_balance_residual = 0
-   mean_hydro_load = 0; max_compression = 0; n_clamped = 0; bearing_evaluations = 0
-   memory_updates = 0
-   viscous_memory_ran = 0; bearing_ran = 0; position = 0; mu_inst = 0; hydro_load = 0
-   penetration = 0; contact_elements = 0; n_elements = 0; n_positions = 0; n_spinup = 0
-   m%mu_loc = mu_loc; m%length = length; m%width = width; m%thickness = thickness
-   m%load = load; m%shape = pad_shape; m%radius = radius; m%stiffness = stiffness
-   m%viscosity = viscosity; m%depth = depth; m%water_viscosity = water_viscosity
-   m%alpha = alpha; m%beta = beta; m%theta_max_deg = theta_max_deg; m%substeps = substeps
-   m%elements_per_sample = elements_per_sample; m%position_stride = position_stride
-   m%wet_tolerance = wet_tolerance
-
-   call simulate(m, z, dx, closed /= 0, speeds_kmh, want_series /= 0, res, error)
+   n_elements = 0; n_positions = 0; status = 0; message = ""
+   call scene_from_text(settings, "", scene, error, arrays=.true.)
    if (allocated(error)) then
       status = error%stat
       message = error%message
       return
    end if
-   if (want_series /= 0 .and. npos /= res%n_positions) then
-      status = 2
-      message = "internal: series sized for a different number of positions"
+   n_elements = pad_elements(scene%model, scene%dx)
+   n_positions = averaged_positions(scene%model, np, scene%dx, scene%closed)
+end subroutine pf_layout
+
+!> Run the model on heights z (m) with `settings`, a namelist text of the
+!> scene's groups (&surface dx and closed, &operation speeds_kmh, &output
+!> series and any model variable): the same reading and the same run as the
+!> program's (pavefric_run's run_profile). Results come through the output
+!> table: per-speed values(ns, n_outputs) and series(npos, ns, n_outputs)
+!> where present(k) /= 0. Texts (effects, warnings, parameters used) come
+!> in `texts` with their lengths; when they do not fit, text_lengths says
+!> how much room to give and status is 0 (call again).
+subroutine pf_simulate(np, z, settings, ns, npos, nout, ntext, speed, speed_kmh, values, series, &
+      & present, position, counts, texture, texts, text_lengths, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_kinds, only: wp
+   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_simulate, only: sim_result_type
+   use pavefric_outputs, only: output_metadata_type, output_present, output_values, n_outputs, &
+      & output_var_type, output_table, dim_speed
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_run, only: run_profile
+   use pavefric_error, only: error_type, stat_internal
+   implicit none
+   integer(c_int), intent(in) :: np, ns, npos, nout, ntext
+   real(c_double), intent(in) :: z(np)
+   character(len=*), intent(in) :: settings
+   real(c_double), intent(out) :: speed(ns), speed_kmh(ns), values(ns, nout)
+   real(c_double), intent(out) :: series(npos, ns, nout), position(npos), texture(3)
+   integer(c_int), intent(out) :: present(nout), counts(6), text_lengths(3), status
+   character, intent(out) :: texts(ntext)
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(clean_profile_type) :: clean
+   type(sim_result_type) :: res
+   type(output_metadata_type) :: meta
+   type(error_type), allocatable :: error
+   type(output_var_type) :: table(n_outputs)
+   real(wp), allocatable :: v(:)
+   character(len=:), allocatable :: joined
+   integer :: k, n_pos, c
+
+   speed = 0; speed_kmh = 0; values = 0; series = 0; present = 0; position = 0; texture = 0
+   counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
+   call scene_from_text(settings, "", scene, error, arrays=.true.)
+   if (allocated(error)) goto 99
+   if (size(scene%speeds_kmh) /= ns .or. nout /= n_outputs) then
+      status = stat_internal
+      message = "internal: pf_simulate sized for another number of speeds or outputs"
       return
    end if
-   mu = res%mu
-   hydroplaning_fraction = res%hydroplaning_fraction
-   wet_fraction = res%wet_fraction
-   max_balance_residual = res%max_balance_residual
-   mean_hydro_load = res%mean_hydro_load
-   max_compression = res%max_compression
-   n_clamped = res%n_clamped
-   bearing_evaluations = res%bearing_evaluations
-   memory_updates = res%memory_updates
-   viscous_memory_ran = merge(1, 0, res%viscous_memory_ran)
-   bearing_ran = merge(1, 0, res%bearing_ran)
-   n_elements = res%n_elements
-   n_positions = res%n_positions
-   n_spinup = res%n_spinup
-   effects = effects_text(res)
-   if (want_series /= 0) then
-      position = res%position
-      mu_inst = res%mu_inst
-      hydro_load = res%hydro_load
-      penetration = res%penetration
-      contact_elements = res%contact_elements
+   clean%z = z
+   clean%dx = scene%dx
+   call run_profile(scene, clean, res, meta, error)
+   if (allocated(error)) goto 99
+   n_pos = 0
+   if (scene%series) n_pos = res%n_positions
+   if (scene%series .and. npos /= n_pos) then
+      status = stat_internal
+      message = "internal: pf_simulate series sized for a different number of positions"
+      return
+   end if
+   speed = res%speed
+   speed_kmh = res%speed_kmh
+   table = output_table()
+   allocate(v(max(ns, ns * max(n_pos, 1))))
+   do k = 1, n_outputs
+      if (.not. output_present(res, k)) cycle
+      present(k) = 1
+      call output_values(res, k, v)
+      if (table(k)%dims == dim_speed) then
+         values(:, k) = v(1:ns)
+      else
+         series(:, :, k) = reshape(v(1:n_pos*ns), [n_pos, ns])
+      end if
+   end do
+   if (scene%series) position = res%position
+   counts = [res%n_elements, res%n_positions, res%n_spinup, merge(1, 0, meta%has_texture), &
+      & meta%texture%n_segments, meta%texture%n_valid]
+   if (meta%has_texture) texture = [meta%texture%mpd, meta%texture%rms_height, &
+      & meta%texture%rms_slope]
+   joined = res%effects // meta%warnings // meta%parameters_text
+   text_lengths = [len(res%effects), len(meta%warnings), len(meta%parameters_text)]
+   if (len(joined) <= ntext) then
+      do c = 1, len(joined)
+         texts(c) = joined(c:c)
+      end do
+   end if
+99 continue
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
    end if
 end subroutine pf_simulate
 
-!> Run a scene file and write its NetCDF output, as the program does.
-subroutine pf_run_scene(path, output, command, out_path, status, message)
+!> Run a scene file and write its NetCDF output, as the program does; the
+!> warnings recorded in it come back in `warnings` (lines, truncated).
+subroutine pf_run_scene(path, output, command, out_path, warnings, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_run, only: run_scene
    use pavefric_simulate, only: sim_result_type
@@ -145,22 +230,105 @@ subroutine pf_run_scene(path, output, command, out_path, status, message)
    implicit none
    character(len=*), intent(in) :: path, output, command
    character(len=4096), intent(out) :: out_path
+   character(len=8192), intent(out) :: warnings
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
    type(sim_result_type) :: res
    type(error_type), allocatable :: error
-   character(len=:), allocatable :: written
+   character(len=:), allocatable :: written, warned
    status = 0
    message = ""
    out_path = ""
-   call run_scene(path, output, command, written, res, error)
+   warnings = ""
+   call run_scene(path, output, command, written, res, error, warnings=warned)
    if (allocated(error)) then
       status = error%stat
       message = error%message
       return
    end if
    out_path = written
+   if (allocated(warned)) warnings = warned
 end subroutine pf_run_scene
+
+!> Read a scene file and its profile as the program does (first pass):
+!> sizes, spacing, and the length of the parameters text.
+subroutine pf_scene_info(path, np, ns, dx, closed, series, ntext, profile_file, output_file, &
+      & status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_run, only: load_scene_profile
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_model, only: parameters_namelist, parameter_table
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(out) :: np, ns, closed, series, ntext, status
+   real(c_double), intent(out) :: dx
+   character(len=4096), intent(out) :: profile_file, output_file
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(error_type), allocatable :: error
+   type(clean_profile_type) :: clean
+   np = 0; ns = 0; dx = 0; closed = 0; series = 0; ntext = 0; status = 0; message = ""
+   profile_file = ""; output_file = ""
+   call read_scene(path, scene, error)
+   if (.not. allocated(error)) call load_scene_profile(scene, clean, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   np = size(clean%z)
+   dx = clean%dx
+   ns = size(scene%speeds_kmh)
+   closed = merge(1, 0, scene%closed)
+   series = merge(1, 0, scene%series)
+   ntext = len(parameters_namelist(parameter_table(), scene%parameters))
+   profile_file = scene%profile_file
+   output_file = scene%output_file
+end subroutine pf_scene_info
+
+!> Heights (m), speeds (km/h) and the parameters used (a namelist text) of
+!> a scene file (second pass).
+subroutine pf_scene_arrays(path, np, ns, ntext, z, speeds_kmh, text, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_run, only: load_scene_profile
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_model, only: parameters_namelist, parameter_table
+   use pavefric_error, only: error_type, stat_internal
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(in) :: np, ns, ntext
+   real(c_double), intent(out) :: z(np), speeds_kmh(ns)
+   character, intent(out) :: text(ntext)
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(error_type), allocatable :: error
+   type(clean_profile_type) :: clean
+   character(len=:), allocatable :: t
+   integer :: c
+   z = 0; speeds_kmh = 0; text = " "; status = 0; message = ""
+   call read_scene(path, scene, error)
+   if (.not. allocated(error)) call load_scene_profile(scene, clean, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   t = parameters_namelist(parameter_table(), scene%parameters)
+   if (size(clean%z) /= np .or. size(scene%speeds_kmh) /= ns .or. len(t) /= ntext) then
+      status = stat_internal
+      message = "scene '" // trim(path) // "' changed while it was read"
+      return
+   end if
+   z = clean%z
+   speeds_kmh = scene%speeds_kmh
+   do c = 1, ntext
+      text(c) = t(c:c)
+   end do
+end subroutine pf_scene_arrays
 
 !> Read and preprocess a profile file (first pass): sizes and spacing.
 subroutine pf_profile_info(path, format, height_unit, x_column, z_column, dx_default, &
@@ -274,90 +442,7 @@ subroutine pf_hydro_load(n, prefactor, h_in, h_out, wh, dwh_dhout)
    end do
 end subroutine pf_hydro_load
 
-!> Read a scene file as the program does (first pass): sizes, spacing and
-!> parameters. The heights and speeds come from pf_scene_arrays.
-subroutine pf_scene_info(path, np, ns, dx, closed, series, mu_loc, length, width, thickness, &
-      & load, pad_shape, radius, stiffness, viscosity, depth, water_viscosity, alpha, beta, &
-      & theta_max_deg, substeps, elements_per_sample, position_stride, wet_tolerance, &
-      & profile_file, output_file, status, message)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_kinds, only: wp
-   use pavefric_scene, only: scene_type, read_scene
-   use pavefric_run, only: load_scene_profile
-   use pavefric_preprocess, only: clean_profile_type
-   use pavefric_error, only: error_type
-   implicit none
-   character(len=*), intent(in) :: path
-   integer(c_int), intent(out) :: np, ns, closed, series, substeps, elements_per_sample
-   integer(c_int), intent(out) :: position_stride, status
-   real(c_double), intent(out) :: dx, mu_loc, length, width, thickness, load, radius, stiffness
-   real(c_double), intent(out) :: viscosity, depth, water_viscosity, alpha, beta, theta_max_deg
-   real(c_double), intent(out) :: wet_tolerance
-   character(len=16), intent(out) :: pad_shape
-   character(len=4096), intent(out) :: profile_file, output_file
-   character(len=2048), intent(out) :: message
-   type(scene_type) :: scene
-   type(error_type), allocatable :: error
-   type(clean_profile_type) :: clean
-   np = 0; ns = 0; dx = 0; closed = 0; series = 0; status = 0; message = ""
-   profile_file = ""; output_file = ""; pad_shape = ""
-   call read_scene(path, scene, error)
-   if (.not. allocated(error)) call load_scene_profile(scene, clean, error)
-   if (allocated(error)) then
-      status = error%stat
-      message = error%message
-      return
-   end if
-   np = size(clean%z)
-   dx = clean%dx
-   ns = size(scene%speeds_kmh)
-   closed = merge(1, 0, scene%closed)
-   series = merge(1, 0, scene%series)
-   associate(m => scene%model)
-      mu_loc = m%mu_loc; length = m%length; width = m%width; thickness = m%thickness
-      load = m%load; pad_shape = m%shape; radius = m%radius; stiffness = m%stiffness
-      viscosity = m%viscosity; depth = m%depth; water_viscosity = m%water_viscosity
-      alpha = m%alpha; beta = m%beta; theta_max_deg = m%theta_max_deg
-      substeps = m%substeps; elements_per_sample = m%elements_per_sample
-      position_stride = m%position_stride; wet_tolerance = m%wet_tolerance
-   end associate
-   profile_file = scene%profile_file
-   output_file = scene%output_file
-end subroutine pf_scene_info
 
-!> Heights (m) and speeds (km/h) of a scene file (second pass).
-subroutine pf_scene_arrays(path, np, ns, z, speeds_kmh, status, message)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_kinds, only: wp
-   use pavefric_scene, only: scene_type, read_scene
-   use pavefric_run, only: load_scene_profile
-   use pavefric_preprocess, only: clean_profile_type
-   use pavefric_error, only: error_type
-   implicit none
-   character(len=*), intent(in) :: path
-   integer(c_int), intent(in) :: np, ns
-   real(c_double), intent(out) :: z(np), speeds_kmh(ns)
-   integer(c_int), intent(out) :: status
-   character(len=2048), intent(out) :: message
-   type(scene_type) :: scene
-   type(error_type), allocatable :: error
-   type(clean_profile_type) :: clean
-   z = 0; speeds_kmh = 0; status = 0; message = ""
-   call read_scene(path, scene, error)
-   if (.not. allocated(error)) call load_scene_profile(scene, clean, error)
-   if (allocated(error)) then
-      status = error%stat
-      message = error%message
-      return
-   end if
-   if (size(clean%z) /= np .or. size(scene%speeds_kmh) /= ns) then
-      status = 2
-      message = "scene '" // trim(path) // "' changed while it was read"
-      return
-   end if
-   z = clean%z
-   speeds_kmh = scene%speeds_kmh
-end subroutine pf_scene_arrays
 
 !> Texture metrics of heights z (m): MPD (m), segments used, RMS height (m),
 !> RMS slope; msd holds each segment's depth (size nseg_max).

@@ -1,0 +1,231 @@
+!> Film components: what the water between the pad and the road does.
+!>
+!> A film sees the whole gap field under the pad (gap_i >= 0 under element
+!> i, 0 where the element touches) and may return a load that lifts the pad
+!> (it then takes part in the load balance), a change of local friction on
+!> each element (a share of mu_loc), or both. Films that evolve in time keep
+!> a state per road sample (the water on the road), advanced with the pad.
+!> The driver and the load balance see only this interface (`film_model`).
+module pavefric_film
+   use pavefric_kinds, only: wp
+   use pavefric_bearing, only: bearing_prefactor, hydro_load
+   implicit none
+   private
+
+   public :: film_model, film_step_type, pseudo_bearing_film
+
+   !> What one speed makes of the film.
+   type :: film_step_type
+      !> Whether the film takes part at this speed (water and motion).
+      logical :: active = .false.
+      !> Time step (s) and model coefficients (meaning is the model's).
+      real(wp) :: dt = 0.0_wp
+      real(wp), allocatable :: coef(:)
+   end type film_step_type
+
+   !> A water film model.
+   type, abstract :: film_model
+   contains
+      !> Step coefficients at speed V when the pad advances `advance` per step.
+      procedure(prepare_interface), deferred :: prepare
+      !> Whether it carries load (and then takes part in the load balance).
+      procedure(flag_interface), deferred :: carries_load
+      !> Whether it changes the local friction of the elements.
+      procedure(flag_interface), deferred :: changes_friction
+      !> The output's name of the effect ('hydrodynamic_bearing', ...).
+      procedure(name_interface), deferred :: effect
+      !> Values of state per road sample (0: stateless).
+      procedure :: state_size => film_no_state
+      !> Whether the film takes part in the balance at this position, from
+      !> the gap field at the dry balance (load films).
+      procedure :: engages => film_never
+      !> Load (N) on the pad for a gap field, and its derivative with
+      !> respect to the pad's penetration (gap_i = max(0, d_i - x)).
+      procedure :: load => film_no_load
+      !> Penetration below which the film carries nothing and no element
+      !> touches, given the shifted clearances d (min d = 0): the wet
+      !> balance's lower bracket is min(0, this).
+      procedure :: lower_bound => film_lower_zero
+      !> The state of every road sample before the pad arrives.
+      procedure :: reset => film_reset_nothing
+      !> A road sample passes under the pad's leading edge.
+      procedure :: enter => film_enter_nothing
+      !> Advance the film under the elements by one step and return each
+      !> element's share of mu_loc (friction films).
+      procedure :: friction => film_friction_unchanged
+   end type film_model
+
+   abstract interface
+      pure subroutine prepare_interface(self, speed, advance, step)
+         import :: film_model, film_step_type, wp
+         class(film_model), intent(in) :: self
+         real(wp), intent(in) :: speed, advance
+         type(film_step_type), intent(out) :: step
+      end subroutine prepare_interface
+
+      pure logical function flag_interface(self)
+         import :: film_model
+         class(film_model), intent(in) :: self
+      end function flag_interface
+
+      pure function name_interface(self) result(name)
+         import :: film_model
+         class(film_model), intent(in) :: self
+         character(len=:), allocatable :: name
+      end function name_interface
+   end interface
+
+   !> The paper's hydrodynamic pseudo-bearing (Eqs. 13-15): an inclined-pad
+   !> film of inlet H_in (the water depth) and outlet the mean gap under the
+   !> pad; it carries load while the water fills the valleys (mean gap < H_in).
+   type, extends(film_model) :: pseudo_bearing_film
+      !> Water depth H_in (m), viscosity eta (Pa s), alpha, beta, pad width l
+      !> and length L (m).
+      real(wp) :: depth = 0.0_wp, eta = 0.0_wp, alpha = 0.0_wp, beta = 0.0_wp
+      real(wp) :: width = 0.0_wp, length = 0.0_wp
+   contains
+      procedure :: prepare => bearing_prepare
+      procedure :: carries_load => bearing_carries_load
+      procedure :: changes_friction => bearing_changes_friction
+      procedure :: effect => bearing_effect
+      procedure :: engages => bearing_engages
+      procedure :: load => bearing_load
+      procedure :: lower_bound => bearing_lower_bound
+   end type pseudo_bearing_film
+
+contains
+
+   ! --- defaults of the interface ---------------------------------------------
+
+   pure integer function film_no_state(self)
+      class(film_model), intent(in) :: self
+      film_no_state = 0
+   end function film_no_state
+
+   pure logical function film_never(self, step, gap)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      film_never = .false.
+   end function film_never
+
+   pure subroutine film_no_load(self, step, gap, wh, dwh_dx)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      real(wp), intent(out) :: wh, dwh_dx
+      wh = 0.0_wp
+      dwh_dx = 0.0_wp
+   end subroutine film_no_load
+
+   pure real(wp) function film_lower_zero(self, step, d)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: d(:)
+      film_lower_zero = 0.0_wp
+   end function film_lower_zero
+
+   pure subroutine film_reset_nothing(self, step, state)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+   end subroutine film_reset_nothing
+
+   pure subroutine film_enter_nothing(self, step, state, sample)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+      integer, intent(in) :: sample
+   end subroutine film_enter_nothing
+
+   pure subroutine film_friction_unchanged(self, step, state, samples, footprint, pressure, &
+         & element_length, share)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+      !> Road samples under the elements, `footprint` per element, in order.
+      integer, intent(in) :: samples(:), footprint
+      !> Contact pressure of each element (Pa; 0 out of contact), element length (m).
+      real(wp), intent(in) :: pressure(:), element_length
+      real(wp), intent(out) :: share(:)
+      share = 1.0_wp
+   end subroutine film_friction_unchanged
+
+
+   ! --- the paper's pseudo-bearing ----------------------------------------------
+
+   !> Active with water and motion (Sect. 3); coef(1) is Eq. 15's prefactor
+   !> alpha 6 eta V**beta l L**2.
+   pure subroutine bearing_prepare(self, speed, advance, step)
+      class(pseudo_bearing_film), intent(in) :: self
+      real(wp), intent(in) :: speed, advance
+      type(film_step_type), intent(out) :: step
+      allocate(step%coef(1))
+      step%coef(1) = 0.0_wp
+      step%active = self%depth > 0.0_wp .and. speed > 0.0_wp
+      if (step%active) step%coef(1) = bearing_prefactor(self%alpha, self%beta, self%eta, &
+         & speed, self%width, self%length)
+      if (speed > 0.0_wp) step%dt = advance / speed
+   end subroutine bearing_prepare
+
+   pure logical function bearing_carries_load(self)
+      class(pseudo_bearing_film), intent(in) :: self
+      bearing_carries_load = .true.
+   end function bearing_carries_load
+
+   pure logical function bearing_changes_friction(self)
+      class(pseudo_bearing_film), intent(in) :: self
+      bearing_changes_friction = .false.
+   end function bearing_changes_friction
+
+   pure function bearing_effect(self) result(name)
+      class(pseudo_bearing_film), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = "hydrodynamic_bearing"
+   end function bearing_effect
+
+   !> Wet iff the water fills the valleys under the pad: the mean gap (the
+   !> trapped water's volume per unit width over L) is below H_in (Sect. 3).
+   pure logical function bearing_engages(self, step, gap)
+      class(pseudo_bearing_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      bearing_engages = mean(gap) < self%depth
+   end function bearing_engages
+
+   !> Eq. 15 with H_out = the mean gap; d(mean gap)/dx = -(elements with a gap)/N.
+   pure subroutine bearing_load(self, step, gap, wh, dwh_dx)
+      class(pseudo_bearing_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      real(wp), intent(out) :: wh, dwh_dx
+      real(wp) :: dwh
+      integer :: i, n_gap
+      call hydro_load(step%coef(1), self%depth, mean(gap), wh, dwh)
+      n_gap = 0
+      do i = 1, size(gap)
+         n_gap = n_gap + merge(1, 0, gap(i) > 0.0_wp)
+      end do
+      dwh_dx = -(dwh * real(n_gap, wp) / real(size(gap), wp))
+   end subroutine bearing_load
+
+   !> Below mean(d) - H_in the mean gap exceeds H_in (no wedge, no load).
+   pure real(wp) function bearing_lower_bound(self, step, d)
+      class(pseudo_bearing_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: d(:)
+      bearing_lower_bound = sum(d) / real(size(d), wp) - self%depth
+   end function bearing_lower_bound
+
+   !> Mean of a gap field, summed in element order.
+   pure real(wp) function mean(gap)
+      real(wp), intent(in) :: gap(:)
+      integer :: i
+      mean = 0.0_wp
+      do i = 1, size(gap)
+         mean = mean + gap(i)
+      end do
+      mean = mean / real(size(gap), wp)
+   end function mean
+
+end module pavefric_film
