@@ -18,6 +18,7 @@ module pavefric_run
    private
 
    public :: run_scene, run_profile, load_scene_profile, ctm_dx, preprocess_summary, timestamp
+   public :: rms_plausible_low, rms_plausible_high, mu_plausible_high
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
    real(wp), parameter :: ctm_dx = 0.87e-3_wp
@@ -150,7 +151,12 @@ contains
       meta%closed = scene%closed
       meta%has_parameters = .true.
       meta%parameters = scene%parameters
-      meta%parameters_text = parameters_namelist(parameter_table(), scene%parameters)
+      if (scene%is_batch) then
+         meta%parameters_text = parameters_namelist(parameter_table(), scene%parameters)
+      else
+         meta%parameters_text = parameters_namelist(parameter_table(), scene%parameters, &
+            & groups="surface preprocess pad rubber water operation numerics output")
+      end if
       meta%warnings = scene%warnings
       ! Texture metrics: reported when the profile holds a whole valid segment.
       if (allocated(clean%dropout_fraction)) then

@@ -10,6 +10,7 @@ Commands:
   surfaces [--outdir inputs/surfaces]       regenerate the six reference surfaces
   validate [--report docs/validation.md]    calibrate at 20 km/h, compare, report
   profile FILE [--dropouts interpolate ...] read, preprocess, report, plot a profile
+  docs --inputs docs/inputs.md              regenerate the namelist reference from the core
 """
 from __future__ import annotations
 
@@ -100,6 +101,11 @@ def main(argv: list[str] | None = None) -> int:
     p_prof.add_argument("--export", default=None,
                         help="write the cleaned profile as two columns (distance, height; mm)")
 
+    p_docs = sub.add_parser("docs", help="regenerate reference documents from the core's "
+                            "declarations")
+    p_docs.add_argument("--inputs", default="docs/inputs.md",
+                        help="where to write the namelist reference")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -140,6 +146,10 @@ def main(argv: list[str] | None = None) -> int:
             from .validation import validate
 
             validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick)
+        elif args.command == "docs":
+            from .docs import write_inputs
+
+            print(f"wrote {write_inputs(args.inputs)}")
         elif args.command == "profile":
             from .core import read_profile
             from .plot import plot_profile

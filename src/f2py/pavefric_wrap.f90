@@ -21,6 +21,19 @@ subroutine pf_version(version, ctm_dx_out)
    ctm_dx_out = ctm_dx
 end subroutine pf_version
 
+!> What a road can be, beyond the declared ranges of the inputs: the RMS
+!> height of a texture profile (m) and the largest friction coefficient;
+!> outside them a run warns (docs/inputs.md).
+subroutine pf_plausibility(rms_low, rms_high, mu_high)
+   use, intrinsic :: iso_c_binding, only: c_double
+   use pavefric_run, only: rms_plausible_low, rms_plausible_high, mu_plausible_high
+   implicit none
+   real(c_double), intent(out) :: rms_low, rms_high, mu_high
+   rms_low = rms_plausible_low
+   rms_high = rms_plausible_high
+   mu_high = mu_plausible_high
+end subroutine pf_plausibility
+
 !> Number of declared namelist variables and groups (pavefric_model).
 subroutine pf_parameter_count(n_parameters_out, n_groups_out)
    use, intrinsic :: iso_c_binding, only: c_int

@@ -1,0 +1,27 @@
+"""docs/inputs.md is generated from the core's declarations and kept fresh."""
+import pavefric
+from conftest import ROOT
+from pavefric.docs import inputs_markdown
+
+
+def test_inputs_reference_is_fresh():
+    committed = (ROOT / "docs" / "inputs.md").read_text(encoding="utf-8")
+    assert committed == inputs_markdown(), (
+        "docs/inputs.md is stale: run `python -m pavefric docs --inputs docs/inputs.md`")
+
+
+def test_every_declared_variable_is_documented():
+    text = inputs_markdown()
+    for p in pavefric.parameters():
+        assert f"| `{p.name}` |" in text
+        assert f"## `&{p.group}`" in text
+
+
+def test_python_keywords_and_defaults_come_from_the_declarations():
+    from pavefric.core import PARAMETERS
+
+    model = {p.keyword: p for p in pavefric.parameters() if p.scope == "model"}
+    assert set(PARAMETERS) == set(model)
+    assert pavefric.defaults() == {k: p.default for k, p in model.items()}
+    assert pavefric.defaults()["stiffness"] == 1.4e8
+    assert PARAMETERS["water_viscosity"] == ("water", "viscosity")

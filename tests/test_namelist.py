@@ -1,0 +1,284 @@
+"""The namelist reader: groups wherever the standard allows them, nothing
+silently ignored or misread (issue 10 item 3), every value checked against
+its one declaration, plausible-but-suspicious values warned about."""
+import math
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import run_program, write_scene
+
+DX = 0.87e-3
+
+
+def mu_of(tmp_path, scene):
+    out = tmp_path / (scene.stem + ".nc")
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(out) as ds:
+        return ds["mu"].values.copy(), ds.attrs["effects"], r
+
+
+@pytest.fixture()
+def wet_reference(tmp_path, profile_m):
+    scene = write_scene(tmp_path / "ref", profile=profile_m, groups={"water": "depth = 1e-3"})
+    mu, effects, _ = mu_of(tmp_path, scene)
+    assert "hydrodynamic_bearing" in effects
+    return mu
+
+
+@pytest.mark.parametrize("prefix", [
+    "\ufeff",            # a byte-order mark at the start of the file
+    "\u00a0",            # a no-break space
+    "\f",                # a form feed
+    "\t  ",
+])
+def test_a_group_after_unusual_blanks_is_read(tmp_path, profile_m, wet_reference, prefix):
+    scene = write_scene(tmp_path, profile=profile_m, groups={"water": None})
+    scene.write_text(scene.read_text() + prefix + "&water depth = 1e-3 /\n", encoding="utf-8")
+    mu, effects, _ = mu_of(tmp_path, scene)
+    assert "hydrodynamic_bearing" in effects
+    np.testing.assert_array_equal(mu, wet_reference)
+
+
+def test_a_bom_at_the_start_of_the_file(tmp_path, profile_m, wet_reference):
+    scene = write_scene(tmp_path, profile=profile_m, groups={"water": "depth = 1e-3"})
+    scene.write_bytes(b"\xef\xbb\xbf" + scene.read_bytes())
+    mu, _, _ = mu_of(tmp_path, scene)
+    np.testing.assert_array_equal(mu, wet_reference)
+
+
+def test_two_groups_on_one_line(tmp_path, profile_m, wet_reference):
+    scene = write_scene(tmp_path, profile=profile_m, groups={"water": None, "pad": None})
+    scene.write_text(scene.read_text() + "&pad length = 0.020 / &water depth = 1e-3 /\n")
+    mu, _, _ = mu_of(tmp_path, scene)
+    np.testing.assert_array_equal(mu, wet_reference)
+
+
+def test_a_group_given_twice_is_an_error(tmp_path):
+    scene = write_scene(tmp_path)
+    scene.write_text(scene.read_text() + "&water\n  depth = 1e-3\n/\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1
+    assert "&water: given twice" in r.stderr and "merge the two groups" in r.stderr
+    assert not (tmp_path / "o.nc").exists()
+
+
+@pytest.mark.parametrize("body,needles", [
+    ("depth = 1e-3, depth = 2e-3", ["&water depth", "given twice"]),
+    ("depth = 1-3", ["&water depth = 1-3", "cannot be read as a number"]),
+    ("depth = 1e-3 viscosity = '1e-3'", ["&water viscosity", "cannot be read as a number"]),
+    ("depth = 1e-3,, alpha = 1", ["&water depth", "empty value"]),
+    ("depth = 1e-3 &end junk", ["junk", "outside a namelist group"]),
+])
+def test_malformed_assignments(tmp_path, body, needles):
+    scene = write_scene(tmp_path, groups={"water": body})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1
+    line = r.stderr.strip()
+    assert len(line.splitlines()) == 1, r.stderr
+    for needle in needles:
+        assert needle in line, (needle, line)
+
+
+def test_text_outside_groups_is_an_error_not_ignored(tmp_path):
+    scene = write_scene(tmp_path, groups={"water": None})
+    scene.write_text(scene.read_text() + "depth = 1e-3\n")    # forgot the group
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1
+    assert "'depth = 1e-3' outside a namelist group" in r.stderr
+
+
+def test_an_unterminated_group_is_an_error(tmp_path):
+    scene = write_scene(tmp_path, groups={"water": None})
+    scene.write_text(scene.read_text() + "&water depth = 1e-3\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&water is not terminated" in r.stderr
+
+
+def test_dx_minus_one_is_refused_not_taken_as_unset(tmp_path):
+    scene = write_scene(tmp_path, groups={"surface": "profile_file = 'scene_profile.txt', "
+                                                     "dx = -1"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&surface dx = -1" in r.stderr
+
+
+def test_a_huge_negative_speed_is_refused(tmp_path):
+    scene = write_scene(tmp_path, groups={"operation": "speeds_kmh = 20, -1e300"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&operation speeds_kmh(2) = -1e300" in r.stderr
+
+
+@pytest.mark.parametrize("group,body,needle", [
+    # old reader: fixed-length strings truncated, then the truncation was accepted
+    ("pad", "shape = 'flat" + " " * 40 + "x'", "&pad shape = 'flat"),
+    ("surface", "profile_file = 'scene_profile.txt" + " " * 5000 + "x'",
+     "&surface profile_file"),
+    ("surface", "profile_file = 'scene_profile.txt', height_unit = 'mm" + " " * 30 + "zz'",
+     "&surface height_unit"),
+])
+def test_over_long_strings_are_not_truncated(tmp_path, group, body, needle):
+    scene = write_scene(tmp_path, groups={group: body})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1, r.stdout
+    assert needle in r.stderr
+
+
+def test_an_integer_written_as_a_real_is_refused(tmp_path):
+    scene = write_scene(tmp_path, groups={"numerics": "substeps = 2.9"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&numerics substeps = 2.9" in r.stderr
+    assert "whole number" in r.stderr
+
+
+def test_list_syntax(tmp_path, profile_m):
+    a = write_scene(tmp_path / "a", profile=profile_m,
+                    groups={"operation": "speeds_kmh = 20, 20, 60"})
+    b = write_scene(tmp_path / "b", profile=profile_m,
+                    groups={"operation": "speeds_kmh = 2*20 60"})
+    c = write_scene(tmp_path / "c", profile=profile_m,
+                    groups={"operation": "speeds_kmh(3) = 60, speeds_kmh(1) = 2*20"})
+    mus = [mu_of(tmp_path, s)[0] for s in (a, b, c)]
+    np.testing.assert_array_equal(mus[0], mus[1])
+    np.testing.assert_array_equal(mus[0], mus[2])
+    gap = write_scene(tmp_path / "d", groups={"operation": "speeds_kmh(1) = 20, "
+                                                           "speeds_kmh(3) = 60"})
+    r = run_program(gap, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "element 2 is not given" in r.stderr
+
+
+# --- plausibility warnings -----------------------------------------------------
+
+def test_water_depth_in_mm_by_mistake_warns(tmp_path, profile_m):
+    scene = write_scene(tmp_path, profile=profile_m, groups={"water": "depth = 1.0"})
+    mu, _, r = mu_of(tmp_path, scene)
+    assert "pavefric: warning: &water depth = 1 m: outside the plausible range" in r.stderr
+    with xr.open_dataset(tmp_path / "scene.nc") as ds:
+        assert "&water depth = 1 m" in ds.attrs["warnings"]
+
+
+def test_heights_in_metres_declared_as_mm_warns(tmp_path, profile_m):
+    # heights written in metres, declared as mm: a micrometre texture
+    prof = tmp_path / "m.txt"
+    prof.write_text("\n".join(f"{v:.9e}" for v in profile_m) + "\n")
+    scene = write_scene(tmp_path, groups={"surface": "profile_file = 'm.txt', "
+                                                     "height_unit = 'mm'"})
+    mu, _, r = mu_of(tmp_path, scene)
+    assert "RMS height" in r.stderr and "height_unit" in r.stderr
+    with xr.open_dataset(tmp_path / "scene.nc") as ds:
+        assert "RMS height" in ds.attrs["warnings"]
+
+
+def test_no_warning_on_a_plausible_scene(tmp_path, profile_m):
+    scene = write_scene(tmp_path, profile=profile_m, groups={"water": "depth = 1e-3"})
+    mu, _, r = mu_of(tmp_path, scene)
+    assert r.stderr == ""
+    with xr.open_dataset(tmp_path / "scene.nc") as ds:
+        assert ds.attrs["warnings"] == ""
+
+
+def test_python_raises_the_warnings_too(profile_m):
+    with pytest.warns(pavefric.PavefricWarning, match=r"&water depth = 0.5 m"):
+        ds = pavefric.simulate(profile_m, DX, [20.0], depth=0.5)
+    assert "&water depth = 0.5 m" in ds.attrs["warnings"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ds = pavefric.simulate(profile_m, DX, [20.0], depth=1e-3)
+    assert ds.attrs["warnings"] == ""
+
+
+# --- values that overflowed inside the model (issue 10 item 4) --------------------
+
+@pytest.mark.parametrize("group,body,needle", [
+    ("rubber", "viscosity = 1e306", "&rubber viscosity = 1e306"),
+    ("water", "depth = 1e-3, viscosity = 1e306", "&water viscosity = 1e306"),
+    ("pad", "load = 1.7e308", "&pad load = 1.7e308"),
+    ("pad", "shape = 'rounded', radius = 1e300", "&pad radius = 1e300"),
+    ("water", "depth = 1e-3, beta = 300", "&water beta = 300"),
+])
+def test_overflowing_values_are_refused_with_a_clear_error(tmp_path, group, body, needle):
+    scene = write_scene(tmp_path, groups={group: body})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1
+    assert needle in r.stderr and "must be finite" in r.stderr
+    assert not (tmp_path / "o.nc").exists()
+
+
+def test_the_largest_values_allowed_give_finite_results(profile_m):
+    for kw in (dict(viscosity=1e12), dict(load=1e9), dict(stiffness=1e15),
+               dict(depth=1e-3, water_viscosity=1e6, alpha=1e12, beta=10.0),
+               dict(shape="rounded", radius=1e12)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", pavefric.PavefricWarning)
+            ds = pavefric.simulate(profile_m, DX, [0.0, 20.0, 1e5], **kw)
+        for name in ("mu", "max_balance_residual", "mean_hydro_load", "max_compression"):
+            assert np.all(np.isfinite(ds[name].values)), (kw, name)
+
+
+def test_a_huge_rounded_pad_is_flat_not_hydroplaning(profile_m):
+    flat = pavefric.simulate(profile_m, DX, [20.0, 60.0])
+    huge = pavefric.simulate(profile_m, DX, [20.0, 60.0], shape="rounded", radius=1e12)
+    assert np.all(huge["hydroplaning_fraction"].values == 0)
+    np.testing.assert_array_equal(huge["mu"].values, flat["mu"].values)
+
+
+def test_heights_beyond_any_texture_are_refused():
+    with pytest.raises(pavefric.PavefricError, match=r"profile height 3 = 1e\+?200 m"):
+        pavefric.simulate([0.0, 0.0, 1e200] + [0.0] * 60, DX, [20.0])
+
+
+def test_huge_but_finite_heights_give_finite_texture_metrics(tmp_path):
+    z = np.sin(np.arange(300) * 0.3) * 1e5           # absurd but finite: warned, metrics finite
+    with pytest.warns(pavefric.PavefricWarning, match="RMS height"):
+        ds = pavefric.simulate(z, 0.5e-3, [20.0], closed=False)
+    assert np.isfinite(float(ds["rms_height"])) and np.isfinite(float(ds["rms_slope"]))
+
+
+# --- Python: bad calls end in PavefricError, never a bare traceback ------------------
+
+BAD_CALLS = [
+    lambda z: pavefric.simulate(np.vstack([z, z]), DX, [20.0]),          # 2-D heights
+    lambda z: pavefric.simulate(np.ma.masked_array(z, mask=z > 0), DX, [20.0]),
+    lambda z: pavefric.simulate(z, DX, [20.0], substeps=2.9),
+    lambda z: pavefric.simulate(z, DX, [20.0], closed="False"),
+    lambda z: pavefric.simulate(z, DX, [20.0], series="yes"),
+    lambda z: pavefric.simulate(None, DX, [20.0]),
+    lambda z: pavefric.simulate("abc", DX, [20.0]),
+    lambda z: pavefric.simulate(z, "0.87e-3", [20.0]),
+    lambda z: pavefric.simulate(z, None, [20.0]),
+    lambda z: pavefric.simulate(z, DX, "fast"),
+    lambda z: pavefric.simulate(z, DX, [[20.0, 40.0]]),
+    lambda z: pavefric.simulate(z, DX, []),
+    lambda z: pavefric.simulate(z, DX, [20.0], mu_loc="high"),
+    lambda z: pavefric.simulate(z, DX, [20.0], shape=3),
+    lambda z: pavefric.simulate(z, DX, [20.0], depth=None),
+    lambda z: pavefric.simulate(z, DX, [20.0], substeps=True),
+    lambda z: pavefric.simulate(z, DX, [20.0], load=np.array([1.0, 2.0])),
+    lambda z: pavefric.simulate(z, DX, [20.0], depth=math.nan),
+    lambda z: pavefric.simulate(z, DX, [20.0], shape="flat\nrounded"),
+    lambda z: pavefric.simulate(z, -DX, [20.0]),
+    lambda z: pavefric.layout(100, DX, closed="no"),
+]
+
+
+@pytest.mark.parametrize("call", BAD_CALLS, ids=range(len(BAD_CALLS)))
+def test_bad_python_calls_raise_pavefric_error(profile_m, call):
+    with pytest.raises(pavefric.PavefricError) as info:
+        call(profile_m)
+    assert str(info.value).strip() and "\n" not in str(info.value).strip()
+
+
+def test_an_unknown_keyword_is_a_type_error_and_a_pavefric_error(profile_m):
+    with pytest.raises(TypeError, match="lenght"):
+        pavefric.simulate(profile_m, DX, [20.0], lenght=0.02)
+    with pytest.raises(pavefric.PavefricError, match="lenght"):
+        pavefric.simulate(profile_m, DX, [20.0], lenght=0.02)
+
+
+def test_integral_keywords_accept_numpy_integers(profile_m):
+    a = pavefric.simulate(profile_m, DX, [40.0], substeps=2)
+    b = pavefric.simulate(profile_m, DX, [40.0], substeps=np.int64(2))
+    np.testing.assert_array_equal(a["mu"].values, b["mu"].values)
