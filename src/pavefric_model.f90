@@ -35,20 +35,21 @@ module pavefric_model
    integer, parameter, public :: &
       & p_profile_file = 1, p_profile_name = 2, p_format = 3, p_height_unit = 4, &
       & p_x_column = 5, p_z_column = 6, p_dx = 7, p_closed = 8, p_mu_loc = 9, &
-      & p_dropouts = 10, p_trim_plates = 11, p_plate_threshold = 12, &
-      & p_plate_min_length = 13, p_plate_buffer = 14, p_spike_slope = 15, &
-      & p_resample_dx = 16, p_lowpass_wavelength = 17, &
-      & p_length = 18, p_width = 19, p_thickness = 20, p_load = 21, p_shape = 22, &
-      & p_radius = 23, &
-      & p_stiffness = 24, p_viscosity = 25, &
-      & p_depth = 26, p_water_viscosity = 27, p_alpha = 28, p_beta = 29, &
-      & p_speeds_kmh = 30, &
-      & p_theta_max_deg = 31, p_substeps = 32, p_elements_per_sample = 33, &
-      & p_position_stride = 34, p_wet_tolerance = 35, &
-      & p_output_file = 36, p_series = 37, &
-      & p_batch_profiles = 38, p_batch_profile_list = 39, p_batch_depths = 40, &
-      & p_batch_restart = 41, p_batch_progress_every = 42
-   integer, parameter :: n_parameters = 42
+      & p_microtexture_rms = 10, &
+      & p_dropouts = 11, p_trim_plates = 12, p_plate_threshold = 13, &
+      & p_plate_min_length = 14, p_plate_buffer = 15, p_spike_slope = 16, &
+      & p_resample_dx = 17, p_lowpass_wavelength = 18, &
+      & p_length = 19, p_width = 20, p_thickness = 21, p_load = 22, p_shape = 23, &
+      & p_radius = 24, &
+      & p_stiffness = 25, p_viscosity = 26, &
+      & p_wet_model = 27, p_depth = 28, p_water_viscosity = 29, p_alpha = 30, p_beta = 31, &
+      & p_speeds_kmh = 32, &
+      & p_theta_max_deg = 33, p_substeps = 34, p_elements_per_sample = 35, &
+      & p_position_stride = 36, p_wet_tolerance = 37, &
+      & p_output_file = 38, p_series = 39, &
+      & p_batch_profiles = 40, p_batch_profile_list = 41, p_batch_depths = 42, &
+      & p_batch_restart = 43, p_batch_progress_every = 44
+   integer, parameter :: n_parameters = 44
    integer, parameter :: n_groups = 9
 
    !> A namelist group and what it is for (docs/inputs.md sections).
@@ -108,11 +109,12 @@ module pavefric_model
    !> Everything the friction model needs besides the profile and speeds.
    !> SI units; built from the table by model_from_parameters.
    type :: model_type
-      real(wp) :: mu_loc = 0.0_wp
+      real(wp) :: mu_loc = 0.0_wp, microtexture_rms = 0.0_wp
       real(wp) :: length = 0.0_wp, width = 0.0_wp, thickness = 0.0_wp, load = 0.0_wp
       character(len=:), allocatable :: shape
       real(wp) :: radius = 0.0_wp
       real(wp) :: stiffness = 0.0_wp, viscosity = 0.0_wp
+      character(len=:), allocatable :: wet_model
       real(wp) :: depth = 0.0_wp, water_viscosity = 0.0_wp, alpha = 0.0_wp, beta = 0.0_wp
       real(wp) :: theta_max_deg = 0.0_wp
       integer :: substeps = 1, elements_per_sample = 1, position_stride = 1
@@ -132,8 +134,8 @@ contains
          & "The pad of N = nint(length / dx) independent elements.")
       g(4) = group_spec_type("rubber", "Kelvin–Voigt elements", &
          & "The rubber of each element, per unit length of pad (paper, Table 1).")
-      g(5) = group_spec_type("water", "the hydrodynamic pseudo-bearing", &
-         & "Water on the road (Eqs. 13-15). depth = 0 is a dry road: no film is simulated.")
+      g(5) = group_spec_type("water", "water on the road", &
+         & "The water film and its model. depth = 0 is a dry road: no film is simulated.")
       g(6) = group_spec_type("operation", "the speeds", "The sliding speeds of the run.")
       g(7) = group_spec_type("numerics", "accuracy knobs", &
          & "With substeps, elements_per_sample and position_stride at 1 the computation " // &
@@ -183,6 +185,14 @@ contains
          & "Pendulum SRT in the paper: 0.30-0.75). Set it for your surface.", &
          & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=2.0_wp, &
          & plausible_note="pendulum values of roads lie between 0.2 and 1.2")
+
+      s(p_microtexture_rms) = real_param("surface", "microtexture_rms", "45e-6", "m", "model", &
+         & "RMS height of the microtexture asperities (texture finer than dx) that pierce " // &
+         & "the water film left under the contacts, for wet_model = 'squeeze': the share " // &
+         & "erfc(h / (sqrt(2) microtexture_rms)) of mu_loc acts through a film h. The default " // &
+         & "is the single value fitted to the PIARC speed gradient (docs/speed_gradient.md).", &
+         & lower=0.0_wp, upper=1.0_wp, plausible_lower=1.0e-6_wp, plausible_upper=0.5e-3_wp, &
+         & plausible_note="road microtexture asperities are 1 to 500 micrometres high")
 
       ! &preprocess
       s(p_dropouts) = text("preprocess", "dropouts", "error", "", "profile", &
@@ -244,6 +254,11 @@ contains
          & "elastic rubber: no viscous memory is kept", lower=0.0_wp, upper=1.0e12_wp)
 
       ! &water
+      s(p_wet_model) = text("water", "wet_model", "kane2017", "", "model", &
+         & "what the water does: 'kane2017', the paper's pseudo-bearing (Eqs. 13-15), a " // &
+         & "film that lifts the pad; 'squeeze', the film drained from the contact plateaus " // &
+         & "by squeeze flow, pierced by the microtexture (lowers the local friction, no " // &
+         & "lift; docs/model.md)", choices="kane2017 squeeze")
       s(p_depth) = real_param("water", "depth", "0.0", "m", "model", &
          & "water depth, the bearing's inlet film H_in. 0 = dry: no film is simulated.", &
          & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=0.02_wp, &
@@ -883,6 +898,7 @@ contains
       type(param_set_type), intent(in) :: set
       type(model_type) :: m
       m%mu_loc = set%v(p_mu_loc)%r
+      m%microtexture_rms = set%v(p_microtexture_rms)%r
       m%length = set%v(p_length)%r
       m%width = set%v(p_width)%r
       m%thickness = set%v(p_thickness)%r
@@ -891,6 +907,7 @@ contains
       m%radius = set%v(p_radius)%r
       m%stiffness = set%v(p_stiffness)%r
       m%viscosity = set%v(p_viscosity)%r
+      m%wet_model = set%v(p_wet_model)%t
       m%depth = set%v(p_depth)%r
       m%water_viscosity = set%v(p_water_viscosity)%r
       m%alpha = set%v(p_alpha)%r

@@ -13,6 +13,7 @@ module pavefric_simulate
    use pavefric_profile, only: refine_profile, check_heights
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
+   use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
    use pavefric_balance, only: dry_root, wet_root, wet_state_type, gap_field
    implicit none
@@ -157,10 +158,15 @@ contains
       class(rubber_model), allocatable, intent(out) :: rubber
       class(film_model), allocatable, intent(out) :: film
       allocate(rubber, source=kelvin_voigt_rubber(stiffness=m%stiffness, viscosity=m%viscosity))
-      if (m%depth > 0.0_wp) then
+      if (.not. m%depth > 0.0_wp) return
+      select case (m%wet_model)
+      case ("squeeze")
+         allocate(film, source=squeeze_film(depth=m%depth, eta=m%water_viscosity, &
+            & sigma=m%microtexture_rms, width=m%width))
+      case default
          allocate(film, source=pseudo_bearing_film(depth=m%depth, eta=m%water_viscosity, &
             & alpha=m%alpha, beta=m%beta, width=m%width, length=m%length))
-      end if
+      end select
    end subroutine make_components
 
    !> Run the friction model on heights `z` (m) at spacing `dx` (m) for each

@@ -1,0 +1,150 @@
+!> Water drained from the contact plateaus (`&water wet_model = 'squeeze'`),
+!> a film component beside the paper's pseudo-bearing (MODEL.md section 8,
+!> docs/model.md). After Moore's three zones: the water under each contact
+!> patch is squeezed out while the patch passes, and friction returns where
+!> the microtexture pierces what is left of the film.
+!>
+!> The film h on each road sample enters under the pad's leading edge at the
+!> water depth H_in. Contiguous elements in contact form a plateau of length
+!> b along the profile (capped at the pad width l: water also leaves
+!> sideways; a plateau at the pad's edge ends there) carrying the mean
+!> pressure p of its elements; the film under it thins by Reynolds squeeze
+!> flow between parallel faces, p = eta b**2 (-dh/dt) / h**3, which over a
+!> step of constant p integrates exactly as
+!>     h**-2 <- h**-2 + 2 p dt / (eta b**2)
+!> (the state kept per road sample is h**-2). Out of contact a sample keeps
+!> its film. Microtexture asperities of RMS height sigma pierce the film in
+!> the share erfc(h / (sqrt(2) sigma)) (Gaussian heights, Greenwood &
+!> Williamson 1966; |height| > h), and the local friction of the element is
+!> mu_loc times that share. The film carries no load: the contact is the
+!> dry one (a classical film of this geometry carries under 6 % of the load
+!> at 80 km/h; MODEL.md section 8).
+module pavefric_squeeze
+   use pavefric_kinds, only: wp
+   use pavefric_film, only: film_model, film_step_type
+   implicit none
+   private
+
+   public :: squeeze_film
+
+   !> The drainage film.
+   type, extends(film_model) :: squeeze_film
+      !> Water depth H_in (m), water viscosity eta (Pa s), microtexture RMS
+      !> height sigma (m), pad width l (m).
+      real(wp) :: depth = 0.0_wp, eta = 0.0_wp, sigma = 0.0_wp, width = 0.0_wp
+   contains
+      procedure :: prepare => squeeze_prepare
+      procedure :: carries_load => squeeze_carries_load
+      procedure :: changes_friction => squeeze_changes_friction
+      procedure :: effect => squeeze_effect
+      procedure :: state_size => squeeze_state_size
+      procedure :: reset => squeeze_reset
+      procedure :: enter => squeeze_enter
+      procedure :: friction => squeeze_friction
+   end type squeeze_film
+
+contains
+
+   !> Active with water and motion; dt = advance / V; coef(1) = 2 dt / eta,
+   !> coef(2) = 1 / H_in**2 (the entering film), coef(3) = 1 / (sqrt(2) sigma).
+   pure subroutine squeeze_prepare(self, speed, advance, step)
+      class(squeeze_film), intent(in) :: self
+      real(wp), intent(in) :: speed, advance
+      type(film_step_type), intent(out) :: step
+      allocate(step%coef(3))
+      step%coef = 0.0_wp
+      step%active = self%depth > 0.0_wp .and. speed > 0.0_wp
+      if (.not. step%active) return
+      step%dt = advance / speed
+      step%coef(1) = 2.0_wp * step%dt / self%eta
+      step%coef(2) = 1.0_wp / self%depth**2
+      if (self%sigma > 0.0_wp) step%coef(3) = 1.0_wp / (sqrt(2.0_wp) * self%sigma)
+   end subroutine squeeze_prepare
+
+   pure logical function squeeze_carries_load(self)
+      class(squeeze_film), intent(in) :: self
+      squeeze_carries_load = .false.
+   end function squeeze_carries_load
+
+   pure logical function squeeze_changes_friction(self)
+      class(squeeze_film), intent(in) :: self
+      squeeze_changes_friction = .true.
+   end function squeeze_changes_friction
+
+   pure function squeeze_effect(self) result(name)
+      class(squeeze_film), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = "squeeze_film"
+   end function squeeze_effect
+
+   !> One value per road sample: h**-2 (m**-2).
+   pure integer function squeeze_state_size(self)
+      class(squeeze_film), intent(in) :: self
+      squeeze_state_size = 1
+   end function squeeze_state_size
+
+   pure subroutine squeeze_reset(self, step, state)
+      class(squeeze_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+      state = step%coef(2)
+   end subroutine squeeze_reset
+
+   !> Fresh water at the depth H_in ahead of the pad.
+   pure subroutine squeeze_enter(self, step, state, sample)
+      class(squeeze_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+      integer, intent(in) :: sample
+      state(1, sample) = step%coef(2)
+   end subroutine squeeze_enter
+
+   !> Squeeze the film under each plateau for one step, then the share of
+   !> microtexture piercing it under each element in contact (1 elsewhere:
+   !> an element out of contact pushes on nothing).
+   pure subroutine squeeze_friction(self, step, state, samples, footprint, pressure, &
+         & element_length, share)
+      class(squeeze_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(inout) :: state(:, :)
+      integer, intent(in) :: samples(:), footprint
+      real(wp), intent(in) :: pressure(:), element_length
+      real(wp), intent(out) :: share(:)
+      real(wp) :: p_sum, b, c, h
+      integer :: n, i, j, e, q
+      n = size(pressure)
+      share = 1.0_wp
+      i = 1
+      do while (i <= n)
+         if (.not. pressure(i) > 0.0_wp) then
+            i = i + 1
+            cycle
+         end if
+         ! the plateau i .. j-1 and its mean pressure
+         p_sum = 0.0_wp
+         j = i
+         do while (j <= n)
+            if (.not. pressure(j) > 0.0_wp) exit
+            p_sum = p_sum + pressure(j)
+            j = j + 1
+         end do
+         b = min(real(j - i, wp) * element_length, self%width)
+         c = step%coef(1) * (p_sum / real(j - i, wp)) / b**2       ! 2 p dt / (eta b**2)
+         do e = i, j - 1
+            do q = 1, footprint
+               associate(s => state(1, samples((e - 1) * footprint + q)))
+                  s = s + c
+               end associate
+            end do
+            h = 1.0_wp / sqrt(state(1, samples((e - 1) * footprint + 1)))
+            if (step%coef(3) > 0.0_wp) then
+               share(e) = erfc(h * step%coef(3))
+            else
+               share(e) = 0.0_wp                  ! no microtexture: nothing pierces
+            end if
+         end do
+         i = j
+      end do
+   end subroutine squeeze_friction
+
+end module pavefric_squeeze
