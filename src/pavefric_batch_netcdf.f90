@@ -32,7 +32,7 @@ contains
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      integer :: stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
+      integer :: d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
       integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, ids(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -61,13 +61,8 @@ contains
       if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
       if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
 
-      w%path = path
-      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
-      if (stat /= nf90_noerr) then
-         call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
-            & trim(nf90_strerror(stat)) // ")")
-         return
-      end if
+      call w%create(path)
+      if (allocated(w%error)) goto 99
       call w%check(nf90_def_dim(w%ncid, "profile", np, d_p), "dimension profile")
       call w%check(nf90_def_dim(w%ncid, "depth", nd, d_d), "dimension depth")
       call w%check(nf90_def_dim(w%ncid, "speed", ns, d_s), "dimension speed")

@@ -2,15 +2,18 @@
 !> checked writer type every NetCDF output goes through. Every
 !> netCDF call goes through `check`, which adds context to nf90_strerror.
 !> The file is written under a temporary name and renamed on success, so a
-!> failed run leaves no half-written output.
+!> failed run leaves no half-written output; the temporary name is on the
+!> list a fatal signal cleans up (pavefric_fsys, src/pavefric_posix.c).
 module pavefric_netcdf
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error
+   use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
    use pavefric_simulate, only: sim_result_type, effects_text
    use pavefric_texture, only: texture_type
    use pavefric_preprocess, only: preprocess_report_type
-   use pavefric_fsys, only: rename_file, remove_file, process_id
+   use pavefric_fsys, only: rename_file, remove_file, process_id, register_temporary, &
+      & release_temporary, test_pause
    use pavefric_format, only: to_str
    implicit none
    private
@@ -41,6 +44,7 @@ module pavefric_netcdf
       character(len=:), allocatable :: path
       type(error_type), allocatable :: error
    contains
+      procedure :: create => writer_create
       procedure :: check => writer_check
       procedure :: def => writer_def
       procedure, private :: gatt_text, gatt_int
@@ -48,7 +52,48 @@ module pavefric_netcdf
       procedure :: close => writer_close
    end type nc_writer_type
 
+   interface
+      function c_nc_create_mem(path, ncid) bind(C, name="pavefric_nc_create_mem") result(status)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), intent(out) :: ncid
+         integer(c_int) :: status
+      end function c_nc_create_mem
+      subroutine c_nc_close_to_file(ncid, path, nc_status, errno) &
+            & bind(C, name="pavefric_nc_close_to_file")
+         import :: c_int, c_char
+         integer(c_int), value :: ncid
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), intent(out) :: nc_status, errno
+      end subroutine c_nc_close_to_file
+      function c_strerror(errno, out, outlen) bind(C, name="pavefric_strerror") result(n)
+         import :: c_int, c_char
+         integer(c_int), value :: errno, outlen
+         character(kind=c_char), intent(out) :: out(*)
+         integer(c_int) :: n
+      end function c_strerror
+   end interface
+
 contains
+
+   !> Start the NetCDF-4 file that `close` will write to `path`. The file is
+   !> built in memory and written by pavefric at `close`, so that HDF5 never
+   !> meets a failing disk (see src/pavefric_ncmem.c): a full disk is then an
+   !> ordinary write error, and the process stays sound.
+   subroutine writer_create(w, path)
+      class(nc_writer_type), intent(inout) :: w
+      character(len=*), intent(in) :: path
+      integer(c_int) :: status, ncid
+      w%path = path
+      status = c_nc_create_mem(path // c_null_char, ncid)
+      if (status /= nf90_noerr) then
+         w%ncid = -1
+         call fatal_error(w%error, "&output file: cannot create '" // path // "' (" // &
+            & trim(nf90_strerror(int(status))) // ")", stat_of(int(status)))
+         return
+      end if
+      w%ncid = int(ncid)
+   end subroutine writer_create
 
    subroutine writer_check(w, status, what)
       class(nc_writer_type), intent(inout) :: w
@@ -56,8 +101,18 @@ contains
       character(len=*), intent(in) :: what
       if (allocated(w%error)) return
       if (status /= nf90_noerr) call fatal_error(w%error, "&output file: writing " // what // &
-         & " to '" // w%path // "' failed (" // trim(nf90_strerror(status)) // ")")
+         & " to '" // w%path // "' failed (" // trim(nf90_strerror(status)) // ")", &
+         & stat_of(status))
    end subroutine writer_check
+
+   !> The status kind of a failed netCDF call: out of memory, or a file that
+   !> could not be written (disk full, permissions, file-size limit).
+   pure function stat_of(status) result(stat)
+      integer, intent(in) :: status
+      integer :: stat
+      stat = stat_io
+      if (status == nf90_enomem) stat = stat_memory
+   end function stat_of
 
    !> Define a variable with its units (none if empty) and long name.
    subroutine writer_def(w, name, xtype, dims, units, long_name, varid)
@@ -86,23 +141,42 @@ contains
       call w%check(nf90_put_att(w%ncid, nf90_global, name, value), "attribute " // name)
    end subroutine gatt_int
 
-   !> Close the file; `error` receives the first error met, if any.
+   !> Write the file to its path and close it; `error` receives the first
+   !> error met, if any. After an error the file is abandoned (nf90_abort)
+   !> and nothing is written; the caller removes what a failed write left.
    subroutine writer_close(w, error)
       class(nc_writer_type), intent(inout) :: w
       type(error_type), allocatable, intent(out) :: error
-      integer :: stat
-      stat = nf90_close(w%ncid)
-      if (.not. allocated(w%error) .and. stat /= nf90_noerr) &
-         & call fatal_error(w%error, "&output file: closing '" // w%path // "' failed (" // &
-         & trim(nf90_strerror(stat)) // ")")
+      integer(c_int) :: status, errno, n
+      character(len=256) :: text
+      if (w%ncid >= 0) then
+         if (allocated(w%error)) then
+            status = nf90_abort(w%ncid)
+         else
+            call c_nc_close_to_file(int(w%ncid, c_int), w%path // c_null_char, status, errno)
+            if (status /= nf90_noerr) then
+               call fatal_error(w%error, "&output file: closing '" // w%path // "' failed (" // &
+                  & trim(nf90_strerror(int(status))) // ")", stat_of(int(status)))
+            else if (errno /= 0) then
+               text = ""
+               n = c_strerror(errno, text, len(text, c_int))
+               call fatal_error(w%error, "&output file: writing '" // w%path // "' failed (" // &
+                  & text(1:n) // ")", stat_io)
+            end if
+         end if
+         w%ncid = -1
+      end if
       if (allocated(w%error)) call move_alloc(w%error, error)
    end subroutine writer_close
 
-   !> The temporary name a final path is first written under.
+   !> The temporary name a final path is first written under. The name goes
+   !> on the list of temporary files a fatal signal removes (in the
+   !> program); `commit_temporary` takes it off.
    function temporary_name(path) result(tmp)
       character(len=*), intent(in) :: path
       character(len=:), allocatable :: tmp
       tmp = path // ".tmp" // to_str(process_id())
+      call register_temporary(tmp)
    end function temporary_name
 
    !> Write `res` to `path` (NetCDF-4), via a temporary file and a rename.
@@ -118,20 +192,20 @@ contains
    end subroutine write_results
 
    !> Rename a finished temporary file onto `path`; remove it when writing
-   !> failed (`error` allocated on entry) or the rename fails.
+   !> failed (`error` allocated on entry) or the rename fails. An existing
+   !> `path` is replaced only by a complete file. The temporary name leaves
+   !> the list a fatal signal cleans up.
    subroutine commit_temporary(tmp, path, error)
       character(len=*), intent(in) :: tmp, path
       type(error_type), allocatable, intent(inout) :: error
       logical :: ok
-      if (allocated(error)) then
-         ok = remove_file(tmp)
-         return
+      if (.not. allocated(error)) then
+         call test_pause("commit")
+         if (.not. rename_file(tmp, path)) call fatal_error(error, "&output file = '" // path // &
+            & "': cannot rename the finished temporary file onto it", stat_io)
       end if
-      if (.not. rename_file(tmp, path)) then
-         ok = remove_file(tmp)
-         call fatal_error(error, "&output file = '" // path // "': cannot rename the finished " // &
-            & "temporary file onto it")
-      end if
+      if (allocated(error)) ok = remove_file(tmp)
+      call release_temporary(tmp)
    end subroutine commit_temporary
 
    subroutine write_file(path, res, meta, error)
@@ -140,19 +214,14 @@ contains
       type(output_metadata_type), intent(in) :: meta
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      integer :: d_speed, d_pos, stat
+      integer :: d_speed, d_pos
       integer :: v_speed, v_kmh, v_mu, v_ncl, v_hyd, v_wet, v_res, v_mwh, v_comp, v_nbe
       integer :: v_mem, v_vis, v_bea, v_pos, v_mui, v_hl, v_pen, v_ce, v_mpd, v_rh, v_rs
       logical :: series
 
       series = allocated(res%mu_inst)
-      w%path = path
-      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
-      if (stat /= nf90_noerr) then
-         call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
-            & trim(nf90_strerror(stat)) // ")")
-         return
-      end if
+      call w%create(path)
+      if (allocated(w%error)) goto 99
 
       call w%check(nf90_def_dim(w%ncid, "speed", size(res%speed), d_speed), "dimension speed")
       if (allocated(w%error)) goto 99
