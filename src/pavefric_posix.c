@@ -13,7 +13,7 @@
  * The handlers are installed by the program only (pavefric_install_cleanup,
  * from main.f90): the Python extension registers names too, but never
  * replaces the interpreter's handlers (SIGINT is KeyboardInterrupt there). */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700   /* realpath(3) is XSI */
 #include <errno.h>
 #include <limits.h>
 #include <signal.h>

@@ -46,7 +46,14 @@ def _text(raw: Any) -> str:
     return str(raw).rstrip("\x00 ").strip()
 
 
+# The core's status kinds (src/pavefric_error.f90): stat_memory is "not enough
+# memory for the work asked for", which Python reports as MemoryError.
+_STAT_MEMORY = 3
+
+
 def _check(status: int, message: Any) -> None:
+    if int(status) == _STAT_MEMORY:
+        raise MemoryError(_text(message))
     if int(status) != 0:
         raise PavefricError(_text(message))
 
