@@ -3,7 +3,7 @@
 module pavefric_batch_netcdf
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error
+   use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_batch_types, only: batch_type, block_type
    use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary
    implicit none
@@ -32,7 +32,7 @@ contains
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      integer :: d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
+      integer :: stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
       integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, ids(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -50,8 +50,13 @@ contains
          lname = max(lname, len(batch%names(i)%s))
          if (allocated(blocks(i)%message)) lmsg = max(lmsg, len(blocks(i)%message))
       end do
-      allocate(character(len=lname) :: names(np))
-      allocate(character(len=lmsg) :: msgs(np))
+      allocate(character(len=lname) :: names(np), stat=stat)
+      if (stat == 0) allocate(character(len=lmsg) :: msgs(np), stat=stat)
+      if (stat /= 0) then                                    ! (files) stat_memory
+         call fatal_error(error, "&output file: not enough memory to write '" // path // "'", &
+            & stat_memory)
+         return
+      end if
       do i = 1, np
          names(i) = batch%names(i)%s
          msgs(i) = ""
@@ -118,7 +123,10 @@ contains
       call w%check(nf90_put_var(w%ncid, v_depth, batch%depths), "depth")
       call w%check(nf90_put_var(w%ncid, v_speed, batch%speeds / 3.6_wp), "speed")
       call w%check(nf90_put_var(w%ncid, v_kmh, batch%speeds), "speed_kmh")
-      allocate(a(ns, nd, np), c(ns, nd, np), t(np))
+      allocate(a(ns, nd, np), c(ns, nd, np), t(np), stat=stat)
+      if (stat /= 0) call fatal_error(w%error, "&output file: not enough memory to write '" // &
+         & path // "'", stat_memory)                       ! (files) stat_memory
+      if (allocated(w%error)) goto 99
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%mu, fill, blocks(i)%status == 1)
       end do

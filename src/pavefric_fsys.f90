@@ -217,11 +217,20 @@ contains
       character(len=*), intent(in) :: path
       character(len=:), allocatable :: full
       integer(c_int) :: need
-      allocate(character(len=4096) :: full)
+      integer :: stat
+      allocate(character(len=4096) :: full, stat=stat)
+      if (stat /= 0) then
+         full = ""
+         return
+      end if
       need = c_realpath(path // c_null_char, full, len(full, c_int))
       if (need > len(full)) then
          deallocate(full)
-         allocate(character(len=need) :: full)
+         allocate(character(len=need) :: full, stat=stat)
+         if (stat /= 0) then
+            full = ""
+            return
+         end if
          need = c_realpath(path // c_null_char, full, len(full, c_int))
       end if
       if (need < 0 .or. need > len(full)) then
