@@ -51,11 +51,11 @@ int pavefric_nc_create_mem(const char *path, int *ncid)
     return nc_create_mem(path, NC_NETCDF4, 65536, ncid);
 }
 
-/* Close the in-memory file `ncid` and write its bytes to `path` (created
- * or truncated, mode 0666 less umask), flushed with fsync. *nc_status gets
- * the netCDF status of the close, *err the errno of a failed open, write,
- * fsync or close (0 on success). A file that could not be written is left
- * for the caller to remove. */
+/* Close the in-memory file `ncid` and write its bytes to a new file `path`
+ * (mode 0666 less umask), flushed with fsync. *nc_status gets the netCDF
+ * status of the close, *err the errno of a failed unlink of a stale file
+ * there, open, write, fsync or close (0 on success). A file that could not
+ * be written is left for the caller to remove. */
 void pavefric_nc_close_to_file(int ncid, const char *path, int *nc_status, int *err)
 {
     NC_memio mem;
@@ -66,7 +66,13 @@ void pavefric_nc_close_to_file(int ncid, const char *path, int *nc_status, int *
         free(mem.memory);
         return;
     }
-    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    /* a fresh file: never write through a link left at the temporary name */
+    if (unlink(path) != 0 && errno != ENOENT) {
+        *err = errno;
+        free(mem.memory);
+        return;
+    }
+    int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0666);
     if (fd < 0) {
         *err = errno;
         free(mem.memory);

@@ -1,9 +1,10 @@
 !> NetCDF-4 output of a scene's results, with CF-1.10 metadata, and the
 !> checked writer type every NetCDF output goes through. Every
 !> netCDF call goes through `check`, which adds context to nf90_strerror.
-!> The file is written under a temporary name and renamed on success, so a
-!> failed run leaves no half-written output; the temporary name is on the
-!> list a fatal signal cleans up (pavefric_fsys, src/pavefric_posix.c).
+!> The file is built in memory, written under a temporary name when it is
+!> complete and renamed on success, so a failed run leaves no half-written
+!> output and HDF5 never sees a failing disk (src/pavefric_ncmem.c); the
+!> temporary name is on the list a fatal signal cleans up (pavefric_fsys).
 module pavefric_netcdf
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use netcdf

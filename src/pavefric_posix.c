@@ -7,8 +7,9 @@
  * where it can find them. This registry is the one piece of process-wide
  * mutable state in pavefric. It holds only names, is written with atomic
  * operations (a slot is claimed, filled, then published), and the handler
- * only reads published slots and calls unlink(2), signal(2) and raise(3),
- * which are async-signal-safe. Nothing else in pavefric reads it.
+ * only reads published slots and calls unlink(2), signal(2), raise(3),
+ * pthread_self, pthread_kill and pthread_sigmask, which are
+ * async-signal-safe. Nothing else in pavefric reads it.
  *
  * The handlers are installed by the program only (pavefric_install_cleanup,
  * from main.f90): the Python extension registers names too, but never
@@ -16,6 +17,7 @@
 #define _XOPEN_SOURCE 700   /* realpath(3) is XSI */
 #include <errno.h>
 #include <limits.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
@@ -120,16 +122,31 @@ int pavefric_temp_count(void)
 static const int cleanup_signals[] = { SIGTERM, SIGINT, SIGHUP };
 #define N_CLEANUP_SIGNALS (int)(sizeof cleanup_signals / sizeof cleanup_signals[0])
 
+/* The thread that installed the handlers: the program's main thread, the
+ * only one that writes and renames outputs. */
+static pthread_t main_thread;
+
 /* Remove every live temporary file, then die of the same signal with its
  * default action, so the parent sees "killed by SIGTERM" (exit status 143
- * in a shell), as without the handler. */
+ * in a shell), as without the handler. A signal sent to the process may
+ * land on any thread (OpenMP, MPI progress threads); it is passed on to the
+ * main thread, so the removal cannot race with that thread renaming the
+ * same temporary file into place and then failing with a spurious error. */
 static void cleanup_handler(int sig)
 {
+    if (!pthread_equal(pthread_self(), main_thread)) {
+        pthread_kill(main_thread, sig);
+        return;
+    }
     for (int i = 0; i < PF_TEMP_SLOTS; ++i)
         if (__atomic_load_n(&slot_state[i], __ATOMIC_ACQUIRE) == SLOT_LIVE)
             (void)unlink(slot_path[i]);
     signal(sig, SIG_DFL);
-    raise(sig);   /* blocked while the handler runs: delivered on return */
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, sig);
+    pthread_sigmask(SIG_UNBLOCK, &set, NULL);
+    raise(sig);   /* delivered at once: the process ends here */
 }
 
 /* Install the handlers (the program only). A signal ignored on entry stays
@@ -140,6 +157,7 @@ static void cleanup_handler(int sig)
 int pavefric_install_cleanup(void)
 {
     struct sigaction sa, old;
+    main_thread = pthread_self();
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = cleanup_handler;
     sigemptyset(&sa.sa_mask);

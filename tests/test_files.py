@@ -228,8 +228,8 @@ def test_signal_while_writing_leaves_no_temp_file(scene, point, sig):
     assert len(temps) == 1, temps   # stopped while writing under the temporary name
     proc.send_signal(sig)
     proc.send_signal(signal.SIGCONT)
-    proc.communicate(timeout=60)
-    assert proc.returncode == -sig     # killed by that signal, as without a handler
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == -sig, err   # killed by that signal, as without a handler
     assert not list(d.glob("out.nc.tmp*"))
     assert out.read_bytes() == b"the previous output"
 
