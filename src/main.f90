@@ -5,6 +5,7 @@ program pavefric_main
    use pavefric_format, only: to_str
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_batch_mpi, only: run_batch_program, parallel_init, parallel_finalize, is_root
+   use pavefric_fsys, only: install_signal_cleanup
    implicit none
    type(sim_result_type) :: res
    type(scene_type) :: scene
@@ -58,6 +59,7 @@ program pavefric_main
    end if
 
    call parallel_init()
+   call install_signal_cleanup()   ! temp outputs removed on SIGTERM/SIGINT/SIGHUP (files)
    call read_scene(scene_path, scene, error)
    if (allocated(error)) call fail(error%message)
    if (scene%is_batch) then
@@ -126,6 +128,7 @@ contains
    subroutine fail(message)
       character(len=*), intent(in) :: message
       if (is_root()) write(error_unit, '(a)') "pavefric: error: " // message
+      flush(error_unit)   ! before any exit handler can fail (files)
       call parallel_finalize()
       stop 1, quiet=.true.
    end subroutine fail

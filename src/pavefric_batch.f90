@@ -16,6 +16,7 @@ module pavefric_batch
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_texture, only: texture_type, texture_metrics
    use pavefric_fsys, only: dir_name, base_name, join_path, remove_file, make_directory
+   use pavefric_fsys, only: output_guard_type, check_output_path   ! (files)
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
       & block_unpack, block_values
    implicit none
@@ -89,6 +90,7 @@ contains
       batch%n_speeds = size(batch%speeds)
       batch%output = batch_output_path(batch%scene, output_override)
       batch%journal = batch%output // ".journal"
+      call check_batch_outputs(path, output_override, batch, error); if (allocated(error)) return
       batch%fingerprint = fingerprint(batch)
 
       allocate(blocks(batch%n_profiles))
@@ -371,5 +373,36 @@ contains
          blk%rms_slope = tex%rms_slope
       end if
    end subroutine batch_compute
+
+   !> (files) Refuse a batch output or journal that is not a regular file, or
+   !> that is the same file as an input: the scene, the profile list or any
+   !> profile (symbolic links, '..' and hard links seen through). Runs before
+   !> the journal is (re)started, on every rank alike.
+   subroutine check_batch_outputs(path, output_override, batch, error)
+      character(len=*), intent(in) :: path, output_override
+      type(batch_type), intent(in) :: batch
+      type(error_type), allocatable, intent(out) :: error
+      type(output_guard_type) :: guard(2)
+      character(len=:), allocatable :: what
+      integer :: k, i
+      what = "&output file"
+      if (len_trim(output_override) > 0) what = "-o"
+      call check_output_path(batch%output, what, guard(1), error)
+      if (allocated(error)) return
+      call check_output_path(batch%journal, "the journal of " // what, guard(2), error)
+      if (allocated(error)) return
+      do k = 1, 2
+         call guard(k)%check_input(path, "the scene file", error)
+         if (allocated(error)) return
+         call guard(k)%check_input(batch%scene%batch_profile_list, &
+            & "the profile list (&batch profile_list)", error)
+         if (allocated(error)) return
+         do i = 1, batch%n_profiles
+            call guard(k)%check_input(batch%paths(i)%s, "profile " // to_str(i) // &
+               & " of the batch", error)
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine check_batch_outputs
 
 end module pavefric_batch

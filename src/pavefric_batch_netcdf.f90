@@ -3,7 +3,7 @@
 module pavefric_batch_netcdf
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error
+   use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_batch_types, only: batch_type, block_type
    use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary
    implicit none
@@ -50,8 +50,13 @@ contains
          lname = max(lname, len(batch%names(i)%s))
          if (allocated(blocks(i)%message)) lmsg = max(lmsg, len(blocks(i)%message))
       end do
-      allocate(character(len=lname) :: names(np))
-      allocate(character(len=lmsg) :: msgs(np))
+      allocate(character(len=lname) :: names(np), stat=stat)
+      if (stat == 0) allocate(character(len=lmsg) :: msgs(np), stat=stat)
+      if (stat /= 0) then                                    ! (files) stat_memory
+         call fatal_error(error, "&output file: not enough memory to write '" // path // "'", &
+            & stat_memory)
+         return
+      end if
       do i = 1, np
          names(i) = batch%names(i)%s
          msgs(i) = ""
@@ -61,13 +66,8 @@ contains
       if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
       if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
 
-      w%path = path
-      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
-      if (stat /= nf90_noerr) then
-         call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
-            & trim(nf90_strerror(stat)) // ")")
-         return
-      end if
+      call w%create(path)
+      if (allocated(w%error)) goto 99
       call w%check(nf90_def_dim(w%ncid, "profile", np, d_p), "dimension profile")
       call w%check(nf90_def_dim(w%ncid, "depth", nd, d_d), "dimension depth")
       call w%check(nf90_def_dim(w%ncid, "speed", ns, d_s), "dimension speed")
@@ -123,7 +123,10 @@ contains
       call w%check(nf90_put_var(w%ncid, v_depth, batch%depths), "depth")
       call w%check(nf90_put_var(w%ncid, v_speed, batch%speeds / 3.6_wp), "speed")
       call w%check(nf90_put_var(w%ncid, v_kmh, batch%speeds), "speed_kmh")
-      allocate(a(ns, nd, np), c(ns, nd, np), t(np))
+      allocate(a(ns, nd, np), c(ns, nd, np), t(np), stat=stat)
+      if (stat /= 0) call fatal_error(w%error, "&output file: not enough memory to write '" // &
+         & path // "'", stat_memory)                       ! (files) stat_memory
+      if (allocated(w%error)) goto 99
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%mu, fill, blocks(i)%status == 1)
       end do

@@ -1,12 +1,35 @@
 !> File-system helpers from the C library: atomic rename, remove, mkdir,
-!> process id. Fortran has none of these portably.
+!> process id, file identity (stat, realpath), the guard that keeps an
+!> output off the inputs and off devices, and the list of temporary files a
+!> fatal signal removes (src/pavefric_posix.c). Fortran has none of these
+!> portably.
 module pavefric_fsys
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_long_long
+   use pavefric_error, only: error_type, fatal_error, stat_input
+   use pavefric_format, only: to_str
    implicit none
    private
 
    public :: rename_file, remove_file, make_directory, process_id, dir_name, base_name, &
       & join_path, is_absolute
+   public :: output_guard_type, check_output_path, canonical_path
+   public :: register_temporary, release_temporary, install_signal_cleanup, test_pause
+
+   !> Kinds of file (pavefric_file_id in pavefric_posix.c).
+   integer, parameter :: kind_missing = 0, kind_regular = 1
+
+   !> An output path that passed `check_output_path`: it is missing or a
+   !> regular file. `check_input` refuses an input that is the same file.
+   type :: output_guard_type
+      !> The output path as given, and the name of the setting that gave it
+      !> ("-o", "&output file", ...), for messages.
+      character(len=:), allocatable :: path, what
+      !> Whether a file is there now, and its identity (device, inode).
+      logical :: exists = .false.
+      integer(c_long_long) :: dev = 0, ino = 0
+   contains
+      procedure :: check_input => guard_check_input
+   end type output_guard_type
 
    interface
       function c_rename(old, new) bind(C, name="rename") result(stat)
@@ -29,6 +52,37 @@ module pavefric_fsys
          import :: c_int
          integer(c_int) :: pid
       end function c_getpid
+      function c_file_id(path, dev, ino, kind) bind(C, name="pavefric_file_id") result(stat)
+         import :: c_int, c_char, c_long_long
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_long_long), intent(out) :: dev, ino
+         integer(c_int), intent(out) :: kind
+         integer(c_int) :: stat
+      end function c_file_id
+      function c_realpath(path, out, outlen) bind(C, name="pavefric_realpath") result(need)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         character(kind=c_char), intent(out) :: out(*)
+         integer(c_int), value :: outlen
+         integer(c_int) :: need
+      end function c_realpath
+      function c_temp_register(path) bind(C, name="pavefric_temp_register") result(slot)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int) :: slot
+      end function c_temp_register
+      subroutine c_temp_release(path) bind(C, name="pavefric_temp_release")
+         import :: c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end subroutine c_temp_release
+      function c_install_cleanup() bind(C, name="pavefric_install_cleanup") result(stat)
+         import :: c_int
+         integer(c_int) :: stat
+      end function c_install_cleanup
+      subroutine c_test_pause(point) bind(C, name="pavefric_test_pause")
+         import :: c_char
+         character(kind=c_char), intent(in) :: point(*)
+      end subroutine c_test_pause
    end interface
 
 contains
@@ -105,5 +159,147 @@ contains
          full = dir // "/" // path
       end if
    end function join_path
+
+   !> Refuse an output `path` that exists and is not a regular file (a
+   !> directory, device, FIFO or socket: the temp-file-and-rename write would
+   !> replace it); on success `guard` remembers the file's identity so that
+   !> `guard%check_input` can refuse inputs that are the same file. `what`
+   !> names the setting that gave the path ("-o", "&output file").
+   subroutine check_output_path(path, what, guard, error)
+      character(len=*), intent(in) :: path, what
+      type(output_guard_type), intent(out) :: guard
+      type(error_type), allocatable, intent(out) :: error
+      integer(c_int) :: kind, stat
+      guard%path = path
+      guard%what = what
+      stat = c_file_id(path // c_null_char, guard%dev, guard%ino, kind)
+      if (stat /= 0) then
+         call fatal_error(error, setting(what, path) // ": cannot inspect it (error " // &
+            & to_str(int(stat)) // " from stat)", stat_input)
+         return
+      end if
+      guard%exists = kind /= kind_missing
+      if (guard%exists .and. kind /= kind_regular) call fatal_error(error, &
+         & setting(what, path) // ": exists and is " // kind_name(int(kind)) // &
+         & ", not a regular file; the output must be a regular file (it would replace this one)", &
+         & stat_input)
+   end subroutine check_output_path
+
+   !> Refuse the output if it is the same file as `input` (same device and
+   !> inode: symbolic links, '..' and hard links are seen through). `role`
+   !> says what the input is ("the scene file", "&surface profile_file").
+   !> An input that does not exist cannot clash (its reader reports it).
+   subroutine guard_check_input(guard, input, role, error)
+      class(output_guard_type), intent(in) :: guard
+      character(len=*), intent(in) :: input, role
+      type(error_type), allocatable, intent(out) :: error
+      integer(c_long_long) :: dev, ino
+      integer(c_int) :: kind, stat
+      character(len=:), allocatable :: where
+      if (.not. guard%exists .or. len(input) == 0) return
+      stat = c_file_id(input // c_null_char, dev, ino, kind)
+      if (stat /= 0 .or. kind == kind_missing) return
+      if (dev /= guard%dev .or. ino /= guard%ino) return
+      where = canonical_path(input)
+      if (len(where) > 0 .and. where /= input) then
+         where = " (resolves to '" // where // "')"
+      else
+         where = ""
+      end if
+      call fatal_error(error, setting(guard%what, guard%path) // ": is " // role // " '" // &
+         & input // "'" // where // "; writing the output there would destroy an input", &
+         & stat_input)
+   end subroutine guard_check_input
+
+   !> The canonical absolute path of an existing file (symbolic links, '.'
+   !> and '..' resolved); empty if it cannot be resolved.
+   function canonical_path(path) result(full)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: full
+      integer(c_int) :: need
+      integer :: stat
+      allocate(character(len=4096) :: full, stat=stat)
+      if (stat /= 0) then
+         full = ""
+         return
+      end if
+      need = c_realpath(path // c_null_char, full, len(full, c_int))
+      if (need > len(full)) then
+         deallocate(full)
+         allocate(character(len=need) :: full, stat=stat)
+         if (stat /= 0) then
+            full = ""
+            return
+         end if
+         need = c_realpath(path // c_null_char, full, len(full, c_int))
+      end if
+      if (need < 0 .or. need > len(full)) then
+         full = ""
+      else
+         full = full(1:need)
+      end if
+   end function canonical_path
+
+   !> Record `path` as a temporary file that a fatal signal (SIGTERM, SIGINT,
+   !> SIGHUP) removes before the program dies; see `install_signal_cleanup`.
+   subroutine register_temporary(path)
+      character(len=*), intent(in) :: path
+      integer(c_int) :: slot
+      slot = c_temp_register(path // c_null_char)
+   end subroutine register_temporary
+
+   !> Forget the temporary file `path` once it is renamed into place or removed.
+   subroutine release_temporary(path)
+      character(len=*), intent(in) :: path
+      call c_temp_release(path // c_null_char)
+   end subroutine release_temporary
+
+   !> Install the handlers that remove registered temporary files on SIGTERM,
+   !> SIGINT and SIGHUP, then let the signal kill the program as usual, and
+   !> ignore SIGXFSZ (a file-size limit becomes a write error). For the
+   !> program only: never from the Python extension (SIGINT is Python's).
+   subroutine install_signal_cleanup()
+      integer(c_int) :: stat
+      stat = c_install_cleanup()
+   end subroutine install_signal_cleanup
+
+   !> Test hook: stop the process at `point` ("create", "commit") when the
+   !> environment variable PAVEFRIC_TEST_PAUSE says so; nothing otherwise.
+   subroutine test_pause(point)
+      character(len=*), intent(in) :: point
+      call c_test_pause(point // c_null_char)
+   end subroutine test_pause
+
+   !> "-o 'x'" or "&output file = 'x'", the way messages name a setting.
+   pure function setting(what, path) result(text)
+      character(len=*), intent(in) :: what, path
+      character(len=:), allocatable :: text
+      if (len(what) > 0) then
+         if (what(1:1) == "&") then
+            text = what // " = '" // path // "'"
+            return
+         end if
+      end if
+      text = what // " '" // path // "'"
+   end function setting
+
+   pure function kind_name(kind) result(name)
+      integer, intent(in) :: kind
+      character(len=:), allocatable :: name
+      select case (kind)
+      case (2)
+         name = "a directory"
+      case (3)
+         name = "a character device"
+      case (4)
+         name = "a block device"
+      case (5)
+         name = "a FIFO (named pipe)"
+      case (6)
+         name = "a socket"
+      case default
+         name = "a special file"
+      end select
+   end function kind_name
 
 end module pavefric_fsys

@@ -1,19 +1,23 @@
 !> NetCDF-4 output of a scene's results, with CF-1.10 metadata, and the
 !> checked writer type every NetCDF output goes through. Every
 !> netCDF call goes through `check`, which adds context to nf90_strerror.
-!> The file is written under a temporary name and renamed on success, so a
-!> failed run leaves no half-written output.
+!> The file is built in memory, written under a temporary name when it is
+!> complete and renamed on success, so a failed run leaves no half-written
+!> output and HDF5 never sees a failing disk (src/pavefric_ncmem.c); the
+!> temporary name is on the list a fatal signal cleans up (pavefric_fsys).
 module pavefric_netcdf
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error
+   use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
    use pavefric_simulate, only: sim_result_type
    use pavefric_outputs, only: output_metadata_type, output_var_type, output_table, &
       & output_present, output_values, n_outputs, out_double, out_int64, out_int, out_flag, &
       & dim_speed
    use pavefric_model, only: param_spec_type, parameter_table, kind_real, &
       & kind_integer, kind_logical, kind_text, kind_real_list
-   use pavefric_fsys, only: rename_file, remove_file, process_id
+   use pavefric_fsys, only: rename_file, remove_file, process_id, register_temporary, &
+      & release_temporary, test_pause
    use pavefric_format, only: to_str
    implicit none
    private
@@ -29,6 +33,7 @@ module pavefric_netcdf
       character(len=:), allocatable :: path
       type(error_type), allocatable :: error
    contains
+      procedure :: create => writer_create
       procedure :: check => writer_check
       procedure :: def => writer_def
       procedure, private :: gatt_text, gatt_int, gatt_real
@@ -36,7 +41,48 @@ module pavefric_netcdf
       procedure :: close => writer_close
    end type nc_writer_type
 
+   interface
+      function c_nc_create_mem(path, ncid) bind(C, name="pavefric_nc_create_mem") result(status)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), intent(out) :: ncid
+         integer(c_int) :: status
+      end function c_nc_create_mem
+      subroutine c_nc_close_to_file(ncid, path, nc_status, errno) &
+            & bind(C, name="pavefric_nc_close_to_file")
+         import :: c_int, c_char
+         integer(c_int), value :: ncid
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), intent(out) :: nc_status, errno
+      end subroutine c_nc_close_to_file
+      function c_strerror(errno, out, outlen) bind(C, name="pavefric_strerror") result(n)
+         import :: c_int, c_char
+         integer(c_int), value :: errno, outlen
+         character(kind=c_char), intent(out) :: out(*)
+         integer(c_int) :: n
+      end function c_strerror
+   end interface
+
 contains
+
+   !> Start the NetCDF-4 file that `close` will write to `path`. The file is
+   !> built in memory and written by pavefric at `close`, so that HDF5 never
+   !> meets a failing disk (see src/pavefric_ncmem.c): a full disk is then an
+   !> ordinary write error, and the process stays sound.
+   subroutine writer_create(w, path)
+      class(nc_writer_type), intent(inout) :: w
+      character(len=*), intent(in) :: path
+      integer(c_int) :: status, ncid
+      w%path = path
+      status = c_nc_create_mem(path // c_null_char, ncid)
+      if (status /= nf90_noerr) then
+         w%ncid = -1
+         call fatal_error(w%error, "&output file: cannot create '" // path // "' (" // &
+            & trim(nf90_strerror(int(status))) // ")", stat_of(int(status)))
+         return
+      end if
+      w%ncid = int(ncid)
+   end subroutine writer_create
 
    subroutine writer_check(w, status, what)
       class(nc_writer_type), intent(inout) :: w
@@ -44,8 +90,18 @@ contains
       character(len=*), intent(in) :: what
       if (allocated(w%error)) return
       if (status /= nf90_noerr) call fatal_error(w%error, "&output file: writing " // what // &
-         & " to '" // w%path // "' failed (" // trim(nf90_strerror(status)) // ")")
+         & " to '" // w%path // "' failed (" // trim(nf90_strerror(status)) // ")", &
+         & stat_of(status))
    end subroutine writer_check
+
+   !> The status kind of a failed netCDF call: out of memory, or a file that
+   !> could not be written (disk full, permissions, file-size limit).
+   pure function stat_of(status) result(stat)
+      integer, intent(in) :: status
+      integer :: stat
+      stat = stat_io
+      if (status == nf90_enomem) stat = stat_memory
+   end function stat_of
 
    !> Define a variable with its units (none if empty) and long name.
    subroutine writer_def(w, name, xtype, dims, units, long_name, varid)
@@ -81,23 +137,42 @@ contains
       call w%check(nf90_put_att(w%ncid, nf90_global, name, value), "attribute " // name)
    end subroutine gatt_real
 
-   !> Close the file; `error` receives the first error met, if any.
+   !> Write the file to its path and close it; `error` receives the first
+   !> error met, if any. After an error the file is abandoned (nf90_abort)
+   !> and nothing is written; the caller removes what a failed write left.
    subroutine writer_close(w, error)
       class(nc_writer_type), intent(inout) :: w
       type(error_type), allocatable, intent(out) :: error
-      integer :: stat
-      stat = nf90_close(w%ncid)
-      if (.not. allocated(w%error) .and. stat /= nf90_noerr) &
-         & call fatal_error(w%error, "&output file: closing '" // w%path // "' failed (" // &
-         & trim(nf90_strerror(stat)) // ")")
+      integer(c_int) :: status, errno, n
+      character(len=256) :: text
+      if (w%ncid >= 0) then
+         if (allocated(w%error)) then
+            status = nf90_abort(w%ncid)
+         else
+            call c_nc_close_to_file(int(w%ncid, c_int), w%path // c_null_char, status, errno)
+            if (status /= nf90_noerr) then
+               call fatal_error(w%error, "&output file: closing '" // w%path // "' failed (" // &
+                  & trim(nf90_strerror(int(status))) // ")", stat_of(int(status)))
+            else if (errno /= 0) then
+               text = ""
+               n = c_strerror(errno, text, len(text, c_int))
+               call fatal_error(w%error, "&output file: writing '" // w%path // "' failed (" // &
+                  & text(1:n) // ")", stat_io)
+            end if
+         end if
+         w%ncid = -1
+      end if
       if (allocated(w%error)) call move_alloc(w%error, error)
    end subroutine writer_close
 
-   !> The temporary name a final path is first written under.
+   !> The temporary name a final path is first written under. The name goes
+   !> on the list of temporary files a fatal signal removes (in the
+   !> program); `commit_temporary` takes it off.
    function temporary_name(path) result(tmp)
       character(len=*), intent(in) :: path
       character(len=:), allocatable :: tmp
       tmp = path // ".tmp" // to_str(process_id())
+      call register_temporary(tmp)
    end function temporary_name
 
    !> Write `res` to `path` (NetCDF-4), via a temporary file and a rename.
@@ -113,20 +188,20 @@ contains
    end subroutine write_results
 
    !> Rename a finished temporary file onto `path`; remove it when writing
-   !> failed (`error` allocated on entry) or the rename fails.
+   !> failed (`error` allocated on entry) or the rename fails. An existing
+   !> `path` is replaced only by a complete file. The temporary name leaves
+   !> the list a fatal signal cleans up.
    subroutine commit_temporary(tmp, path, error)
       character(len=*), intent(in) :: tmp, path
       type(error_type), allocatable, intent(inout) :: error
       logical :: ok
-      if (allocated(error)) then
-         ok = remove_file(tmp)
-         return
+      if (.not. allocated(error)) then
+         call test_pause("commit")
+         if (.not. rename_file(tmp, path)) call fatal_error(error, "&output file = '" // path // &
+            & "': cannot rename the finished temporary file onto it", stat_io)
       end if
-      if (.not. rename_file(tmp, path)) then
-         ok = remove_file(tmp)
-         call fatal_error(error, "&output file = '" // path // "': cannot rename the finished " // &
-            & "temporary file onto it")
-      end if
+      if (allocated(error)) ok = remove_file(tmp)
+      call release_temporary(tmp)
    end subroutine commit_temporary
 
    !> The scene file: dimension speed_kmh (a coordinate in km/h, so that
@@ -150,13 +225,8 @@ contains
       ns = size(res%mu)
       np = 0
       if (series) np = res%n_positions
-      w%path = path
-      stat = nf90_create(path, ior(nf90_netcdf4, nf90_clobber), w%ncid)
-      if (stat /= nf90_noerr) then
-         call fatal_error(error, "&output file: cannot create '" // path // "' (" // &
-            & trim(nf90_strerror(stat)) // ")")
-         return
-      end if
+      call w%create(path)
+      if (allocated(w%error)) goto 99
 
       call w%check(nf90_def_dim(w%ncid, "speed_kmh", ns, d_speed), "dimension speed_kmh")
       if (series) call w%check(nf90_def_dim(w%ncid, "position", np, d_pos), "dimension position")
@@ -238,7 +308,12 @@ contains
       call w%check(nf90_put_var(w%ncid, v_kmh, res%speed_kmh), "speed_kmh")
       call w%check(nf90_put_var(w%ncid, v_speed, res%speed), "speed")
       if (series) call w%check(nf90_put_var(w%ncid, v_pos, res%position), "position")
-      allocate(values(max(ns, ns * np)))
+      allocate(values(max(ns, ns * np)), stat=stat)
+      if (stat /= 0) then
+         call fatal_error(w%error, "&output file: not enough memory to write '" // path // "'", &
+            & stat_memory)
+         goto 99
+      end if
       do k = 1, n_outputs
          if (ids(k) < 0) cycle
          call output_values(res, k, values)

@@ -8,12 +8,15 @@ module pavefric_outputs
    use pavefric_simulate, only: sim_result_type
    use pavefric_texture, only: texture_type
    use pavefric_preprocess, only: preprocess_report_type
-   use pavefric_model, only: param_set_type
+   use pavefric_model, only: param_set_type, model_type
+   use pavefric_simulate, only: make_components
+   use pavefric_rubber, only: rubber_model
+   use pavefric_film, only: film_model
    implicit none
    private
 
    public :: output_var_type, output_table, output_present, output_values, n_outputs
-   public :: output_metadata_type
+   public :: output_metadata_type, series_count
    public :: out_double, out_int64, out_int, out_flag, dim_speed, dim_position_speed
 
    !> Storage types (NetCDF: double, int64, int, byte 0/1 with flag meanings).
@@ -127,6 +130,20 @@ contains
          output_present = .true.
       end select
    end function output_present
+
+   !> How many series variables a run of model `m` with series produces
+   !> (to size arrays before the run).
+   function series_count(m) result(n)
+      type(model_type), intent(in) :: m
+      integer :: n
+      class(rubber_model), allocatable :: rubber
+      class(film_model), allocatable :: film
+      call make_components(m, rubber, film)
+      n = 4
+      if (allocated(film)) then
+         if (film%changes_friction()) n = 6
+      end if
+   end function series_count
 
    !> Values of variable k as reals (exact for the integers and flags),
    !> speed-major for per-speed variables, (position, speed) for series.

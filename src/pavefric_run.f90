@@ -2,7 +2,7 @@
 !> Shared by the program and the Python layer, so both give the same numbers.
 module pavefric_run
    use pavefric_kinds, only: wp, pavefric_version
-   use pavefric_error, only: error_type, fatal_error
+   use pavefric_error, only: error_type, fatal_error, stat_io
    use pavefric_format, only: to_str
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
@@ -10,7 +10,8 @@ module pavefric_run
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_outputs, only: output_metadata_type
    use pavefric_netcdf, only: write_results, temporary_name
-   use pavefric_fsys, only: make_directory, dir_name, remove_file
+   use pavefric_fsys, only: make_directory, dir_name, remove_file, output_guard_type, &
+      & check_output_path, release_temporary
    use pavefric_texture, only: texture_metrics
    use pavefric_model, only: parameter_table, parameters_namelist
    use pavefric_error, only: add_warning
@@ -95,11 +96,15 @@ contains
       type(scene_type) :: scene
       type(output_metadata_type) :: meta
       type(clean_profile_type) :: clean
+      type(output_guard_type) :: guard
+      character(len=:), allocatable :: out_what
 
       call read_scene(path, scene, error)
       if (allocated(error)) return
+      out_what = "&output file"
       if (len_trim(output_override) > 0) then
          out_path = trim(output_override)
+         out_what = "-o"
       else if (len(scene%output_file) > 0) then
          out_path = scene%output_file
       else
@@ -110,7 +115,14 @@ contains
          end if
          out_path = "outputs/" // scene%name // ".nc"
       end if
-      ! Find an unwritable output before spending time on the model.
+      ! Refuse an output that is an input or not a regular file, and find an
+      ! unwritable one, before spending time on the model.
+      call check_output_path(out_path, out_what, guard, error)
+      if (allocated(error)) return
+      call guard%check_input(path, "the scene file", error)
+      if (allocated(error)) return
+      call guard%check_input(scene%profile_file, "the profile (&surface profile_file)", error)
+      if (allocated(error)) return
       call check_writable(out_path, error)
       if (allocated(error)) return
 
@@ -214,12 +226,14 @@ contains
       tmp = temporary_name(path)
       open(newunit=unit, file=tmp, status="replace", action="write", iostat=ios, iomsg=msg)
       if (ios /= 0) then
+         call release_temporary(tmp)
          call fatal_error(error, "&output file = '" // path // "': cannot write in directory '" // &
-            & dir_name(path) // "' (" // trim(msg) // ")")
+            & dir_name(path) // "' (" // trim(msg) // ")", stat_io)
          return
       end if
       close(unit, status="delete")
       ok = remove_file(tmp)
+      call release_temporary(tmp)
    end subroutine check_writable
 
    !> Local time as ISO 8601.

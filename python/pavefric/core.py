@@ -59,7 +59,8 @@ def _text(raw: Any) -> str:
     return str(raw).rstrip("\x00 ").strip()
 
 
-# status kinds of the core (pavefric_error)
+# The core's status kinds (src/pavefric_error.f90): stat_memory is "not enough
+# memory for the work asked for", which Python reports as MemoryError.
 _STAT_MEMORY = 3
 
 
@@ -277,7 +278,7 @@ def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> 
                 ("surface", "closed"): _format(_spec("surface", "closed"),
                                                _flag(closed, "closed"), "closed"),
                 ("operation", "speeds_kmh"): "0"}
-    n_el, n_pos, status, message = _core.pf_layout(_settings_text(settings), int(n_points))
+    n_el, n_pos, _, status, message = _core.pf_layout(_settings_text(settings), int(n_points))
     _check(status, message)
     return int(n_el), int(n_pos)
 
@@ -325,9 +326,9 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                                                      "speeds_kmh"),
                 ("output", "series"): ".true." if _flag(series, "series") else ".false."}
     text = _settings_text(settings)
-    npos = 1
+    npos, n_series = 1, 1
     if series:
-        n_el, npos, status, message = _core.pf_layout(text, z.size)
+        n_el, npos, n_series, status, message = _core.pf_layout(text, z.size)
         _check(status, message)
         npos = max(npos, 1)
     _, _, outputs = _tables()
@@ -335,7 +336,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     while True:
         (speed, speed_kmh, values, series_values, present, position, counts, texture, texts,
          lengths, status, message) = _core.pf_simulate(z, text, speeds.size, npos, len(outputs),
-                                                        ntext)
+                                                        n_series, ntext)
         _check(status, message)
         if int(lengths.sum()) <= ntext:
             break
@@ -354,9 +355,12 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                                "long_name": "distance slid from the first averaged position"})
     dtypes = {1: np.float64, 2: np.int64, 3: np.int32, 4: np.int8}
     data = {}
+    slot = -1
     for k, (name, units, long_name, var_type, dims) in enumerate(outputs):
         if not present[k]:
             continue
+        if dims != 1:
+            slot += 1
         attrs = {"long_name": long_name}
         if units:
             attrs["units"] = units
@@ -366,7 +370,8 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
             data[name] = ("speed_kmh", values[:, k].astype(dtypes[var_type]), attrs)
         else:
             data[name] = (("speed_kmh", "position"),
-                          np.ascontiguousarray(series_values[:, :, k].T).astype(dtypes[var_type]),
+                          np.ascontiguousarray(series_values[:, :, slot].T).astype(
+                              dtypes[var_type]),
                           attrs)
     n_el, n_pos, n_spin, has_texture, n_seg, n_valid = (int(c) for c in counts)
     if has_texture:

@@ -118,20 +118,22 @@ subroutine pf_output_info(i, name, units, long_name, var_type, dims)
 end subroutine pf_output_info
 
 !> Pad elements and averaged positions of a profile of np points for the
-!> settings (namelist text, as pf_simulate takes it), to size the series.
-subroutine pf_layout(settings, np, n_elements, n_positions, status, message)
+!> settings (namelist text, as pf_simulate takes it), and the number of
+!> series variables such a run produces, to size the series.
+subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_scene, only: scene_type, scene_from_text
    use pavefric_simulate, only: pad_elements, averaged_positions
+   use pavefric_outputs, only: series_count
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: settings
    integer(c_int), intent(in) :: np
-   integer(c_int), intent(out) :: n_elements, n_positions, status
+   integer(c_int), intent(out) :: n_elements, n_positions, n_series, status
    character(len=2048), intent(out) :: message
    type(scene_type) :: scene
    type(error_type), allocatable :: error
-   n_elements = 0; n_positions = 0; status = 0; message = ""
+   n_elements = 0; n_positions = 0; n_series = 0; status = 0; message = ""
    call scene_from_text(settings, "", scene, error, arrays=.true.)
    if (allocated(error)) then
       status = error%stat
@@ -140,18 +142,20 @@ subroutine pf_layout(settings, np, n_elements, n_positions, status, message)
    end if
    n_elements = pad_elements(scene%model, scene%dx)
    n_positions = averaged_positions(scene%model, np, scene%dx, scene%closed)
+   n_series = series_count(scene%model)
 end subroutine pf_layout
 
 !> Run the model on heights z (m) with `settings`, a namelist text of the
 !> scene's groups (&surface dx and closed, &operation speeds_kmh, &output
 !> series and any model variable): the same reading and the same run as the
 !> program's (pavefric_run's run_profile). Results come through the output
-!> table: per-speed values(ns, n_outputs) and series(npos, ns, n_outputs)
-!> where present(k) /= 0. Texts (effects, warnings, parameters used) come
+!> table: per-speed values(ns, n_outputs) and, for the series variables
+!> this run produced in the table's order, series(npos, ns, nser) (nser from
+!> pf_layout); present(k) /= 0 for the variables this run produced. Texts (effects, warnings, parameters used) come
 !> in `texts` with their lengths; when they do not fit, text_lengths says
 !> how much room to give and status is 0 (call again).
-subroutine pf_simulate(np, z, settings, ns, npos, nout, ntext, speed, speed_kmh, values, series, &
-      & present, position, counts, texture, texts, text_lengths, status, message)
+subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
+      & series, present, position, counts, texture, texts, text_lengths, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type, scene_from_text
@@ -160,13 +164,13 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, ntext, speed, speed_kmh,
       & output_var_type, output_table, dim_speed
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_run, only: run_profile
-   use pavefric_error, only: error_type, stat_internal
+   use pavefric_error, only: error_type, stat_internal, stat_memory
    implicit none
-   integer(c_int), intent(in) :: np, ns, npos, nout, ntext
+   integer(c_int), intent(in) :: np, ns, npos, nout, nser, ntext
    real(c_double), intent(in) :: z(np)
    character(len=*), intent(in) :: settings
    real(c_double), intent(out) :: speed(ns), speed_kmh(ns), values(ns, nout)
-   real(c_double), intent(out) :: series(npos, ns, nout), position(npos), texture(3)
+   real(c_double), intent(out) :: series(npos, ns, nser), position(npos), texture(3)
    integer(c_int), intent(out) :: present(nout), counts(6), text_lengths(3), status
    character, intent(out) :: texts(ntext)
    character(len=2048), intent(out) :: message
@@ -178,7 +182,7 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, ntext, speed, speed_kmh,
    type(output_var_type) :: table(n_outputs)
    real(wp), allocatable :: v(:)
    character(len=:), allocatable :: joined
-   integer :: k, n_pos, c
+   integer :: k, n_pos, c, slot
 
    speed = 0; speed_kmh = 0; values = 0; series = 0; present = 0; position = 0; texture = 0
    counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
@@ -203,7 +207,13 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, ntext, speed, speed_kmh,
    speed = res%speed
    speed_kmh = res%speed_kmh
    table = output_table()
-   allocate(v(max(ns, ns * max(n_pos, 1))))
+   allocate(v(max(ns, ns * max(n_pos, 1))), stat=c)
+   if (c /= 0) then
+      status = stat_memory
+      message = "not enough memory to return the results"
+      return
+   end if
+   slot = 0
    do k = 1, n_outputs
       if (.not. output_present(res, k)) cycle
       present(k) = 1
@@ -211,7 +221,13 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, ntext, speed, speed_kmh,
       if (table(k)%dims == dim_speed) then
          values(:, k) = v(1:ns)
       else
-         series(:, :, k) = reshape(v(1:n_pos*ns), [n_pos, ns])
+         slot = slot + 1
+         if (slot > nser) then
+            status = stat_internal
+            message = "internal: pf_simulate sized for fewer series variables"
+            return
+         end if
+         series(:, :, slot) = reshape(v(1:n_pos*ns), [n_pos, ns])
       end if
    end do
    if (scene%series) position = res%position

@@ -1,0 +1,269 @@
+"""Output safety (issue 10, item 1; temp files on signals): an output path
+that is an input or not a regular file is refused before any work, and a
+signal during a write leaves neither a temporary file nor a partial output."""
+import os
+import signal
+import socket
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+import pavefric
+from conftest import program, run_program, write_scene
+
+
+def snapshot(*paths):
+    return {Path(p): Path(p).read_bytes() for p in paths}
+
+
+def assert_intact(before):
+    for path, data in before.items():
+        assert path.read_bytes() == data, f"{path} was changed"
+
+
+def assert_refused(r, *words):
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert r.stderr.startswith("pavefric: error: "), r.stderr
+    for w in words:
+        assert w in r.stderr, r.stderr
+
+
+@pytest.fixture
+def scene(tmp_path):
+    return write_scene(tmp_path, "s")
+
+
+# ---- an output that is an input -------------------------------------------------------
+
+def test_output_is_the_scene_file(scene):
+    before = snapshot(scene, scene.with_name("s_profile.txt"))
+    r = run_program(scene.name, "-o", scene.name, cwd=scene.parent)
+    assert_refused(r, "-o 's.nml'", "the scene file 's.nml'", "destroy an input")
+    assert_intact(before)
+    assert not list(scene.parent.glob("*.tmp*"))
+
+
+def test_output_is_the_profile(scene):
+    profile = scene.with_name("s_profile.txt")
+    before = snapshot(scene, profile)
+    r = run_program(scene.name, "-o", profile.name, cwd=scene.parent)
+    assert_refused(r, "-o 's_profile.txt'", "&surface profile_file", "destroy an input")
+    assert_intact(before)
+
+
+@pytest.mark.parametrize("trick", ["dotdot", "dot", "absolute", "symlink", "hardlink"])
+def test_output_resolving_to_an_input(scene, trick):
+    d = scene.parent
+    (d / "sub").mkdir()
+    before = snapshot(scene, d / "s_profile.txt")
+    if trick == "dotdot":
+        out = "sub/../s.nml"
+    elif trick == "dot":
+        out = "./s.nml"
+    elif trick == "absolute":
+        out = str(scene)
+    elif trick == "symlink":
+        (d / "sub" / "link.nc").symlink_to(d / "s_profile.txt")
+        out = "sub/link.nc"
+    else:
+        os.link(scene, d / "hard.nc")
+        out = "hard.nc"
+    r = run_program("s.nml", "-o", out, cwd=d)
+    assert_refused(r, f"-o '{out}'", "destroy an input", str(d / ("s_profile.txt" if trick ==
+                                                                   "symlink" else "s.nml")))
+    assert_intact(before)
+    assert not (d / "outputs").exists()
+
+
+def test_output_file_in_the_namelist_names_an_input(tmp_path):
+    scene = write_scene(tmp_path, "s", groups={"output": "file = 's_profile.txt'"})
+    before = snapshot(scene, tmp_path / "s_profile.txt")
+    r = run_program(scene.name, cwd=tmp_path)
+    assert_refused(r, "&output file = 's_profile.txt'", "&surface profile_file")
+    assert_intact(before)
+
+
+def test_python_run_refuses_an_input_as_output(scene):
+    before = snapshot(scene)
+    with pytest.raises(pavefric.PavefricError, match="the scene file"):
+        pavefric.run(scene, output=scene)
+    assert_intact(before)
+
+
+def test_a_good_output_still_written(scene):
+    r = run_program(scene.name, "-o", "out.nc", cwd=scene.parent)
+    assert r.returncode == 0, r.stderr
+    assert (scene.parent / "out.nc").read_bytes()[:4] == b"\x89HDF"
+    # an existing regular output is replaced, as before
+    r = run_program(scene.name, "-o", "out.nc", cwd=scene.parent)
+    assert r.returncode == 0, r.stderr
+
+
+# ---- an output that is not a regular file ---------------------------------------------
+
+def test_fifo_as_output_is_refused(scene):
+    fifo = scene.parent / "fifo"
+    os.mkfifo(fifo)
+    r = run_program(scene.name, "-o", "fifo", cwd=scene.parent)
+    assert_refused(r, "-o 'fifo'", "FIFO", "not a regular file")
+    assert fifo.is_fifo()
+
+
+def test_character_device_as_output_is_refused(scene):
+    # through a link, so that a regression replaces the link, never /dev/null
+    link = scene.parent / "null.nc"
+    link.symlink_to("/dev/null")
+    r = run_program(scene.name, "-o", "null.nc", cwd=scene.parent)
+    assert_refused(r, "-o 'null.nc'", "character device")
+    assert link.is_symlink() and link.is_char_device()
+
+
+def test_directory_and_socket_as_output_are_refused(scene):
+    (scene.parent / "dir.nc").mkdir()
+    r = run_program(scene.name, "-o", "dir.nc", cwd=scene.parent)
+    assert_refused(r, "-o 'dir.nc'", "a directory")
+    sock = socket.socket(socket.AF_UNIX)
+    try:
+        sock.bind(str(scene.parent / "sock.nc"))
+        r = run_program(scene.name, "-o", "sock.nc", cwd=scene.parent)
+        assert_refused(r, "-o 'sock.nc'", "a socket")
+    finally:
+        sock.close()
+
+
+# ---- batches --------------------------------------------------------------------------
+
+def make_batch(tmp_path, n=4, output=None, list_file=False):
+    from pavefric.surfaces import road_profiles
+
+    road_profiles(str(tmp_path / "profiles"), n=n, points=256)
+    if list_file:
+        names = sorted(p.name for p in (tmp_path / "profiles").iterdir())
+        (tmp_path / "list.txt").write_text("".join(f"profiles/{x}\n" for x in names))
+        spec = "profile_list = 'list.txt'"
+    else:
+        spec = "profiles = 'profiles/*.txt'"
+    text = (f"&batch {spec}, depths = 0.0 /\n&surface closed = .false., mu_loc = 0.6 /\n"
+            "&operation speeds_kmh = 20 /\n")
+    if output is not None:
+        text += f"&output file = '{output}' /\n"
+    scene = tmp_path / "batch.nml"
+    scene.write_text(text)
+    return scene
+
+
+def all_inputs(tmp_path):
+    return [p for p in tmp_path.rglob("*") if p.is_file()]
+
+
+def test_batch_output_is_a_profile(tmp_path):
+    scene = make_batch(tmp_path)
+    before = snapshot(*all_inputs(tmp_path))
+    r = run_program(scene, "-o", tmp_path / "profiles" / "seg_0002.txt", cwd=tmp_path)
+    assert_refused(r, "-o '", "profile 2 of the batch", "seg_0002.txt")
+    assert_intact(before)
+    assert not list(tmp_path.rglob("*.journal"))
+
+
+def test_batch_output_file_is_the_scene_or_list(tmp_path):
+    scene = make_batch(tmp_path, output="list.txt", list_file=True)
+    before = snapshot(*all_inputs(tmp_path))
+    r = run_program(scene, cwd=tmp_path)
+    assert_refused(r, "&output file = 'list.txt'", "&batch profile_list")
+    r = run_program(scene, "-o", "batch.nml", cwd=tmp_path)
+    assert_refused(r, "-o 'batch.nml'", "the scene file")
+    assert_intact(before)
+
+
+def test_batch_journal_is_an_input(tmp_path):
+    # the journal of out.nc is profiles/out.nc.journal, which the pattern also matches
+    scene = make_batch(tmp_path)
+    victim = tmp_path / "profiles" / "out.nc.journal"
+    victim.write_text("height_mm\n" + "".join(f"{0.1 * (k % 7):.3f}\n" for k in range(256)))
+    scene.write_text(scene.read_text().replace("profiles/*.txt", "profiles/*"))
+    before = snapshot(*all_inputs(tmp_path))
+    r = run_program(scene, "-o", "profiles/out.nc", cwd=tmp_path)
+    assert_refused(r, "the journal of -o 'profiles/out.nc.journal'", "profile 1 of the batch")
+    assert_intact(before)
+
+
+def test_python_batch_refuses_a_profile_as_output(tmp_path):
+    scene = make_batch(tmp_path)
+    before = snapshot(*all_inputs(tmp_path))
+    with pytest.raises(pavefric.PavefricError, match="profile 1 of the batch"):
+        pavefric.run(scene, output=tmp_path / "profiles" / "seg_0001.txt", progress=False)
+    assert_intact(before)
+
+
+# ---- signals while an output is written ------------------------------------------------
+
+def wait_stopped(proc, timeout=120.0):
+    """Wait until `proc` stops itself (the PAVEFRIC_TEST_PAUSE hook)."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if proc.poll() is not None:
+            pytest.fail(f"the program ended (status {proc.returncode}) before the pause point: "
+                        + proc.stderr.read())
+        state = Path(f"/proc/{proc.pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        if state == "T":
+            return
+        time.sleep(0.02)
+    proc.kill()
+    pytest.fail("the program never reached the pause point")
+
+
+@pytest.mark.parametrize("point", ["create", "commit"])
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_signal_while_writing_leaves_no_temp_file(scene, point, sig):
+    d = scene.parent
+    out = d / "out.nc"
+    out.write_bytes(b"the previous output")
+    env = {**os.environ, "PAVEFRIC_TEST_PAUSE": point}
+    proc = subprocess.Popen([program(), scene.name, "-o", "out.nc"], cwd=d, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wait_stopped(proc)
+    temps = list(d.glob("out.nc.tmp*"))
+    assert len(temps) == 1, temps   # stopped while writing under the temporary name
+    proc.send_signal(sig)
+    proc.send_signal(signal.SIGCONT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == -sig, err   # killed by that signal, as without a handler
+    assert not list(d.glob("out.nc.tmp*"))
+    assert out.read_bytes() == b"the previous output"
+
+
+def test_signal_while_writing_a_batch(tmp_path):
+    scene = make_batch(tmp_path)
+    env = {**os.environ, "PAVEFRIC_TEST_PAUSE": "create"}
+    proc = subprocess.Popen([program(), str(scene), "-o", "b.nc"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wait_stopped(proc)
+    assert len(list(tmp_path.glob("b.nc.tmp*"))) == 1
+    proc.send_signal(signal.SIGTERM)
+    proc.send_signal(signal.SIGCONT)
+    proc.communicate(timeout=60)
+    assert proc.returncode == -signal.SIGTERM
+    assert not list(tmp_path.glob("b.nc.tmp*")) and not (tmp_path / "b.nc").exists()
+    # the journal keeps the computed profiles: the run resumes to the end
+    assert (tmp_path / "b.nc.journal").exists()
+    r = run_program(scene, "-o", "b.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "resuming: 4 of 4" in r.stdout
+    assert (tmp_path / "b.nc").read_bytes()[:4] == b"\x89HDF"
+
+
+def test_ignored_sigint_stays_ignored(scene):
+    # nohup and background jobs ignore signals; the program must not undo that
+    env = {**os.environ, "PAVEFRIC_TEST_PAUSE": "commit"}
+    proc = subprocess.Popen([program(), scene.name, "-o", "out.nc"], cwd=scene.parent, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+    wait_stopped(proc)
+    proc.send_signal(signal.SIGINT)
+    proc.send_signal(signal.SIGCONT)
+    proc.communicate(timeout=60)
+    assert proc.returncode == 0
+    assert (scene.parent / "out.nc").read_bytes()[:4] == b"\x89HDF"
+    assert not list(scene.parent.glob("out.nc.tmp*"))
