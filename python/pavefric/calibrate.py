@@ -774,16 +774,21 @@ def _bounds_option(items) -> dict:
     return out
 
 
-def _write_json(path: Path, data: dict, inputs: Sequence[Path]) -> None:
-    """Write the JSON beside its final name, then rename: never over an input."""
+def _check_output(path: Path, inputs: Sequence[Path]) -> None:
+    """-o must not name an input (the data or a scene) or a non-regular file."""
     target = path.resolve()
     for p in inputs:
         if p.exists() and p.resolve() == target:
             raise CalibrationError(f"-o {path}: is an input ({p}); choose another name")
     if path.exists() and not path.is_file():
         raise CalibrationError(f"-o {path}: exists and is not a regular file")
+
+
+def _write_json(path: Path, data: dict) -> None:
+    """Write beside the final name, then rename: no partial file under the name."""
     tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
     try:
+        path.parent.mkdir(parents=True, exist_ok=True)
         tmp.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
         os.replace(tmp, path)
     except OSError as exc:
@@ -792,12 +797,17 @@ def _write_json(path: Path, data: dict, inputs: Sequence[Path]) -> None:
 
 
 def main_calibrate(args) -> int:
-    """``python -m pavefric calibrate``: 0 on a converged fit, 1 otherwise."""
+    """``python -m pavefric calibrate``: 0 on a converged fit, 1 otherwise (the
+    report and the JSON are still written)."""
     import sys
 
     start = _start_option(args.start)
     bounds = _bounds_option(args.bounds)
     rows = read_measurements(args.data, source=args.source, speeds=args.speeds)
+    if args.output:
+        scenes = Path(args.scenes)
+        _check_output(Path(args.output), [Path(args.data)] + [
+            scenes / f"{s}.nml" for s in {r["surface"] for r in rows}])
     inputs = {"data": str(args.data), "source": args.source, "speeds": args.speeds,
               "scenes": str(args.scenes), "fit": list(args.fit)}
     result = fit(rows, args.scenes, args.fit, start=start, bounds=bounds, level=args.level,
@@ -805,10 +815,9 @@ def main_calibrate(args) -> int:
                  inputs=inputs)
     print(report_text(result))
     if args.output:
-        scenes = Path(args.scenes)
-        used = [Path(args.data)] + [scenes / f"{s}.nml" for s in {r["surface"] for r in rows}]
-        _write_json(Path(args.output), result.as_dict(), used)
+        _write_json(Path(args.output), result.as_dict())
         print(f"wrote {args.output}")
+    sys.stdout.flush()
     for w in result.warnings:
         print(f"pavefric: warning: {w}", file=sys.stderr)
     if not result.converged:
