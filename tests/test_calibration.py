@@ -163,9 +163,9 @@ def test_linearised_interval_is_log_student_t_and_asymmetric():
 
 def test_interval_coverage_on_noisy_synthetic_data():
     """40 noisy data sets (sd 0.02, seeds 0-39) made by the core with alpha = 3
-    on GSS and GSSB: the 95% interval holds the truth in 39 of 40 (seeds 0-149
-    gave 141/150 = 94%); a band of 35-40 (0.95 +/- 3 binomial sd) catches an
-    interval too narrow by a third. Every interval is positive."""
+    on GSS and GSSB: the 95% interval holds the truth in 39 of 40; the band
+    35-40 (0.95 +/- 3 binomial sd) catches an interval too narrow by a third
+    (its coverage would be ~83%). Every interval is positive."""
     from pavefric import calibrate
 
     clean = synthetic({"alpha": 3.0}, ["GSS", "GSSB"])
@@ -432,3 +432,70 @@ def test_validate_reduced(tmp_path, paper):
     assert 0 < plo < res["alpha"] < phi
     assert "±" not in text.split("## Statistics")[0]
     assert pavefric.defaults()["alpha"] == CALIBRATED_ALPHA
+
+
+DOC = ROOT / "docs" / "calibration.md"
+
+
+def _doc_blocks(kind):
+    text = DOC.read_text(encoding="utf-8")
+    return [block.split("\n```", 1)[0] for block in text.split(f"```{kind}\n")[1:]]
+
+
+def test_docs_worked_examples_are_current(tmp_path):
+    """Every command shown in docs/calibration.md prints what the page shows
+    (stdout, or the one stderr line of an error), and the JSON excerpt is the
+    file the first example writes."""
+    import shlex
+
+    blocks = _doc_blocks("console")
+    assert len(blocks) == 3
+    written = None
+    for block in blocks:
+        command, *expected = block.splitlines()
+        assert command.startswith("$ .venv/bin/python -m pavefric calibrate ")
+        argv = shlex.split(command[2:])
+        argv[0] = sys.executable
+        shown_output = None
+        if "-o" in argv:
+            i = argv.index("-o") + 1
+            shown_output, argv[i] = argv[i], str(tmp_path / "fit.json")
+            written = tmp_path / "fit.json"
+        r = subprocess.run(argv, capture_output=True, text=True, timeout=600, cwd=ROOT)
+        if expected[0].startswith("pavefric: error:"):
+            assert r.returncode == 1 and r.stderr.splitlines() == expected
+            continue
+        assert r.returncode == 0, r.stderr
+        got = r.stdout.splitlines()
+        if shown_output:
+            got = [line.replace(str(written), shown_output) for line in got]
+        assert got == expected
+    excerpt = json.loads(_doc_blocks("json")[0])
+    params = json.loads(written.read_text())["parameters"]
+    assert params.keys() == excerpt.keys()
+
+    def close(a, b):
+        if isinstance(a, dict):
+            return a.keys() == b.keys() and all(close(a[k], b[k]) for k in a)
+        if isinstance(a, list):
+            return len(a) == len(b) and all(close(x, y) for x, y in zip(a, b))
+        if isinstance(a, float) and isinstance(b, float):
+            return a == pytest.approx(b, rel=1e-6)
+        return a == b
+
+    assert close(params, excerpt), (params, excerpt)
+
+
+def test_docs_parameter_table_is_fittable():
+    """The table of fittable parameters in docs/calibration.md is FITTABLE."""
+    from pavefric.calibrate import FITTABLE
+
+    rows = [line.split("|")[1:-1] for line in DOC.read_text(encoding="utf-8").splitlines()
+            if line.startswith("| `")]
+    table = {c[0].strip().strip("`"): c for c in rows}
+    assert list(table) == list(FITTABLE)
+    for name, spec in FITTABLE.items():
+        _, units, bounds, doc = (c.strip() for c in table[name])
+        lo, hi = (float(b) for b in bounds.split(" – "))
+        assert (units, lo, hi) == (spec.units, spec.lower, spec.upper), name
+        assert doc.replace("`", "") == spec.doc, name

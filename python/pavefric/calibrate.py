@@ -667,7 +667,9 @@ def profile_interval(prob: _Problem, result: Fit, name: str) -> dict:
         elif end[0] == "bound":
             notes.append(f"reaches the {side} bound")
             out["reaches_bound"].append(side)
-    out["interval"] = ([float(np.exp(e[1])) for e in ends] if all(ends) else None)
+    # an end at a search bound is reported as the bound itself
+    out["interval"] = ([result.bounds[name][i] if e[0] == "bound" else float(np.exp(e[1]))
+                        for i, e in enumerate(ends)] if all(ends) else None)
     if notes:
         out["note"] = "; ".join(notes)
         result.warnings.append(f"the profile interval of {name} {' and '.join(notes)}: "
@@ -696,9 +698,10 @@ def report_text(result: Fit) -> str:
         f"least_squares (trust-region reflective, log-parameters): "
         f"{'converged' if result.converged else 'NOT converged'}, status {result.status}: "
         f"{result.message}",
-        f"  {result.evaluations} evaluations ({result.nfev} by the optimiser, "
-        f"{result.njev} Jacobians), {result.runs} model runs"
-        + (f" ({result.profile_runs} for the profile intervals)" if result.profile else ""),
+        f"  {result.runs} model runs = {result.evaluations} evaluations x {len(surfaces)} "
+        f"surfaces (least_squares: {result.nfev} residual and {result.njev} Jacobian "
+        f"evaluations" + (f"; profile intervals: {result.profile_runs} runs)"
+                          if result.profile else ")"),
         f"  SSR {result.ssr:.6g}, RMSE {result.rmse:.4g}, residual standard error "
         + (f"{result.s:.4g}" if result.s is not None else "-"),
     ]
