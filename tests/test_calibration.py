@@ -228,6 +228,23 @@ def test_not_identifiable_combination_is_reported():
     assert any(w.startswith("not identifiable: the Jacobian has rank 1 < 2") for w in fit.warnings)
     assert fit.interval == {"alpha": None, "water_viscosity": None}
     assert fit.values["alpha"] * fit.values["water_viscosity"] == pytest.approx(3e-3, rel=1e-8)
+    assert "(+1.00 log alpha, -1.00 log water_viscosity)" in fit.warnings[0]
+    # on dry scenes alpha changes nothing: rank 0, the start value stays
+    fit = calibrate.fit(rows, SURFACES, ["alpha"], overrides={"depth": 0.0})
+    assert fit.singular_values == [0.0] and fit.values["alpha"] == 11.8
+    assert fit.warnings[0].startswith("not identifiable: the Jacobian has rank 0 < 1")
+    assert fit.interval["alpha"] is None
+
+
+def test_no_degrees_of_freedom_no_interval():
+    from pavefric import calibrate
+
+    rows = synthetic({"alpha": 3.0}, ["GSS"], speeds=[20.0])
+    fit = calibrate.fit(rows, SURFACES, ["alpha"], start={"alpha": 1.0})
+    assert fit.values["alpha"] == pytest.approx(3.0, rel=1e-8) and fit.dof == 0
+    assert fit.interval["alpha"] is None and fit.t_quantile is None and fit.s is None
+    assert fit.warnings == ["1 measurement(s) for 1 parameter(s): no degrees of freedom left, "
+                            "no intervals are given"]
 
 
 def test_parameter_at_a_bound_is_reported():
@@ -357,6 +374,7 @@ GOOD = "surface,speed_kmh,mu,source\nGSS,20,0.6,dft\nGSS,60,0.3,dft\nGSSB,20,0.7
     # other options
     (GOOD, ["--level", "95"], ["--level 95: must lie in (0, 1)"]),
     (GOOD, ["--profile", "beta"], ["--profile beta: not a fitted parameter"]),
+    (GOOD, ["--max-evaluations", "0"], ["--max-evaluations 0: must be >= 1"]),
     (GOOD, ["--fit", "alpha", "beta", "viscosity", "mu_loc"],
      ["4 parameters cannot be fitted to 3 measurement(s)"]),
     (GOOD, ["-o", "{data}"], ["is an input"]),

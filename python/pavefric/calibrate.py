@@ -497,6 +497,8 @@ def fit(rows: Sequence[dict], scenes_dir: str | os.PathLike, names: Sequence[str
     n, p = len(rows), len(targets)
     if n < p:
         raise CalibrationError(f"{p} parameters cannot be fitted to {n} measurement(s)")
+    if max_evaluations is not None and not (int(max_evaluations) >= 1):
+        raise CalibrationError(f"--max-evaluations {max_evaluations}: must be >= 1")
     for name in profile:
         if name not in {t.name for t in targets}:
             raise CalibrationError(f"--profile {name}: not a fitted parameter (fitted: "
@@ -506,7 +508,8 @@ def fit(rows: Sequence[dict], scenes_dir: str | os.PathLike, names: Sequence[str
     for t in targets:
         lo, hi = bnd[t.name]
         if not (math.isfinite(p0[t.name]) and lo <= p0[t.name] <= hi):
-            given = "--start" if t.name in (start or {}) else "the scenes' value"
+            given = ("--start" if t.name in (start or {}) else
+                     "fixed value" if t.base in model.overrides else "the scenes' value")
             raise CalibrationError(f"start value {t.name} = {p0[t.name]:g} ({given}) lies "
                                    f"outside its bounds [{lo:g}, {hi:g}]")
     lower = np.log([bnd[t.name][0] for t in targets])
@@ -555,11 +558,11 @@ def fit(rows: Sequence[dict], scenes_dir: str | os.PathLike, names: Sequence[str
                                                                   names) if abs(c) > 0.05)
         warnings.append(f"not identifiable: the Jacobian has rank {rank} < {p} parameters "
                         f"(singular values {', '.join(f'{v:.3g}' for v in sv)}); no residual "
-                        f"changes along the direction ({combo}), so the data cannot separate "
-                        "those parameters; no intervals are given")
+                        f"changes along the direction ({combo}): the data do not determine "
+                        "it; no intervals are given")
     elif dof == 0:
-        warnings.append(f"{n} measurements for {p} parameters: no degrees of freedom left, "
-                        "no intervals are given")
+        warnings.append(f"{n} measurement(s) for {p} parameter(s): no degrees of freedom "
+                        "left, no intervals are given")
     else:
         cov = s * s * np.linalg.inv(jac.T @ jac)
         sd = np.sqrt(np.diag(cov))
