@@ -264,7 +264,7 @@ class Model:
             path = self.scenes_dir / f"{surface}.nml"
             if not self.scenes_dir.is_dir():
                 raise CalibrationError(f"scene directory {self.scenes_dir} does not exist "
-                                       f"(--scenes)")
+                                       "or is not a directory (--scenes)")
             if not path.is_file():
                 raise CalibrationError(f"no scene file {path} for surface {surface}"
                                        + (f" ({where})" if where else ""))
