@@ -415,17 +415,19 @@ class _Problem:
                 self._cache.popitem(last=False)
         return self._cache[key]
 
-    def jacobian(self, theta) -> np.ndarray:
-        """d residual / d theta by forward differences with a step of JAC_STEP in
-        log p (backward where the forward step would leave the bounds)."""
+    def jacobian(self, theta, columns: Sequence[int] | None = None) -> np.ndarray:
+        """d residual / d theta (only ``columns`` if given) by forward differences
+        with a step of JAC_STEP in log p (backward where the forward step would
+        leave the bounds)."""
         theta = np.asarray(theta, float)
+        columns = range(theta.size) if columns is None else list(columns)
         r0 = self.residual(theta)
-        jac = np.empty((r0.size, theta.size))
-        for k in range(theta.size):
+        jac = np.empty((r0.size, len(columns)))
+        for j, k in enumerate(columns):
             h = JAC_STEP if theta[k] + JAC_STEP <= self.upper[k] else -JAC_STEP
             t = theta.copy()
             t[k] += h
-            jac[:, k] = (self.residual(t) - r0) / h
+            jac[:, j] = (self.residual(t) - r0) / h
         return jac
 
 
@@ -625,7 +627,7 @@ def profile_interval(prob: _Problem, result: Fit, name: str) -> dict:
             def sub_jac(x):
                 full = th.copy()
                 full[others] = x
-                return prob.jacobian(full)[:, others]
+                return prob.jacobian(full, others)
 
             x0 = np.clip(th[others], prob.lower[others], prob.upper[others])
             res = least_squares(sub, x0, jac=sub_jac,
