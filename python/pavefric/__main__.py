@@ -63,7 +63,10 @@ def main(argv: list[str] | None = None) -> int:
     p_bench.add_argument("--largest", type=int, default=10_000_000,
                          help="largest profile of the length scaling (points)")
 
-    p_cal = sub.add_parser("calibrate", help="fit model parameters to measured friction (CSV)")
+    p_cal = sub.add_parser("calibrate", help="fit model parameters to measured friction (CSV)",
+                           description="Least-squares fit (scipy least_squares, parameters "
+                           "fitted as log p) of model parameters to measured friction; every "
+                           "evaluation runs the core. See docs/calibration.md.")
     p_cal.add_argument("data", help="CSV with columns surface,speed_kmh,mu")
     p_cal.add_argument("--scenes", default="inputs/surfaces",
                        help="directory of <surface>.nml scenes")
@@ -73,7 +76,16 @@ def main(argv: list[str] | None = None) -> int:
                        help="use only these speeds (km/h)")
     p_cal.add_argument("--source", default=None,
                        help="use only rows whose 'source' column is this (e.g. dft)")
-    p_cal.add_argument("--start", nargs="+", default=None, help="start values, name=value")
+    p_cal.add_argument("--start", nargs="+", default=None,
+                       help="start values, NAME=VALUE (default: the scenes' values)")
+    p_cal.add_argument("--bounds", nargs="+", default=None,
+                       help="search bounds, NAME=LO:HI (default: wide physical ranges)")
+    p_cal.add_argument("--level", type=float, default=0.95,
+                       help="confidence level of the intervals (default 0.95)")
+    p_cal.add_argument("--profile", nargs="+", default=None, metavar="NAME",
+                       help="also a profile-likelihood interval for these parameters")
+    p_cal.add_argument("--max-evaluations", type=int, default=None,
+                       help="limit of least_squares evaluations (default 100 per parameter)")
     p_cal.add_argument("-o", "--output", default=None, help="write the fit as JSON")
 
     p_sur = sub.add_parser("surfaces", help="(re)generate the six reference surfaces")

@@ -34,6 +34,15 @@ def default_table() -> str:
                             "pavefric checkout or give --table")
 
 
+def _interval_text(interval, profile: dict | None = None) -> str:
+    """'[lo, hi]' of a calibration interval; an end at a search bound is marked."""
+    if not interval:
+        return "(not available)"
+    ends = (profile or {}).get("reaches_bound", [])
+    return (f"[{interval[0]:.3g}{' (search bound)' if 'lower' in ends else ''}, "
+            f"{interval[1]:.3g}{' (search bound)' if 'upper' in ends else ''}]")
+
+
 def statistics(measured, model) -> dict:
     """R^2 (1 - SS_res/SS_tot), r^2 (squared correlation), slope of the
     regression of measured on model through the origin, RMSE."""
@@ -70,10 +79,16 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
     rows = cal.read_measurements(table, source="dft")
     fit_rows = [r for r in rows if r["speed_kmh"] == FIT_SPEED]
     overrides = {"depth": WATER_DEPTH}
-    fit = cal.fit(fit_rows, regen, ["alpha"], start={"alpha": 1.0}, overrides=overrides)
+    fit = cal.fit(fit_rows, regen, ["alpha"], start={"alpha": 1.0}, overrides=overrides,
+                  profile=["alpha"])
+    if not fit.converged:
+        raise cal.CalibrationError(f"validate: the fit of alpha did not converge ({fit.message})")
     alpha = fit.values["alpha"]
-    print(f"validate: alpha = {alpha:.4g} +/- {fit.std['alpha']:.2g} "
-          f"({fit.runs} model runs)")
+    lin = fit.interval["alpha"]
+    prof = fit.profile["alpha"]
+    print(f"validate: alpha = {alpha:.4g}, {100 * fit.level:g}% interval "
+          f"{_interval_text(lin)} (linearised), {_interval_text(prof['interval'], prof)} "
+          f"(profile likelihood); {fit.runs} model runs")
 
     # 3. the comparison at every measured point
     model = cal.Model(regen, overrides)
@@ -123,7 +138,10 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
                              - np.array([paper["model_dry"][name][float(s)] for s in curve_speeds
                                          if float(s) in paper["model_dry"][name]]))))}
     figs = _figures(Path(report).parent / "figures", rows, pred, curves, paper, alpha)
-    result = {"alpha": alpha, "alpha_std": fit.std["alpha"], "fit_runs": fit.runs,
+    result = {"alpha": alpha, "alpha_interval": lin,
+              "alpha_profile_interval": prof["interval"],
+              "alpha_profile_reaches_bound": prof.get("reaches_bound", []),
+              "alpha_level": fit.level, "alpha_dof": fit.dof, "fit_runs": fit.runs,
               "stats": stats, "diagnostic": {"values": diag.values, "stats": diag_stats},
               "texture": texture, "surfaces_identical": same,
               "seconds": time.perf_counter() - t0}
@@ -225,8 +243,16 @@ def _write_report(report: Path, res, rows, pred, figs, description, mpd_mm, tabl
         "No wet measurement entered their making.",
         f"- **Fitted:** `alpha` alone, by least squares on the six **20 km/h** DFT points "
         f"(water depth 1 mm, beta = 1.75, C = 100 N s m⁻³, K = 1.4e8 N m⁻³ as in the "
-        f"paper): alpha = **{res['alpha']:.4g} ± {res['alpha_std']:.2g}** "
-        f"({res['fit_runs']} model runs). The paper's 105 is in unstated units.",
+        f"paper): alpha = **{res['alpha']:.4g}** ({res['fit_runs']} model runs). "
+        f"{100 * res['alpha_level']:g}% confidence interval "
+        f"({res['alpha_dof']} degrees of freedom; docs/calibration.md): "
+        f"{_interval_text(res['alpha_interval'])} linearised in log alpha, "
+        f"{_interval_text(res['alpha_profile_interval'], {'reaches_bound': res['alpha_profile_reaches_bound']})} "
+        "by profile likelihood"
+        + (": the six points do not bound alpha from below (as alpha → 0 the model tends "
+           "to the dry one, whose misfit stays below the interval's SSR threshold)"
+           if "lower" in res["alpha_profile_reaches_bound"] else "")
+        + ". The paper's 105 is in unstated units.",
         "- **Predicted:** the twelve 40 and 60 km/h points.",
         "",
         "## Statistics",
@@ -336,8 +362,9 @@ def _write_report(report: Path, res, rows, pred, figs, description, mpd_mm, tabl
         "`my_dft.csv` has columns `surface,speed_kmh,mu`; `my_scenes/<surface>.nml` is "
         "each surface's scene (profile, mu_loc, water). Any parameter can be fitted "
         "(`alpha beta viscosity stiffness`, or `mu_loc:<SURFACE>` per surface); the "
-        "command prints the fitted values, their standard errors, the residuals and the "
-        "number of model runs.",
+        "command prints the fitted values with their confidence intervals, the labelled "
+        "residuals, the convergence status and the number of model runs. "
+        "docs/calibration.md has a worked example and says how to read the intervals.",
         "",
     ]
     report.write_text("\n".join(lines), encoding="utf-8")
