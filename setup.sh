@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # pavefric set-up: system packages, a Python virtual environment, the build.
 #
-#   bash setup.sh demo   set up, run the default scenes (dry and wet), write
-#                        outputs/ctm_dry.nc, outputs/ctm_wet.nc, outputs/ctm_mu_speed.png
+#   bash setup.sh demo   set up, run the default scene dry and with both wet models,
+#                        write outputs/ctm_dry.nc, outputs/ctm_wet.nc (the paper's
+#                        bearing), outputs/ctm_squeeze.nc (drainage) and
+#                        outputs/ctm_mu_speed.png
 #   bash setup.sh test   set up and run the whole test suite
 #   bash setup.sh        set up only
 #
@@ -99,8 +101,10 @@ case "${1:-}" in
     mkdir -p outputs
     "$VENV/bin/pavefric" inputs/ctm_dry.nml -o outputs/ctm_dry.nc
     "$VENV/bin/pavefric" inputs/ctm_wet.nml -o outputs/ctm_wet.nc
+    "$VENV/bin/pavefric" inputs/ctm_squeeze.nml -o outputs/ctm_squeeze.nc
     "$VENV/bin/python" -m pavefric plot outputs/ctm_dry.nc outputs/ctm_wet.nc \
-      -o outputs/ctm_mu_speed.png --title "CTM-like medium texture, mu_loc = 0.6"
+      outputs/ctm_squeeze.nc -o outputs/ctm_mu_speed.png \
+      --title "CTM-like medium texture (MPD 0.74 mm), mu_loc = 0.6, 1 mm water"
     ;;
   test)
     shift

@@ -53,6 +53,8 @@ module pavefric_film
       !> Advance the film under the elements by one step and return each
       !> element's share of mu_loc (friction films).
       procedure :: friction => film_friction_unchanged
+      !> The film thickness (m) on a road sample, from its state.
+      procedure :: thickness => film_no_thickness
    end type film_model
 
    abstract interface
@@ -101,6 +103,13 @@ contains
       class(film_model), intent(in) :: self
       film_no_state = 0
    end function film_no_state
+
+   pure real(wp) function film_no_thickness(self, state)
+      class(film_model), intent(in) :: self
+      !> The state of one road sample.
+      real(wp), intent(in) :: state(:)
+      film_no_thickness = 0.0_wp
+   end function film_no_thickness
 
    pure logical function film_never(self, step, gap)
       class(film_model), intent(in) :: self

@@ -186,7 +186,7 @@ contains
          & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=2.0_wp, &
          & plausible_note="pendulum values of roads lie between 0.2 and 1.2")
 
-      s(p_microtexture_rms) = real_param("surface", "microtexture_rms", "45e-6", "m", "model", &
+      s(p_microtexture_rms) = real_param("surface", "microtexture_rms", "40e-6", "m", "model", &
          & "RMS height of the microtexture asperities (texture finer than dx) that pierce " // &
          & "the water film left under the contacts, for wet_model = 'squeeze': the share " // &
          & "erfc(h / (sqrt(2) microtexture_rms)) of mu_loc acts through a film h. The default " // &

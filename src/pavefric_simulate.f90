@@ -629,7 +629,7 @@ contains
                sum_ft = sum_ft + push(i) * tan_el(i)
                n_clamp_j = n_clamp_j + merge(1, 0, push(i) > 0.0_wp .and. clamped)
                local_sum = local_sum + merge(push(i) * mu_eff, 0.0_wp, t >= 0)
-               film_sum = film_sum + fstate(1, samples((i-1) * geo%spacing + 1))
+               film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing + 1)))
             end do
             if (t >= 0) then
                force_sum = force_sum + sum_f

@@ -41,6 +41,7 @@ module pavefric_squeeze
       procedure :: reset => squeeze_reset
       procedure :: enter => squeeze_enter
       procedure :: friction => squeeze_friction
+      procedure :: thickness => squeeze_thickness
    end type squeeze_film
 
 contains
@@ -98,6 +99,13 @@ contains
       integer, intent(in) :: sample
       state(1, sample) = step%coef(2)
    end subroutine squeeze_enter
+
+   !> h = (h**-2)**-1/2.
+   pure real(wp) function squeeze_thickness(self, state)
+      class(squeeze_film), intent(in) :: self
+      real(wp), intent(in) :: state(:)
+      squeeze_thickness = 1.0_wp / sqrt(state(1))
+   end function squeeze_thickness
 
    !> Squeeze the film under each plateau for one step, then the share of
    !> microtexture piercing it under each element in contact (1 elsewhere:

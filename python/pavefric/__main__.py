@@ -11,6 +11,7 @@ Commands:
   validate [--report docs/validation.md]    calibrate at 20 km/h, compare, report
   profile FILE [--dropouts interpolate ...] read, preprocess, report, plot a profile
   docs --inputs docs/inputs.md              regenerate the namelist reference from the core
+  speed-gradient [--report docs/speed_gradient.md]  wet models against the PIARC speed gradient
 """
 from __future__ import annotations
 
@@ -118,6 +119,11 @@ def main(argv: list[str] | None = None) -> int:
     p_docs.add_argument("--inputs", default="docs/inputs.md",
                         help="where to write the namelist reference")
 
+    p_sg = sub.add_parser("speed-gradient", help="the wet models' speed gradient against PIARC "
+                          "(docs/speed_gradient.md)")
+    p_sg.add_argument("--report", default="docs/speed_gradient.md")
+    p_sg.add_argument("--quick", action="store_true", help="three MPD levels only")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -158,6 +164,10 @@ def main(argv: list[str] | None = None) -> int:
             from .validation import validate
 
             validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick)
+        elif args.command == "speed-gradient":
+            from .speed_gradient import run_study
+
+            run_study(args.report, quick=args.quick)
         elif args.command == "docs":
             from .docs import write_inputs
 

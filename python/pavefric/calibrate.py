@@ -81,6 +81,8 @@ FITTABLE: dict[str, ParameterSpec] = {
     "width": ParameterSpec("m", 1e-4, 1.0, "pad width, &pad width"),
     "thickness": ParameterSpec("m", 1e-5, 1.0, "pad thickness, &pad thickness"),
     "radius": ParameterSpec("m", 1e-4, 10.0, "rounded pad radius, &pad radius"),
+    "microtexture_rms": ParameterSpec("m", 1e-7, 1e-2, "microtexture RMS height of the "
+                                      "squeeze film model, &surface microtexture_rms"),
 }
 
 LEVEL = 0.95            # default confidence level

@@ -28,7 +28,9 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
         label = labels[i] if labels else label_default
         effects = ds.attrs.get("effects", "")
         if "hydrodynamic_bearing" in effects:
-            label += " (wet)"
+            label += " (wet: paper's bearing)"
+        elif "squeeze_film" in effects:
+            label += " (wet: drainage model)"
         else:
             label += " (dry)"
         ax.plot(ds["speed_kmh"].values, ds["mu"].values, marker="o", ms=3, label=label)
