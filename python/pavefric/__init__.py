@@ -8,7 +8,8 @@ package wraps it for pre- and post-processing.
 >>> ds["mu"].values
 """
 from .core import (PavefricError, Profile, Scene, defaults, layout, load_scene, open_dataset,
-                   read_profile, run, simulate)
+                   run, simulate)
+from .profiles import ProfileEntry, list_profiles, read_profile, write_profiles
 from .plot import plot_mu_speed, plot_profile
 from .texture import ifi, texture
 
@@ -17,4 +18,5 @@ open = open_dataset  # noqa: A001  - pavefric.open(path) reads an output file
 __version__ = "0.1.0"
 
 __all__ = ["PavefricError", "Profile", "Scene", "load_scene", "defaults", "layout", "open", "open_dataset",
-           "ifi", "plot_mu_speed", "plot_profile", "read_profile", "texture", "run", "simulate", "__version__"]
+           "ifi", "plot_mu_speed", "plot_profile", "read_profile", "texture", "run", "simulate", "__version__",
+           "write_profiles", "list_profiles", "ProfileEntry"]
