@@ -6,7 +6,7 @@
 !>   exponent:= ( 'e' | 'E' | 'd' | 'D' ) sign? digits
 !>   integer := sign? digits
 !>
-!> A valid real is converted exactly: when its significand has at most 19
+!> A valid real is converted exactly: when its significand has at most 18
 !> digits and fits 2**53, and its decimal exponent is at most 22 in size,
 !> the value is one IEEE multiplication or division of two exact doubles,
 !> hence correctly rounded (Clinger's fast path); any other token goes to
@@ -135,7 +135,7 @@ contains
          if (d < 0 .or. d > 9) exit
          nd = nd + 1
          if (m > 0 .or. d > 0) then
-            if (nsig < 19) then
+            if (nsig < 18) then
                m = 10 * m + d
                nsig = nsig + 1
             else
@@ -152,7 +152,7 @@ contains
                if (d < 0 .or. d > 9) exit
                nd = nd + 1
                if (m > 0 .or. d > 0) then
-                  if (nsig < 19) then
+                  if (nsig < 18) then
                      m = 10 * m + d
                      nsig = nsig + 1
                      dexp = dexp - 1

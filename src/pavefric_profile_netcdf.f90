@@ -213,7 +213,12 @@ contains
             cat%layout = "dense"
             call dim_length(cat, sample_dim, nsample, error)
             if (allocated(error)) return
-            allocate(cat%first(cat%n_profiles), cat%count(cat%n_profiles))
+            allocate(cat%first(cat%n_profiles), cat%count(cat%n_profiles), stat=count_ndims)
+            if (count_ndims /= 0) then
+               call fail(cat, "not enough memory for " // to_str(cat%n_profiles) // &
+                  & " profiles", error, stat_memory)
+               return
+            end if
             cat%first = 1
             cat%count = nsample
          else
@@ -611,7 +616,7 @@ contains
          call dim_length(cat, dimids(1), nchar, error)
          if (allocated(error)) return
          len_chars = int(nchar)
-         allocate(character(len=len_chars) :: chars)
+         chars = repeat(" ", len_chars)
          do k = 1, cat%n_profiles
             if (ndims == 2) then
                call check(cat, nf90_get_var(cat%ncid, varid, chars, start=[1, k], &
@@ -633,7 +638,12 @@ contains
             call fail(cat, "the profile names must be strings over the profile dimension", error)
             return
          end if
-         allocate(ptrs(cat%n_profiles))
+         allocate(ptrs(cat%n_profiles), stat=st)
+         if (st /= 0) then
+            call fail(cat, "not enough memory for " // to_str(cat%n_profiles) // " names", &
+               & error, stat_memory)
+            return
+         end if
          start = 0
          count = int(cat%n_profiles, c_size_t)
          st = c_nc_get_vara_string(int(cat%ncid, c_int), int(varid - 1, c_int), start, count, &
@@ -648,12 +658,11 @@ contains
             if (.not. c_associated(ptrs(k))) cycle
             m = c_strlen(ptrs(k))
             call c_f_pointer(ptrs(k), p, [m])
-            allocate(character(len=m) :: text)
+            text = repeat(" ", int(m))
             do st = 1, int(m)
                text(st:st) = p(st)
             end do
             cat%names(k)%s = trim(text)
-            deallocate(text)
          end do
          st = c_nc_free_string(int(cat%n_profiles, c_size_t), ptrs)
       else
@@ -677,7 +686,12 @@ contains
          call fail(cat, "variable 'chainage' must have the profile dimension", error)
          return
       end if
-      allocate(cat%chainage(cat%n_profiles))
+      allocate(cat%chainage(cat%n_profiles), stat=k)
+      if (k /= 0) then
+         call fail(cat, "not enough memory for " // to_str(cat%n_profiles) // " chainages", &
+            & error, stat_memory)
+         return
+      end if
       call check(cat, nf90_get_var(cat%ncid, varid, cat%chainage), "variable 'chainage'", error)
       if (allocated(error)) return
       call length_unit(cat, varid, "chainage", f, error)
@@ -734,7 +748,7 @@ contains
          call fail(cat, "attribute '" // name // "' must be text", error)
          return
       end if
-      allocate(character(len=n) :: text)
+      text = repeat(" ", n)
       if (n > 0) call check(cat, nf90_get_att(cat%ncid, varid, name, text), "attribute " // &
          & name, error)
    end subroutine text_attribute

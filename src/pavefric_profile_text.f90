@@ -41,49 +41,52 @@ module pavefric_profile_text
 contains
 
    !> The format of a text profile from its content: 'captif' when a line
-   !> starts with '*****DATA*****', 'csv' when the first non-comment line
-   !> holds a comma and a letter, 'plain' otherwise.
+   !> starting with '*****DATA*****' comes before any line that starts with
+   !> a number (a laser export's header block is text), 'csv' when the first
+   !> non-comment line holds a comma and a letter, 'plain' otherwise. Only
+   !> the leading lines are examined.
    pure function detect_text_format(buf) result(format)
       character(len=*), intent(in) :: buf
       character(len=:), allocatable :: format
       integer(i8) :: pos, ls, le, k, nb
-      logical :: letter
+      logical :: letter, first
       nb = len(buf, kind=i8)
       format = "plain"
-      pos = 1
-      do
-         k = index(buf(pos:), data_mark, kind=i8)
-         if (k == 0) exit
-         k = pos + k - 1
-         if (k == 1) then
-            format = "captif"
-            return
-         else if (k == 4 .and. buf(1:3) == bom) then
-            format = "captif"
-            return
-         else if (buf(k-1:k-1) == lf) then
-            format = "captif"
-            return
-         end if
-         pos = k + 1
-      end do
+      first = .true.
       pos = first_byte(buf)
       do while (pos <= nb)
          call next_line(buf, pos, ls, le)
-         le = plain_content_end(buf, ls, le)
-         if (ls > le) cycle
-         if (verify(buf(ls:le), " " // tab) == 0) cycle
-         if (index(buf(ls:le), ",") > 0) then
-            letter = .false.
-            do k = ls, le
-               if (is_letter(buf(k:k))) then
-                  letter = .true.
-                  exit
-               end if
-            end do
-            if (letter) format = "csv"
+         if (le - ls + 1 >= len(data_mark)) then
+            if (buf(ls:ls+len(data_mark)-1) == data_mark) then
+               format = "captif"
+               return
+            end if
          end if
-         return
+         k = ls
+         do while (k <= le)
+            if (buf(k:k) /= " " .and. buf(k:k) /= tab) exit
+            k = k + 1
+         end do
+         if (k > le) cycle                            ! blank
+         if (buf(k:k) == "#") cycle                   ! a comment
+         if (looks_numeric(buf(k:k))) return          ! data: not a laser export
+         if (first) then
+            first = .false.
+            le = plain_content_end(buf, ls, le)
+            if (index(buf(ls:le), ",") > 0) then
+               letter = .false.
+               do k = ls, le
+                  if (is_letter(buf(k:k))) then
+                     letter = .true.
+                     exit
+                  end if
+               end do
+               if (letter) then
+                  format = "csv"
+                  return
+               end if
+            end if
+         end if
       end do
    end function detect_text_format
 

@@ -32,6 +32,16 @@ def _check(status: int, message: Any) -> None:
     raise PavefricError(_text(message))
 
 
+def _b(text: str | os.PathLike) -> bytes:
+    """Text for a Fortran character argument (f2py takes UTF-8 bytes; a
+    non-ASCII str is refused)."""
+    if isinstance(text, bytes):
+        return text
+    if isinstance(text, os.PathLike):
+        return os.fsencode(text)
+    return str(text).encode("utf-8")
+
+
 def read_profile(path: str | os.PathLike, height_unit: str = "mm", *, format: str = "auto",
                  x_column: str = "", z_column: str = "", dx: float | None = None,
                  profile_name: str = "", **preprocess) -> Profile:
@@ -52,8 +62,8 @@ def read_profile(path: str | os.PathLike, height_unit: str = "mm", *, format: st
                         f"{', '.join(PREPROCESS_DEFAULTS)}")
     p = {**PREPROCESS_DEFAULTS, **preprocess}
     dx_default = float(dx) if dx else float(_core_defaults()["ctm_dx"])
-    args = (os.fspath(path), str(format), str(height_unit), str(x_column), str(z_column),
-            str(profile_name), dx_default, str(p["dropouts"]), int(bool(p["trim_plates"])),
+    args = (_b(os.fspath(path)), _b(format), _b(height_unit), _b(x_column), _b(z_column),
+            _b(profile_name), dx_default, _b(p["dropouts"]), int(bool(p["trim_plates"])),
             float(p["plate_threshold"]), float(p["plate_min_length"]),
             float(p["plate_buffer"]), float(p["spike_slope"]), float(p["resample_dx"]),
             float(p["lowpass_wavelength"]))
@@ -92,9 +102,9 @@ class ProfileEntry:
 def list_profiles(path: str | os.PathLike) -> list[ProfileEntry]:
     """The profiles of a NetCDF profile file, in file order, as the core
     reads them (names, chainage)."""
-    n, nchars, has_chainage, status, message = _core.pf_profile_list_info(os.fspath(path))
+    n, nchars, has_chainage, status, message = _core.pf_profile_list_info(_b(os.fspath(path)))
     _check(status, message)
-    codes, ends, chainage, status, message = _core.pf_profile_list(os.fspath(path), int(n),
+    codes, ends, chainage, status, message = _core.pf_profile_list(_b(os.fspath(path)), int(n),
                                                                    max(int(nchars), 1))
     _check(status, message)
     data = bytes(int(c) & 0xFF for c in codes[:int(nchars)])
@@ -201,8 +211,9 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
             name.cf_role = "profile_id"
             name.long_name = "profile name"
             name._Encoding = "utf-8"
-            name[:] = netCDF4.stringtochar(np.array([s.encode("utf-8") for s in names],
-                                                    dtype=f"S{strlen}"))
+            name.set_auto_chartostring(False)
+            encoded = np.array([s.encode("utf-8") for s in names], dtype=f"S{strlen}")
+            name[:] = encoded.view("S1").reshape(n, strlen)
             if dx_values is not None:
                 if dx_values.size == 1:
                     var = nc.createVariable("dx", "f8", ())
