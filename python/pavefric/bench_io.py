@@ -19,10 +19,13 @@ from pathlib import Path
 import numpy as np
 
 # The reader before the single-pass parser (commit b82ceed: a formatted read
-# per line, list-directed conversion), measured on this 2-core machine with
-# the same files as below: a Fortran driver calling read_raw_profile
-# (/tmp/pf_old/bench_read.f90 in the profiles branch's report), and
-# `/usr/bin/time -v pavefric s10m.nml` for the program.
+# per line, a list-directed conversion per token), measured once on the
+# 2-core development machine on files written as below: the sources of
+# b82ceed (`git archive b82ceed`) compiled with gfortran -O2 -funroll-loops
+# and a driver timing one call of read_raw_profile with system_clock; the
+# program as `/usr/bin/time -v pavefric big.nml` on the 10-million-point
+# scene below. That reader is gone, so these figures cannot be re-measured by
+# this module; they are printed beside the new ones.
 OLD_FIGURES = {
     "commit": "b82ceed",
     "text_ns_per_number": 837.0,          # 1e6 heights, one column
