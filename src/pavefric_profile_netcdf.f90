@@ -616,20 +616,30 @@ contains
          call dim_length(cat, dimids(1), nchar, error)
          if (allocated(error)) return
          len_chars = int(nchar)
-         chars = repeat(" ", len_chars)
-         do k = 1, cat%n_profiles
+         ! all names in one read: (length, profile) in Fortran order
+         allocate(character(len=len_chars * cat%n_profiles) :: chars, stat=st)
+         if (st /= 0) then
+            call fail(cat, "not enough memory for " // to_str(cat%n_profiles) // " names", &
+               & error, stat_memory)
+            return
+         end if
+         if (len(chars) > 0) then
             if (ndims == 2) then
-               call check(cat, nf90_get_var(cat%ncid, varid, chars, start=[1, k], &
-                  & count=[len_chars, 1]), "the profile names", error)
+               call check(cat, nf90_get_var(cat%ncid, varid, chars, start=[1, 1], &
+                  & count=[len_chars, cat%n_profiles]), "the profile names", error)
             else
-               call check(cat, nf90_get_var(cat%ncid, varid, chars), "the profile names", error)
+               call check(cat, nf90_get_var(cat%ncid, varid, chars, start=[1], &
+                  & count=[len_chars]), "the profile names", error)
             end if
-            if (allocated(error)) return
-            m = index(chars, c_null_char)
+         end if
+         if (allocated(error)) return
+         do k = 1, cat%n_profiles
+            text = chars((k - 1) * len_chars + 1:k * len_chars)
+            m = index(text, c_null_char)
             if (m > 0) then
-               cat%names(k)%s = trim(chars(1:m-1))
+               cat%names(k)%s = trim(text(1:m-1))
             else
-               cat%names(k)%s = trim(chars)
+               cat%names(k)%s = trim(text)
             end if
          end do
       else if (xtype == 12) then                     ! NC_STRING

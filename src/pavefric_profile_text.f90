@@ -105,21 +105,36 @@ contains
       integer(i8) :: nb, pos, i, le, cs, ts(2), te(2)
       integer :: cap, n, ncol, ntok, lineno, k, st
       real(wp) :: v(2)
-      logical :: first_content, all_names, drop
+      integer :: kind
+      logical :: drop
 
       call count_lines(buf, path, cap, error)
       if (allocated(error)) return
+      nb = len(buf, kind=i8)
+      ! leading blank and comment lines and a header line: skipped here, so
+      ! the arrays fit the data lines exactly in the usual case
+      pos = first_byte(buf)
+      lineno = 0
+      do while (pos <= nb)
+         le = pos
+         do while (le <= nb)
+            if (buf(le:le) == lf) exit
+            le = le + 1
+         end do
+         kind = plain_line_kind(buf, pos, le - 1)
+         if (kind == 2) exit                          ! the first data line
+         lineno = lineno + 1
+         pos = le + 1
+         if (kind == 1) exit                          ! the header: the first content line
+      end do
+      cap = max(cap - lineno, 1)
       allocate(zs(cap), ok(cap), lines(cap), stat=st)
       if (st /= 0) then
          call memory_error(path, cap, 16, error)
          return
       end if
-      nb = len(buf, kind=i8)
       n = 0
       ncol = 0
-      lineno = 0
-      first_content = .true.
-      pos = first_byte(buf)
       do while (pos <= nb)
          lineno = lineno + 1
          le = pos
@@ -129,7 +144,6 @@ contains
          end do
          ! tokens of buf(pos:le-1); the first two kept, the rest counted
          ntok = 0
-         all_names = .true.
          i = pos
          do
             do while (i < le)
@@ -148,14 +162,9 @@ contains
                ts(ntok) = cs
                te(ntok) = i - 1
             end if
-            if (first_content .and. all_names) all_names = .not. looks_numeric(buf(cs:i-1))
          end do
          pos = le + 1
          if (ntok == 0) cycle
-         if (first_content) then
-            first_content = .false.
-            if (all_names) cycle                      ! the header
-         end if
          if (ntok > 2) then
             call fatal_error(error, path // ":" // to_str(lineno) // &
                & ": more than two columns (expected heights, or distance and height)")
@@ -220,7 +229,7 @@ contains
       real(wp), allocatable :: xs(:), zs(:)
       logical, allocatable :: ok(:)
       integer, allocatable :: lines(:)
-      integer(i8) :: nb, pos, ls, le, i, fs, fe, a, b, xa, xb, za, zb
+      integer(i8) :: nb, pos, ls, le, fs, fe, a, b, xa, xb, za, zb
       integer :: cap, n, lineno, st, ix, iz, nf
       real(wp) :: v, xf, zf
       logical :: captif, in_data, header_done, x_found, z_found
@@ -231,47 +240,49 @@ contains
       captif = fmt == "captif"
       sep = ","
       if (captif) sep = tab
-      allocate(zs(cap), ok(cap), lines(cap), stat=st)
-      if (st == 0) allocate(xs(cap), stat=st)
-      if (st /= 0) then
-         call memory_error(path, cap, 24, error)
-         return
-      end if
       nb = len(buf, kind=i8)
-      n = 0
-      lineno = 0
-      in_data = .not. captif
-      header_done = .false.
       ix = 0
       iz = 0
       xf = factor
       zf = factor
+      ! the laser export's header block, blank and comment lines, the column
+      ! header: before the arrays are sized to the lines that follow
+      lineno = 0
+      in_data = .not. captif
+      header_done = .false.
       pos = first_byte(buf)
-      do while (pos <= nb)
+      do while (pos <= nb .and. .not. header_done)
          lineno = lineno + 1
          call next_line(buf, pos, ls, le)
          if (.not. in_data) then
             if (le - ls + 1 >= len(data_mark)) in_data = buf(ls:ls+len(data_mark)-1) == data_mark
             cycle
          end if
-         ! blank and comment lines
-         i = ls
-         do while (i <= le)
-            if (buf(i:i) /= " " .and. buf(i:i) /= tab) exit
-            i = i + 1
-         end do
-         if (i > le) cycle
-         if (buf(i:i) == "#") cycle
-         if (.not. header_done) then
-            header_done = .true.
-            call header_columns(buf(ls:le), sep, captif, x_column, z_column, factor, ix, iz, &
-               & xf, zf, error)
-            if (allocated(error)) then
-               error%message = path // ":" // to_str(lineno) // ": " // error%message
-               return
-            end if
-            cycle
+         if (blank_or_comment(buf, ls, le)) cycle
+         header_done = .true.
+         call header_columns(buf(ls:le), sep, captif, x_column, z_column, factor, ix, iz, &
+            & xf, zf, error)
+         if (allocated(error)) then
+            error%message = path // ":" // to_str(lineno) // ": " // error%message
+            return
          end if
+      end do
+      if (.not. in_data) then
+         call fatal_error(error, path // ": no '*****DATA*****' line (not a laser profiler file)")
+         return
+      end if
+      cap = max(cap - lineno, 1)
+      allocate(zs(cap), ok(cap), lines(cap), stat=st)
+      if (st == 0 .and. ix > 0) allocate(xs(cap), stat=st)
+      if (st /= 0) then
+         call memory_error(path, cap, 24, error)
+         return
+      end if
+      n = 0
+      do while (pos <= nb)
+         lineno = lineno + 1
+         call next_line(buf, pos, ls, le)
+         if (blank_or_comment(buf, ls, le)) cycle
          ! the fields of this line: the distance and the height; in a laser
          ! export every field is checked
          nf = 0
@@ -349,10 +360,6 @@ contains
             end if
          end if
       end do
-      if (.not. in_data) then
-         call fatal_error(error, path // ": no '*****DATA*****' line (not a laser profiler file)")
-         return
-      end if
       call finish(path, n, ix > 0, xs, zs, ok, lines, raw, error)
    end subroutine parse_table
 
@@ -802,6 +809,50 @@ contains
          end if
       end do
    end function plain_content_end
+
+   !> Whether a CSV or laser-export line is blank or a comment (its first
+   !> non-blank character is '#').
+   pure logical function blank_or_comment(buf, ls, le)
+      character(len=*), intent(in) :: buf
+      integer(i8), intent(in) :: ls, le
+      integer(i8) :: i
+      blank_or_comment = .true.
+      i = ls
+      do while (i <= le)
+         if (buf(i:i) /= " " .and. buf(i:i) /= tab) exit
+         i = i + 1
+      end do
+      if (i > le) return
+      blank_or_comment = buf(i:i) == "#"
+   end function blank_or_comment
+
+   !> What a plain line buf(ls:le) is before the data: 0 blank or comment,
+   !> 1 a header (tokens, none looking like a number), 2 data.
+   pure integer function plain_line_kind(buf, ls, le) result(kind)
+      character(len=*), intent(in) :: buf
+      integer(i8), intent(in) :: ls, le
+      integer(i8) :: i, cs
+      kind = 0
+      i = ls
+      do
+         do while (i <= le)
+            if (.not. is_plain_sep(buf(i:i))) exit
+            i = i + 1
+         end do
+         if (i > le) return
+         if (buf(i:i) == "#") return
+         cs = i
+         do while (i <= le)
+            if (is_plain_sep(buf(i:i))) exit
+            i = i + 1
+         end do
+         if (looks_numeric(buf(cs:i-1))) then
+            kind = 2
+            return
+         end if
+         kind = 1
+      end do
+   end function plain_line_kind
 
    pure logical function is_plain_sep(c)
       character, intent(in) :: c

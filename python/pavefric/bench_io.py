@@ -124,6 +124,16 @@ def reading(log=print, largest: int = 10_000_000, small: int = 1_000_000,
                              before=old.get(name)))
         out["per_number"] = rows
 
+        # a survey: one file of many short profiles, one read by name
+        survey = tmp / "survey.nc"
+        n_survey = 10_000
+        write_profiles(survey, np.resize(z, (n_survey, 512)) * 1e-3, dx=0.87e-3,
+                       names=[f"seg{k:05d}" for k in range(n_survey)])
+        seconds, points, _ = read_seconds(survey, profile_name=f"seg{n_survey // 2:05d}")
+        log(f"NetCDF survey of {n_survey:,} profiles x 512 points: one profile by name "
+            f"{1e3 * seconds:.2f} ms (the file opened and its names read on each call)")
+        out["survey_read_ms"] = 1e3 * seconds
+
         # a long profile: read, and read and run through the program
         big = tmp / "big.txt"
         _write_text(big, _heights_mm(largest, seed=2))

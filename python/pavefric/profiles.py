@@ -107,7 +107,7 @@ def list_profiles(path: str | os.PathLike) -> list[ProfileEntry]:
     codes, ends, chainage, status, message = _core.pf_profile_list(_b(os.fspath(path)), int(n),
                                                                    max(int(nchars), 1))
     _check(status, message)
-    data = bytes(int(c) & 0xFF for c in codes[:int(nchars)])
+    data = (np.asarray(codes[:int(nchars)]) & 0xFF).astype(np.uint8).tobytes()
     out = []
     start = 0
     for k in range(int(n)):
