@@ -3,10 +3,9 @@
 !> low-pass filtering. Each step is optional and counted in a report.
 module pavefric_preprocess
    use pavefric_kinds, only: wp, pi
-   use pavefric_error, only: error_type, fatal_error
+   use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_format, only: to_str
-   use pavefric_profile, only: raw_profile_type
-   use pavefric_lapack, only: dlasrt
+   use pavefric_profile, only: raw_profile_type, point_location
    implicit none
    private
 
@@ -88,7 +87,10 @@ contains
    end subroutine validate_preprocess
 
    !> Run the steps in ISO 13473-1's order. `dx` is the spacing to use when
-   !> the file gave no distances.
+   !> the file gave neither distances nor a spacing of its own (raw%dx).
+   !> Work arrays are allocated with stat= after their sizes are known (a
+   !> failure is an error with stat_memory, never an abort), and no array
+   !> expression makes a profile-sized temporary.
    subroutine preprocess(raw, dx, p, clean, error)
       type(raw_profile_type), intent(in) :: raw
       real(wp), intent(in) :: dx
@@ -97,34 +99,44 @@ contains
       type(error_type), allocatable, intent(out) :: error
       real(wp), allocatable :: x(:), z(:), frac(:)
       logical, allocatable :: ok(:), plate(:)
-      integer, allocatable :: lines(:)
-      real(wp) :: med, x_start, x_end, step
-      integer :: n, i, i0, i1, k
+      real(wp) :: med, x_start, x_end, step, spacing
+      integer :: n, m, i, i0, i1, k, st
 
       call validate_preprocess(p, error)
       if (allocated(error)) return
       n = size(raw%z)
       clean%report%format = raw%format
       clean%report%points_read = n
-      if (raw%has_x) then
-         x = raw%x
-      else
-         x = [(real(i - 1, wp) * dx, i = 1, n)]
+      spacing = dx
+      if (raw%dx > 0.0_wp) spacing = raw%dx
+      allocate(x(n), stat=st)
+      if (st /= 0) then
+         call memory_error(raw, n, error)
+         return
       end if
-      z = raw%z
-      ok = raw%valid
-      lines = raw%line
+      if (raw%has_x) then
+         x(:) = raw%x
+      else
+         do i = 1, n
+            x(i) = real(i - 1, wp) * spacing
+         end do
+      end if
 
       ! 1. reference plates at the ends
       i0 = 1
       i1 = n
-      if (p%trim_plates .and. count(ok) > 0) then
-         med = median(pack(z, ok))
-         allocate(plate(n))
+      x_start = -huge(1.0_wp)
+      if (p%trim_plates .and. count(raw%valid) > 0) then
+         call valid_median(raw%z, raw%valid, med, st)
+         if (st == 0) allocate(plate(n), stat=st)
+         if (st /= 0) then
+            call memory_error(raw, n, error)
+            return
+         end if
          ! a dropout continues the state of the point before it (forward fill)
          do i = 1, n
-            if (ok(i)) then
-               plate(i) = abs(z(i) - med) > p%plate_threshold
+            if (raw%valid(i)) then
+               plate(i) = abs(raw%z(i) - med) > p%plate_threshold
             else if (i > 1) then
                plate(i) = plate(i-1)
             else
@@ -132,6 +144,7 @@ contains
             end if
          end do
          call plate_bounds(x, plate, p%plate_min_length, x_start, x_end)
+         deallocate(plate)
          if (x_start > -huge(1.0_wp)) then
             x_start = x_start + p%plate_buffer
             do while (i0 <= n)
@@ -153,24 +166,33 @@ contains
                & "trimming reference plates (&preprocess trim_plates, plate_threshold)")
             return
          end if
-         ! distances from the trimming boundary (the resampling bins start there)
-         if (x_start > -huge(1.0_wp)) then
-            x = x(i0:i1) - x_start
-         else
-            x = x(i0:i1)
-         end if
-         z = z(i0:i1)
-         ok = ok(i0:i1)
-         lines = lines(i0:i1)
       end if
-      n = size(z)
+      ! the kept points; distances from the trimming boundary (the
+      ! resampling bins start there). The line of point k is raw%line(i0+k-1).
+      m = i1 - i0 + 1
+      allocate(z(m), ok(m), stat=st)
+      if (st /= 0) then
+         call memory_error(raw, m, error)
+         return
+      end if
+      z(:) = raw%z(i0:i1)
+      ok(:) = raw%valid(i0:i1)
+      if (x_start > -huge(1.0_wp)) then
+         do k = 1, m
+            x(k) = x(i0 + k - 1) - x_start
+         end do
+      else if (i0 > 1) then
+         do k = 1, m
+            x(k) = x(i0 + k - 1)
+         end do
+      end if
 
       ! 2. dropouts
       clean%report%dropouts = count(.not. ok)
       if (clean%report%dropouts > 0) then
          if (trim(p%dropouts) == "error") then
             k = findloc(ok, .false., dim=1)
-            call fatal_error(error, raw%path // ":" // to_str(lines(k)) // &
+            call fatal_error(error, point_location(raw, raw%line(i0 + k - 1)) // &
                & ": dropout (no valid height); set &preprocess dropouts = 'interpolate' " // &
                & "to interpolate dropouts (ISO 13473-1)")
             return
@@ -179,29 +201,38 @@ contains
             call fatal_error(error, raw%path // ": every height is a dropout")
             return
          end if
-         call interpolate_gaps(x, z, ok)
+         call interpolate_gaps(x(1:m), z, ok)
       end if
-      frac = merge(0.0_wp, 1.0_wp, ok)
+      allocate(frac(m), stat=st)
+      if (st /= 0) then
+         call memory_error(raw, m, error)
+         return
+      end if
+      do k = 1, m
+         frac(k) = merge(0.0_wp, 1.0_wp, ok(k))
+      end do
 
       ! 3. resampling, or the file's own (uniform) spacing
-      clean%report%dx_in = (x(n) - x(1)) / real(max(n - 1, 1), wp)
+      clean%report%dx_in = (x(m) - x(1)) / real(max(m - 1, 1), wp)
       if (p%resample_dx > 0.0_wp) then
-         call resample_bins(x, z, frac, p%resample_dx, clean%z, clean%dropout_fraction, error)
+         call resample_bins(x(1:m), z, frac, p%resample_dx, clean%z, clean%dropout_fraction, &
+            & error)
          if (allocated(error)) then
             error%message = raw%path // ": " // error%message
             return
          end if
+         deallocate(z, frac)
          clean%dx = p%resample_dx
          clean%report%resampled = .true.
       else
-         if (n < 2) then
-            clean%dx = dx
+         if (m < 2) then
+            clean%dx = spacing
          else
             clean%dx = clean%report%dx_in
-            do i = 2, n
+            do i = 2, m
                step = x(i) - x(i-1)
                if (abs(step - clean%dx) > 0.05_wp * clean%dx) then
-                  call fatal_error(error, raw%path // ":" // to_str(lines(i)) // &
+                  call fatal_error(error, point_location(raw, raw%line(i0 + i - 1)) // &
                      & ": spacing " // to_str(step) // " m against the mean " // &
                      & to_str(clean%dx) // " m (more than 5 % off): resample it " // &
                      & "(&preprocess resample_dx)")
@@ -209,14 +240,18 @@ contains
                end if
             end do
          end if
-         if (.not. raw%has_x) clean%dx = dx
-         clean%z = z
-         clean%dropout_fraction = frac
+         if (.not. raw%has_x) clean%dx = spacing
+         call move_alloc(z, clean%z)
+         call move_alloc(frac, clean%dropout_fraction)
       end if
       n = size(clean%z)
 
       ! 4. spikes: a jump of at least spike_slope * dx flags both its points
-      allocate(clean%spike(n))
+      allocate(clean%spike(n), stat=st)
+      if (st /= 0) then
+         call memory_error(raw, n, error)
+         return
+      end if
       clean%spike = .false.
       if (p%spike_slope > 0.0_wp .and. n > 2) then
          do i = 1, n - 1
@@ -227,11 +262,15 @@ contains
          end do
          clean%report%spikes = count(clean%spike)
          if (clean%report%spikes > 0 .and. clean%report%spikes < n) then
-            x = [(real(i - 1, wp) * clean%dx, i = 1, n)]
-            ok = .not. clean%spike
-            call interpolate_gaps(x, clean%z, ok)
+            ! n <= m: x and ok have room
+            do i = 1, n
+               x(i) = real(i - 1, wp) * clean%dx
+               ok(i) = .not. clean%spike(i)
+            end do
+            call interpolate_gaps(x(1:n), clean%z, ok(1:n))
          end if
       end if
+      deallocate(x, ok)
 
       ! 5. low-pass filter
       if (p%lowpass_wavelength > 0.0_wp) then
@@ -245,6 +284,97 @@ contains
       clean%report%points_out = n
       clean%report%dx_out = clean%dx
    end subroutine preprocess
+
+   !> Not enough memory for the work arrays of n points.
+   pure subroutine memory_error(raw, n, error)
+      type(raw_profile_type), intent(in) :: raw
+      integer, intent(in) :: n
+      type(error_type), allocatable, intent(out) :: error
+      call fatal_error(error, raw%path // ": not enough memory to preprocess " // to_str(n) // &
+         & " points", stat_memory)
+   end subroutine memory_error
+
+   !> Median of the valid heights (a selection in a copy: O(n), the same
+   !> value as sorting). st /= 0 when the copy cannot be allocated.
+   pure subroutine valid_median(z, valid, med, st)
+      real(wp), intent(in) :: z(:)
+      logical, intent(in) :: valid(:)
+      real(wp), intent(out) :: med
+      integer, intent(out) :: st
+      real(wp), allocatable :: s(:)
+      integer :: n, i, k
+      med = 0.0_wp
+      n = count(valid)
+      allocate(s(n), stat=st)
+      if (st /= 0) return
+      k = 0
+      do i = 1, size(z)
+         if (valid(i)) then
+            k = k + 1
+            s(k) = z(i)
+         end if
+      end do
+      if (mod(n, 2) == 1) then
+         call select_kth(s, (n + 1) / 2, med)
+      else
+         ! the lower middle, then the smallest of the upper half
+         call select_kth(s, n / 2, med)
+         med = 0.5_wp * (med + minval(s(n/2+1:n)))
+      end if
+   end subroutine valid_median
+
+   !> v = the k-th smallest of a (reordered in place so that a(1:k-1) <= a(k) <=
+   !> a(k+1:)): Hoare's selection with a median-of-three pivot.
+   pure subroutine select_kth(a, k, v)
+      real(wp), intent(inout) :: a(:)
+      integer, intent(in) :: k
+      real(wp), intent(out) :: v
+      real(wp) :: pivot, t
+      integer :: lo, hi, i, j, mid
+      lo = 1
+      hi = size(a)
+      do while (hi > lo)
+         mid = lo + (hi - lo) / 2
+         ! median of three, placed at mid
+         if (a(mid) < a(lo)) call swap(a(mid), a(lo))
+         if (a(hi) < a(lo)) call swap(a(hi), a(lo))
+         if (a(hi) < a(mid)) call swap(a(hi), a(mid))
+         pivot = a(mid)
+         i = lo
+         j = hi
+         do while (i <= j)
+            do while (a(i) < pivot)
+               i = i + 1
+            end do
+            do while (pivot < a(j))
+               j = j - 1
+            end do
+            if (i <= j) then
+               t = a(i)
+               a(i) = a(j)
+               a(j) = t
+               i = i + 1
+               j = j - 1
+            end if
+         end do
+         if (k <= j) then
+            hi = j
+         else if (k >= i) then
+            lo = i
+         else
+            exit                               ! a(j+1:i-1) all equal the pivot
+         end if
+      end do
+      v = a(k)
+   contains
+      pure subroutine swap(p, q)
+         real(wp), intent(inout) :: p, q
+         real(wp) :: r
+         r = p
+         p = q
+         q = r
+      end subroutine swap
+   end subroutine select_kth
 
    !> End of the last plate run in the first half, start of the first in the
    !> second half (-huge / huge when there is none). A run counts when it
@@ -286,7 +416,7 @@ contains
       real(wp), intent(in) :: x(:)
       real(wp), intent(inout) :: z(:)
       logical, intent(in) :: ok(:)
-      integer :: i, left, right, n, first, last
+      integer :: i, k, left, right, n, first, last
       n = size(z)
       first = findloc(ok, .true., dim=1)
       last = findloc(ok, .true., dim=1, back=.true.)
@@ -305,22 +435,39 @@ contains
          do while (.not. ok(right))
             right = right + 1
          end do
-         z(i:right-1) = z(left) + (z(right) - z(left)) * (x(i:right-1) - x(left)) / &
-            & (x(right) - x(left))
+         do k = i, right - 1
+            z(k) = z(left) + (z(right) - z(left)) * (x(k) - x(left)) / (x(right) - x(left))
+         end do
          i = right
       end do
    end subroutine interpolate_gaps
 
    !> Average into bins ((k-1) target, k target], k = ceil(x/target) (the first
-   !> point's bin at least 1), as ISO 13473-1 resampling does.
+   !> point's bin at least 1), as ISO 13473-1 resampling does. The number of
+   !> bins is known before anything is allocated: more bins than points means
+   !> an empty bin, an error, so the arrays are never larger than the input.
    pure subroutine resample_bins(x, z, frac, target, zr, fr, error)
       real(wp), intent(in) :: x(:), z(:), frac(:), target
       real(wp), allocatable, intent(out) :: zr(:), fr(:)
       type(error_type), allocatable, intent(out) :: error
       integer, allocatable :: cnt(:)
-      integer :: i, k, nb
-      nb = max(1, ceiling(x(size(x)) / target))
-      allocate(zr(nb), fr(nb), cnt(nb))
+      integer :: i, k, nb, st
+      real(wp) :: bins
+      bins = max(1.0_wp, real(ceiling(min(x(size(x)) / target, real(huge(1), wp))), wp))
+      if (bins > real(size(x), wp)) then
+         call fatal_error(error, "&preprocess resample_dx = " // to_str(target) // &
+            & ": finer than the data's spacing (" // to_str(size(x)) // " points over " // &
+            & to_str(x(size(x))) // " m would need " // to_str(bins) // &
+            & " bins, some of them empty)")
+         return
+      end if
+      nb = int(bins)
+      allocate(zr(nb), fr(nb), cnt(nb), stat=st)
+      if (st /= 0) then
+         call fatal_error(error, "&preprocess resample_dx = " // to_str(target) // &
+            & ": not enough memory for " // to_str(nb) // " bins", stat_memory)
+         return
+      end if
       zr = 0.0_wp
       fr = 0.0_wp
       cnt = 0
@@ -336,8 +483,10 @@ contains
             & ": finer than the data's spacing (a bin holds no point)")
          return
       end if
-      zr = zr / real(cnt, wp)
-      fr = fr / real(cnt, wp)
+      do k = 1, nb
+         zr(k) = zr(k) / real(cnt(k), wp)
+         fr(k) = fr(k) / real(cnt(k), wp)
+      end do
    end subroutine resample_bins
 
    !> 2nd-order Butterworth low-pass (cut-off wavelength `wavelength`) run
@@ -369,26 +518,31 @@ contains
       b2 = b0
       a1 = 2.0_wp * (k * k - 1.0_wp) * norm
       a2 = (1.0_wp - sqrt(2.0_wp) * k + k * k) * norm
-      allocate(e(n + 2 * pad))
+      allocate(e(n + 2 * pad), stat=i)
+      if (i /= 0) then
+         call fatal_error(error, "the low-pass filter: not enough memory for " // to_str(n) // &
+            & " points", stat_memory)
+         return
+      end if
       e(pad+1:pad+n) = z
       do i = 1, pad
          e(pad + 1 - i) = 2.0_wp * z(1) - z(1 + i)
          e(pad + n + i) = 2.0_wp * z(n) - z(n - i)
       end do
-      call pass(e)
-      e = e(size(e):1:-1)
-      call pass(e)
-      e = e(size(e):1:-1)
+      call pass(e, 1, size(e), 1)
+      call pass(e, size(e), 1, -1)
       z = e(pad+1:pad+n)
    contains
-      pure subroutine pass(s)
+      !> One filter pass over s(first), s(first+step), ..., s(last).
+      pure subroutine pass(s, first, last, step)
          real(wp), intent(inout) :: s(:)
+         integer, intent(in) :: first, last, step
          real(wp) :: s1, s2, xin, y
          integer :: j
-         ! transposed direct form II, steady state for a constant input s(1)
-         s2 = (b2 - a2) * s(1)
-         s1 = (b1 - a1) * s(1) + s2
-         do j = 1, size(s)
+         ! transposed direct form II, steady state for a constant input s(first)
+         s2 = (b2 - a2) * s(first)
+         s1 = (b1 - a1) * s(first) + s2
+         do j = first, last, step
             xin = s(j)
             y = b0 * xin + s1
             s1 = b1 * xin - a1 * y + s2
@@ -397,21 +551,5 @@ contains
          end do
       end subroutine pass
    end subroutine butterworth_filtfilt
-
-   !> Median of an array (a sorted copy).
-   pure function median(a) result(m)
-      real(wp), intent(in) :: a(:)
-      real(wp) :: m
-      real(wp), allocatable :: s(:)
-      integer :: n, info
-      allocate(s, source=a)
-      n = size(s)
-      call dlasrt('I', n, s, info)
-      if (mod(n, 2) == 1) then
-         m = s((n + 1) / 2)
-      else
-         m = 0.5_wp * (s(n / 2) + s(n / 2 + 1))
-      end if
-   end function median
 
 end module pavefric_preprocess

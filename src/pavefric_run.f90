@@ -33,32 +33,46 @@ contains
 
    !> Read the scene's profile (any supported format), preprocess it as the
    !> scene says, and settle its spacing.
-   subroutine load_scene_profile(scene, clean, error)
+   subroutine load_scene_profile(scene, clean, error, raw_out)
       type(scene_type), intent(in) :: scene
       type(clean_profile_type), intent(out) :: clean
       type(error_type), allocatable, intent(out) :: error
+      !> The profile as the file delivered it (Python's read_profile shows it).
+      type(raw_profile_type), intent(out), optional :: raw_out
       type(raw_profile_type) :: raw
       real(wp) :: dx, file_dx
       integer :: n
       call read_raw_profile(scene%profile_file, scene%format, unit_factor(scene%height_unit), &
-         & scene%x_column, scene%z_column, raw, error)
+         & scene%x_column, scene%z_column, raw, error, profile_name=scene%profile_name)
       if (allocated(error)) return
+      ! The spacing: &surface dx, else the file's stated spacing (NetCDF dx),
+      ! else a CTM's; distances in the file then set it (preprocessing).
       dx = ctm_dx
+      if (raw%dx > 0.0_wp) dx = raw%dx
       if (scene%dx > 0.0_wp) dx = scene%dx
+      file_dx = 0.0_wp
       if (raw%has_x) then
          n = size(raw%x)
-         if (n >= 2) then
-            file_dx = (raw%x(n) - raw%x(1)) / real(n - 1, wp)
-            if (scene%dx > 0.0_wp .and. scene%preprocess%resample_dx <= 0.0_wp .and. &
-                  & abs(scene%dx - file_dx) > 0.01_wp * file_dx) then
-               call fatal_error(error, "&surface dx = " // to_str(scene%dx) // &
-                  & ": disagrees with the spacing " // to_str(file_dx) // &
-                  & " m of the distances in '" // scene%profile_file // "'")
-               return
-            end if
-         end if
+         if (n >= 2) file_dx = (raw%x(n) - raw%x(1)) / real(n - 1, wp)
+      else if (raw%dx > 0.0_wp) then
+         file_dx = raw%dx
+      end if
+      if (file_dx > 0.0_wp .and. scene%dx > 0.0_wp .and. &
+            & scene%preprocess%resample_dx <= 0.0_wp .and. &
+            & abs(scene%dx - file_dx) > 0.01_wp * file_dx) then
+         call fatal_error(error, "&surface dx = " // to_str(scene%dx) // &
+            & ": disagrees with the spacing " // to_str(file_dx) // &
+            & " m the profile file '" // scene%profile_file // "' states")
+         return
       end if
       call preprocess(raw, dx, scene%preprocess, clean, error)
+      if (present(raw_out)) call move_alloc_raw(raw, raw_out)
+   contains
+      subroutine move_alloc_raw(a, b)
+         type(raw_profile_type), intent(inout) :: a
+         type(raw_profile_type), intent(out) :: b
+         b = a
+      end subroutine move_alloc_raw
    end subroutine load_scene_profile
 
    !> One line saying what preprocessing did.

@@ -113,17 +113,22 @@ contains
    !> paths are resolved against its directory. With `arrays`, the profile
    !> comes as arrays (Python, the C API): no profile file is required, and
    !> `path` may be empty (messages then name no file).
-   pure subroutine scene_from_text(text, path, scene, error, arrays)
+   pure subroutine scene_from_text(text, path, scene, error, arrays, profile_only)
       character(len=*), intent(in) :: text, path
       type(scene_type), intent(out) :: scene
       type(error_type), allocatable, intent(out) :: error
       logical, intent(in), optional :: arrays
-      logical :: from_arrays
+      !> Only the profile is wanted (&surface and &preprocess; Python's
+      !> read_profile): no speeds are required.
+      logical, intent(in), optional :: profile_only
+      logical :: from_arrays, only_profile
       type(param_spec_type), allocatable :: specs(:)
       character(len=:), allocatable :: groups
 
       from_arrays = .false.
       if (present(arrays)) from_arrays = arrays
+      only_profile = .false.
+      if (present(profile_only)) only_profile = profile_only
       scene%text = text
       scene%path = path
       scene%name = base_name(path)
@@ -131,7 +136,12 @@ contains
       specs = parameter_table()
       call default_parameters(specs, scene%parameters, error)
       if (allocated(error)) return
-      call apply_namelist(specs, text, path, scene%parameters, error, groups_seen=groups)
+      if (only_profile) then
+         call apply_namelist(specs, text, path, scene%parameters, error, groups_seen=groups, &
+            & allowed="surface preprocess")
+      else
+         call apply_namelist(specs, text, path, scene%parameters, error, groups_seen=groups)
+      end if
       if (allocated(error)) return
       scene%is_batch = index(groups, " batch ") > 0
       call lay_out(scene)
@@ -139,6 +149,14 @@ contains
       call validate_model(scene%model, error)
       if (allocated(error)) return
 
+      if (only_profile) then
+         if (len(scene%profile_file) == 0) then
+            call fatal_error(error, "&surface profile_file: no profile file given")
+            return
+         end if
+         scene%profile_file = join_path(dir_name(path), scene%profile_file)
+         return
+      end if
       if (.not. scene%parameters%v(p_speeds_kmh)%set) then
          call fatal_error(error, "&operation speeds_kmh: not given in '" // path // &
             & "' (a list of sliding speeds in km/h is required)")

@@ -8,8 +8,8 @@ package wraps it for pre- and post-processing.
 >>> ds["mu"].values
 """
 from .core import (CTM_DX, PavefricError, PavefricKeywordError, PavefricWarning, Profile, Scene,
-                   defaults, groups, layout, load_scene, open_dataset, parameters, read_profile,
-                   run, simulate)
+                   defaults, groups, layout, load_scene, open_dataset, parameters, run, simulate)
+from .profiles import ProfileEntry, list_profiles, read_profile, write_profiles
 from .plot import plot_mu_speed, plot_profile
 from .texture import ifi, texture
 
@@ -19,4 +19,5 @@ __version__ = "0.1.0"
 
 __all__ = ["CTM_DX", "PavefricError", "PavefricKeywordError", "PavefricWarning", "Profile", "Scene",
            "load_scene", "defaults", "groups", "parameters", "layout", "open", "open_dataset",
-           "ifi", "plot_mu_speed", "plot_profile", "read_profile", "texture", "run", "simulate", "__version__"]
+           "ifi", "plot_mu_speed", "plot_profile", "read_profile", "texture", "run", "simulate",
+           "__version__", "write_profiles", "list_profiles", "ProfileEntry"]

@@ -173,7 +173,7 @@ def main(argv: list[str] | None = None) -> int:
 
             print(f"wrote {write_inputs(args.inputs)}")
         elif args.command == "profile":
-            from .core import read_profile
+            from .profiles import read_profile
             from .plot import plot_profile
             from .texture import texture
 

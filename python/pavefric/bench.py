@@ -235,6 +235,7 @@ def mpi_batch(log, root: Path | None = None) -> dict:
 
 
 def run(report: str | None = None, largest: int = 10_000_000) -> dict:
+    from . import bench_io
     from .reports import machine_description
 
     lines: list[str] = []
@@ -251,6 +252,7 @@ def run(report: str | None = None, largest: int = 10_000_000) -> dict:
         "length": scaling_length(log, largest),
         "threads": threads(log),
         "mpi": mpi_batch(log),
+        "reading": bench_io.reading(log, largest),   # profile input (bench_io.py)
     }
     if report:
         from .reports import performance_report

@@ -29,7 +29,6 @@ __all__ = [
     "simulate",
     "run",
     "open_dataset",
-    "read_profile",
     "Profile",
     "layout",
     "hydro_load",
@@ -62,6 +61,16 @@ def _text(raw: Any) -> str:
 # The core's status kinds (src/pavefric_error.f90): stat_memory is "not enough
 # memory for the work asked for", which Python reports as MemoryError.
 _STAT_MEMORY = 3
+
+
+def _b(text: str | os.PathLike) -> bytes:
+    """Text for a Fortran character argument: UTF-8 bytes (f2py refuses a
+    non-ASCII str), paths in the file system's encoding."""
+    if isinstance(text, bytes):
+        return text
+    if isinstance(text, os.PathLike):
+        return os.fsencode(text)
+    return str(text).encode("utf-8")
 
 
 def _check(status: int, message: Any) -> None:
@@ -278,7 +287,7 @@ def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> 
                 ("surface", "closed"): _format(_spec("surface", "closed"),
                                                _flag(closed, "closed"), "closed"),
                 ("operation", "speeds_kmh"): "0"}
-    n_el, n_pos, _, status, message = _core.pf_layout(_settings_text(settings), int(n_points))
+    n_el, n_pos, _, status, message = _core.pf_layout(_b(_settings_text(settings)), int(n_points))
     _check(status, message)
     return int(n_el), int(n_pos)
 
@@ -328,14 +337,14 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     text = _settings_text(settings)
     npos, n_series = 1, 1
     if series:
-        n_el, npos, n_series, status, message = _core.pf_layout(text, z.size)
+        n_el, npos, n_series, status, message = _core.pf_layout(_b(text), z.size)
         _check(status, message)
         npos = max(npos, 1)
     _, _, outputs = _tables()
     ntext = 4096 + 2 * len(text)
     while True:
         (speed, speed_kmh, values, series_values, present, position, counts, texture, texts,
-         lengths, status, message) = _core.pf_simulate(z, text, speeds.size, npos, len(outputs),
+         lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
                                                         n_series, ntext)
         _check(status, message)
         if int(lengths.sum()) <= ntext:
@@ -451,12 +460,12 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
         f", output={shlex.quote(str(output))})" if output else ")")
     if Path(sys.argv[0]).name == "__main__.py":
         command = "python -m pavefric " + " ".join(shlex.quote(a) for a in sys.argv[1:])
-    is_batch, status, message = _core.pf_scene_is_batch(str(path))
+    is_batch, status, message = _core.pf_scene_is_batch(_b(os.fspath(path)))
     _check(status, message)
     if is_batch:
         return _run_batch(str(path), str(output or ""), command, progress)
-    out_path, warnings_text, status, message = _core.pf_run_scene(str(path), str(output or ""),
-                                                                  command)
+    out_path, warnings_text, status, message = _core.pf_run_scene(
+        _b(os.fspath(path)), _b(os.fspath(output) if output else ""), _b(command))
     _check(status, message)
     if _text(warnings_text):
         _warn(_text(warnings_text))
@@ -561,9 +570,9 @@ def load_scene(path: str | os.PathLike) -> Scene:
     keyword, defaults included) exactly as the core read them, so
     ``scene.simulate()`` gives the program's numbers bit for bit."""
     (np_, ns, dx, closed, series, ntext, profile_file, output_file,
-     status, message) = _core.pf_scene_info(str(path))
+     status, message) = _core.pf_scene_info(_b(os.fspath(path)))
     _check(status, message)
-    z, speeds, text, status, message = _core.pf_scene_arrays(str(path), int(np_), int(ns),
+    z, speeds, text, status, message = _core.pf_scene_arrays(_b(os.fspath(path)), int(np_), int(ns),
                                                              int(ntext))
     _check(status, message)
     values = _parse_echo(text.tobytes().decode("utf-8"))
@@ -591,59 +600,6 @@ class Profile:
     raw_heights: np.ndarray
     dropout_fraction: np.ndarray
     spike: np.ndarray
-
-
-def _preprocess_defaults() -> dict:
-    return {p.name: p.default for p in parameters() if p.group == "preprocess"}
-
-
-def read_profile(path: str | os.PathLike, height_unit: str | None = None, *,
-                 format: str | None = None, x_column: str | None = None,
-                 z_column: str | None = None, dx: float | None = None,
-                 **preprocess) -> Profile:
-    """Read a profile file (plain text, laser profiler export, CSV) and make
-    it fit for analysis with the core's ISO 13473-1 preprocessing (keywords
-    of ``&preprocess``: dropouts, trim_plates, plate_threshold,
-    plate_min_length, plate_buffer, spike_slope, resample_dx,
-    lowpass_wavelength). ``dx`` (m) is used when the file has no distances
-    (default: the CTM's 0.87 mm)."""
-    defaults_ = _preprocess_defaults()
-    unknown = sorted(set(preprocess) - set(defaults_))
-    if unknown:
-        raise PavefricKeywordError(f"unknown preprocessing option(s) {', '.join(unknown)}; "
-                                   f"known: {', '.join(defaults_)}")
-    for key, value in preprocess.items():
-        _format(_spec("preprocess", key), value, key)          # type check, clear message
-    p = {**defaults_, **preprocess}
-    surface = {name: (value if value is not None else _spec("surface", name).default)
-               for name, value in (("height_unit", height_unit), ("format", format),
-                                   ("x_column", x_column), ("z_column", z_column))}
-    for name, value in surface.items():
-        _format(_spec("surface", name), value, name)
-    height_unit, format, x_column, z_column = (surface[k] for k in
-                                               ("height_unit", "format", "x_column", "z_column"))
-    dx_default = float(dx) if dx else CTM_DX
-    args = (str(path), format, height_unit, x_column, z_column, dx_default, str(p["dropouts"]),
-            int(bool(p["trim_plates"])), float(p["plate_threshold"]),
-            float(p["plate_min_length"]), float(p["plate_buffer"]), float(p["spike_slope"]),
-            float(p["resample_dx"]), float(p["lowpass_wavelength"]))
-    n_raw, n_out, dx_out, has_x, status, message = _core.pf_profile_info(*args)
-    _check(status, message)
-    (x_raw, z_raw, valid, z, frac, spike, counts, fmt, status, message) = \
-        _core.pf_read_profile(*args, int(n_raw), int(n_out))
-    _check(status, message)
-    keys = ["points_read", "trimmed_start", "trimmed_end", "dropouts", "spikes", "points_out",
-            "resampled", "filtered"]
-    report = {k: int(v) for k, v in zip(keys, counts)}
-    report["resampled"] = bool(report["resampled"])
-    report["filtered"] = bool(report["filtered"])
-    report["format"] = _text(fmt)
-    report["dx"] = float(dx_out)
-    report["has_distances"] = bool(has_x)
-    raw_h = np.where(valid.astype(bool), z_raw, np.nan)
-    return Profile(heights=z.copy(), dx=float(dx_out), path=str(path), report=report,
-                   raw_x=x_raw.copy(), raw_heights=raw_h, dropout_fraction=frac.copy(),
-                   spike=spike.astype(bool))
 
 
 _init_keywords()

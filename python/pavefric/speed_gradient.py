@@ -94,7 +94,7 @@ def data_dir() -> Path:
 
 def study_profiles() -> list[StudyProfile]:
     """The synthetic profiles (scaled to each MPD) and the real ones."""
-    from .core import read_profile
+    from .profiles import read_profile
     from .texture import texture
 
     out = []

@@ -359,103 +359,7 @@ subroutine pf_scene_arrays(path, np, ns, ntext, z, speeds_kmh, text, status, mes
    end do
 end subroutine pf_scene_arrays
 
-!> Read and preprocess a profile file (first pass): sizes and spacing.
-subroutine pf_profile_info(path, format, height_unit, x_column, z_column, dx_default, &
-      & dropouts, trim_plates, plate_threshold, plate_min_length, plate_buffer, spike_slope, &
-      & resample_dx, lowpass_wavelength, n_raw, n_out, dx, has_x, status, message)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
-   use pavefric_preprocess, only: preprocess_type, clean_profile_type, preprocess
-   use pavefric_error, only: error_type
-   implicit none
-   character(len=*), intent(in) :: path, format, height_unit, x_column, z_column, dropouts
-   real(c_double), intent(in) :: dx_default, plate_threshold, plate_min_length, plate_buffer
-   real(c_double), intent(in) :: spike_slope, resample_dx, lowpass_wavelength
-   integer(c_int), intent(in) :: trim_plates
-   integer(c_int), intent(out) :: n_raw, n_out, has_x, status
-   real(c_double), intent(out) :: dx
-   character(len=2048), intent(out) :: message
-   type(raw_profile_type) :: raw
-   type(clean_profile_type) :: clean
-   type(preprocess_type) :: p
-   type(error_type), allocatable :: error
-   n_raw = 0; n_out = 0; dx = 0; has_x = 0; status = 0; message = ""
-   p = preprocess_type(dropouts, trim_plates /= 0, plate_threshold, plate_min_length, &
-      & plate_buffer, spike_slope, resample_dx, lowpass_wavelength)
-   if (unit_factor(height_unit) <= 0) then
-      status = 1
-      message = "&surface height_unit = '" // trim(height_unit) // "': unknown (expected " // &
-         & "'mm', 'um' or 'm')"
-      return
-   end if
-   call read_raw_profile(path, format, unit_factor(height_unit), x_column, z_column, raw, error)
-   if (.not. allocated(error)) call preprocess(raw, dx_default, p, clean, error)
-   if (allocated(error)) then
-      status = error%stat
-      message = error%message
-      return
-   end if
-   n_raw = size(raw%z)
-   n_out = size(clean%z)
-   dx = clean%dx
-   has_x = merge(1, 0, raw%has_x)
-end subroutine pf_profile_info
 
-!> Read and preprocess a profile file (second pass): the raw points, the
-!> clean heights (m), their quality, and the report.
-subroutine pf_read_profile(path, format, height_unit, x_column, z_column, dx_default, &
-      & dropouts, trim_plates, plate_threshold, plate_min_length, plate_buffer, spike_slope, &
-      & resample_dx, lowpass_wavelength, n_raw, n_out, x_raw, z_raw, valid_raw, z, &
-      & dropout_fraction, spike, counts, format_read, status, message)
-   use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
-   use pavefric_preprocess, only: preprocess_type, clean_profile_type, preprocess
-   use pavefric_error, only: error_type
-   implicit none
-   character(len=*), intent(in) :: path, format, height_unit, x_column, z_column, dropouts
-   real(c_double), intent(in) :: dx_default, plate_threshold, plate_min_length, plate_buffer
-   real(c_double), intent(in) :: spike_slope, resample_dx, lowpass_wavelength
-   integer(c_int), intent(in) :: trim_plates, n_raw, n_out
-   real(c_double), intent(out) :: x_raw(n_raw), z_raw(n_raw), z(n_out), dropout_fraction(n_out)
-   integer(c_int), intent(out) :: valid_raw(n_raw), spike(n_out), counts(8), status
-   character(len=16), intent(out) :: format_read
-   character(len=2048), intent(out) :: message
-   type(raw_profile_type) :: raw
-   type(clean_profile_type) :: clean
-   type(preprocess_type) :: p
-   type(error_type), allocatable :: error
-   integer :: i
-   x_raw = 0; z_raw = 0; valid_raw = 0; z = 0; dropout_fraction = 0; spike = 0; counts = 0
-   status = 0; message = ""; format_read = ""
-   p = preprocess_type(dropouts, trim_plates /= 0, plate_threshold, plate_min_length, &
-      & plate_buffer, spike_slope, resample_dx, lowpass_wavelength)
-   call read_raw_profile(path, format, unit_factor(height_unit), x_column, z_column, raw, error)
-   if (.not. allocated(error)) call preprocess(raw, dx_default, p, clean, error)
-   if (allocated(error)) then
-      status = error%stat
-      message = error%message
-      return
-   end if
-   if (size(raw%z) /= n_raw .or. size(clean%z) /= n_out) then
-      status = 2
-      message = "'" // trim(path) // "' changed while it was read"
-      return
-   end if
-   if (raw%has_x) then
-      x_raw = raw%x
-   else
-      x_raw = [(real(i - 1, c_double) * dx_default, i = 1, n_raw)]
-   end if
-   z_raw = raw%z
-   valid_raw = merge(1, 0, raw%valid)
-   z = clean%z
-   dropout_fraction = clean%dropout_fraction
-   spike = merge(1, 0, clean%spike)
-   counts = [clean%report%points_read, clean%report%trimmed_start, clean%report%trimmed_end, &
-      & clean%report%dropouts, clean%report%spikes, clean%report%points_out, &
-      & merge(1, 0, clean%report%resampled), merge(1, 0, clean%report%filtered)]
-   format_read = clean%report%format
-end subroutine pf_read_profile
 
 !> The bearing load (Eq. 15) and its derivative for arrays of outlet films.
 subroutine pf_hydro_load(n, prefactor, h_in, h_out, wh, dwh_dhout)
@@ -562,3 +466,207 @@ subroutine pf_batch_run(path, output, command, max_count, out_path, computed, fi
    n_total = nt
    n_done = nd
 end subroutine pf_batch_run
+
+! ---------------------------------------------------------------------------
+! Profile input (the profiles branch): reading any format, NetCDF profile
+! files of many profiles, and the reading benchmark. Python glue:
+! python/pavefric/profiles.py.
+! ---------------------------------------------------------------------------
+
+!> Read and preprocess a profile (first pass): sizes and spacing.
+!> Read and preprocess a profile file as a scene does (first pass): `settings`
+!> is namelist text of &surface (profile_file, format, height_unit,
+!> x_column, z_column, profile_name, dx) and &preprocess, read by the same
+!> code as a scene file's, and the profile by the program's own routine
+!> (pavefric_run's load_scene_profile). Sizes and spacing.
+subroutine pf_profile_read_info(settings, n_raw, n_out, dx, has_x, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_run, only: load_scene_profile
+   use pavefric_profile, only: raw_profile_type
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: settings
+   integer(c_int), intent(out) :: n_raw, n_out, has_x, status
+   real(c_double), intent(out) :: dx
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(raw_profile_type) :: raw
+   type(clean_profile_type) :: clean
+   type(error_type), allocatable :: error
+   n_raw = 0; n_out = 0; dx = 0; has_x = 0; status = 0; message = ""
+   call scene_from_text(settings, "", scene, error, profile_only=.true.)
+   if (.not. allocated(error)) call load_scene_profile(scene, clean, error, raw_out=raw)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   n_raw = size(raw%z)
+   n_out = size(clean%z)
+   dx = clean%dx
+   has_x = merge(1, 0, raw%has_x)
+end subroutine pf_profile_read_info
+
+!> Read and preprocess a profile (second pass): the raw points (distances
+!> from the file, else from its spacing), the clean heights (m), their
+!> quality, and the report.
+subroutine pf_profile_read_data(settings, n_raw, n_out, x_raw, z_raw, valid_raw, z, &
+      & dropout_fraction, spike, counts, format_read, chainage, has_chainage, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_run, only: load_scene_profile
+   use pavefric_profile, only: raw_profile_type
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_error, only: error_type, stat_internal
+   implicit none
+   character(len=*), intent(in) :: settings
+   integer(c_int), intent(in) :: n_raw, n_out
+   real(c_double), intent(out) :: x_raw(n_raw), z_raw(n_raw), z(n_out), dropout_fraction(n_out)
+   real(c_double), intent(out) :: chainage
+   integer(c_int), intent(out) :: valid_raw(n_raw), spike(n_out), counts(8), has_chainage, status
+   character(len=16), intent(out) :: format_read
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(raw_profile_type) :: raw
+   type(clean_profile_type) :: clean
+   type(error_type), allocatable :: error
+   integer :: i
+   x_raw = 0; z_raw = 0; valid_raw = 0; z = 0; dropout_fraction = 0; spike = 0; counts = 0
+   chainage = 0; has_chainage = 0; status = 0; message = ""; format_read = ""
+   call scene_from_text(settings, "", scene, error, profile_only=.true.)
+   if (.not. allocated(error)) call load_scene_profile(scene, clean, error, raw_out=raw)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   if (size(raw%z) /= n_raw .or. size(clean%z) /= n_out) then
+      status = stat_internal
+      message = "'" // scene%profile_file // "' changed while it was read"
+      return
+   end if
+   if (raw%has_x) then
+      x_raw = raw%x
+   else
+      do i = 1, n_raw
+         x_raw(i) = real(i - 1, c_double) * clean%report%dx_in
+      end do
+   end if
+   z_raw = raw%z
+   valid_raw = merge(1, 0, raw%valid)
+   z = clean%z
+   dropout_fraction = clean%dropout_fraction
+   spike = merge(1, 0, clean%spike)
+   counts = [clean%report%points_read, clean%report%trimmed_start, clean%report%trimmed_end, &
+      & clean%report%dropouts, clean%report%spikes, clean%report%points_out, &
+      & merge(1, 0, clean%report%resampled), merge(1, 0, clean%report%filtered)]
+   format_read = clean%report%format
+   if (raw%has_chainage) then
+      has_chainage = 1
+      chainage = raw%chainage
+   end if
+end subroutine pf_profile_read_data
+
+!> How many profiles a NetCDF profile file holds, and the total length of
+!> their names (for pf_profile_list).
+subroutine pf_profile_list_info(path, n, nchars, has_chainage, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_profile, only: profile_catalog_type, list_profiles
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(out) :: n, nchars, has_chainage, status
+   character(len=2048), intent(out) :: message
+   type(profile_catalog_type) :: cat
+   type(error_type), allocatable :: error
+   integer :: k
+   n = 0; nchars = 0; has_chainage = 0; status = 0; message = ""
+   call list_profiles(path, cat, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   n = cat%n_profiles
+   do k = 1, n
+      nchars = nchars + len(cat%names(k)%s)
+   end do
+   has_chainage = merge(1, 0, cat%has_chainage)
+end subroutine pf_profile_list_info
+
+!> The names (character codes, name k ends at ends(k)) and chainage (m) of
+!> the profiles of a NetCDF profile file.
+subroutine pf_profile_list(path, n, nchars, codes, ends, chainage, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use pavefric_profile, only: profile_catalog_type, list_profiles
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   integer(c_int), intent(in) :: n, nchars
+   integer(c_int), intent(out) :: codes(nchars), ends(n), status
+   real(c_double), intent(out) :: chainage(n)
+   character(len=2048), intent(out) :: message
+   type(profile_catalog_type) :: cat
+   type(error_type), allocatable :: error
+   integer :: k, j, used
+   codes = 0; ends = 0; chainage = 0; status = 0; message = ""
+   call list_profiles(path, cat, error)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+      return
+   end if
+   used = 0
+   do k = 1, n
+      if (k > cat%n_profiles) exit
+      do j = 1, len(cat%names(k)%s)
+         if (used >= nchars) exit
+         used = used + 1
+         codes(used) = ichar(cat%names(k)%s(j:j))
+      end do
+      ends(k) = used
+      if (cat%has_chainage) chainage(k) = cat%chainage(k)
+   end do
+   if (cat%n_profiles /= n .or. used /= nchars) then
+      status = 2
+      message = "'" // trim(path) // "' changed while it was read"
+   end if
+end subroutine pf_profile_list
+
+!> Reading benchmark: the best of `repeats` reads of a profile file (no
+!> preprocessing): seconds, points and numbers read.
+subroutine pf_profile_read_seconds(path, format, height_unit, profile_name, repeats, n_points, &
+      & n_numbers, seconds, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use, intrinsic :: iso_fortran_env, only: int64
+   use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, format, height_unit, profile_name
+   integer(c_int), intent(in) :: repeats
+   integer(c_int), intent(out) :: n_points, n_numbers, status
+   real(c_double), intent(out) :: seconds
+   character(len=2048), intent(out) :: message
+   type(raw_profile_type) :: raw
+   type(error_type), allocatable :: error
+   integer(int64) :: t0, t1, rate
+   integer :: r
+   n_points = 0; n_numbers = 0; seconds = huge(1.0_c_double); status = 0; message = ""
+   do r = 1, max(1, repeats)
+      call system_clock(t0, rate)
+      call read_raw_profile(path, format, unit_factor(height_unit), "", "", raw, error, &
+         & profile_name=profile_name)
+      call system_clock(t1)
+      if (allocated(error)) then
+         status = error%stat
+         message = error%message
+         return
+      end if
+      seconds = min(seconds, real(t1 - t0, c_double) / real(rate, c_double))
+   end do
+   n_points = size(raw%z)
+   n_numbers = n_points
+   if (raw%has_x) n_numbers = 2 * n_points
+end subroutine pf_profile_read_seconds

@@ -1,0 +1,232 @@
+"""Profile files: reading any format the core reads (plain text, CSV, laser
+profiler export, NetCDF), listing and writing NetCDF files of many profiles.
+
+Reading goes through the Fortran core (the same reader as the program), so a
+profile read here gives the program's numbers bit for bit. Writing NetCDF is
+pre-processing and uses netCDF4 directly; the layout and attributes are
+those docs/profiles.md describes and the core reads.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from . import _core
+from .core import (PavefricError, PavefricKeywordError, Profile, _check, _format, _settings_text,
+                   _spec, _text, parameters)
+
+__all__ = ["read_profile", "list_profiles", "write_profiles", "ProfileEntry"]
+
+def _b(text: str | os.PathLike) -> bytes:
+    """Text for a Fortran character argument (f2py takes UTF-8 bytes; a
+    non-ASCII str is refused)."""
+    if isinstance(text, bytes):
+        return text
+    if isinstance(text, os.PathLike):
+        return os.fsencode(text)
+    return str(text).encode("utf-8")
+
+
+def read_profile(path: str | os.PathLike, height_unit: str | None = None, *,
+                 format: str | None = None, x_column: str | None = None,
+                 z_column: str | None = None, dx: float | None = None,
+                 profile_name: str | None = None, **preprocess) -> Profile:
+    """Read a profile file and make it fit for analysis with the core's ISO
+    13473-1 preprocessing, exactly as a scene reads its profile.
+
+    Formats (``format='auto'`` detects them): plain text, CSV, laser profiler
+    export, NetCDF (one or many profiles; ``profile_name`` chooses one, empty
+    means the file's only profile). Keywords of ``&preprocess``: dropouts,
+    trim_plates, plate_threshold, plate_min_length, plate_buffer,
+    spike_slope, resample_dx, lowpass_wavelength. ``dx`` (m) is
+    ``&surface dx``: the spacing when the file gives neither distances nor a
+    spacing (default: the CTM's 0.87 mm), else it must agree with the file's.
+    The arguments go to the core as &surface and &preprocess namelist text,
+    read and checked by the same code as a scene file's (defaults from its
+    declarations). ``report['chainage']`` holds a NetCDF profile's chainage (m).
+    """
+    known = {p.name for p in parameters() if p.group == "preprocess"}
+    unknown = sorted(set(preprocess) - known)
+    if unknown:
+        raise PavefricKeywordError(f"unknown preprocessing option(s) {', '.join(unknown)}; "
+                                   f"known: {', '.join(sorted(known))}")
+    settings = {("surface", "profile_file"): _format(_spec("surface", "profile_file"),
+                                                     os.fspath(path), "path")}
+    for name, value in (("height_unit", height_unit), ("format", format),
+                        ("x_column", x_column), ("z_column", z_column),
+                        ("profile_name", profile_name), ("dx", dx)):
+        if value is not None:
+            settings[("surface", name)] = _format(_spec("surface", name), value, name)
+    for name, value in preprocess.items():
+        settings[("preprocess", name)] = _format(_spec("preprocess", name), value, name)
+    text = _settings_text(settings)
+    n_raw, n_out, dx_out, has_x, status, message = _core.pf_profile_read_info(_b(text))
+    _check(status, message)
+    (x_raw, z_raw, valid, z, frac, spike, counts, fmt, chainage, has_chainage, status,
+     message) = _core.pf_profile_read_data(_b(text), int(n_raw), int(n_out))
+    _check(status, message)
+    keys = ["points_read", "trimmed_start", "trimmed_end", "dropouts", "spikes", "points_out",
+            "resampled", "filtered"]
+    report: dict[str, Any] = {k: int(v) for k, v in zip(keys, counts)}
+    report["resampled"] = bool(report["resampled"])
+    report["filtered"] = bool(report["filtered"])
+    report["format"] = _text(fmt)
+    report["dx"] = float(dx_out)
+    report["has_distances"] = bool(has_x)
+    if profile_name:
+        report["profile_name"] = str(profile_name)
+    if has_chainage:
+        report["chainage"] = float(chainage)
+    raw_h = np.where(valid.astype(bool), z_raw, np.nan)
+    return Profile(heights=z.copy(), dx=float(dx_out), path=str(path), report=report,
+                   raw_x=x_raw.copy(), raw_heights=raw_h, dropout_fraction=frac.copy(),
+                   spike=spike.astype(bool))
+
+
+@dataclass(frozen=True)
+class ProfileEntry:
+    """One profile of a NetCDF profile file: its name and chainage (m; None
+    when the file gives none)."""
+
+    name: str
+    chainage: float | None
+
+
+def list_profiles(path: str | os.PathLike) -> list[ProfileEntry]:
+    """The profiles of a NetCDF profile file, in file order, as the core
+    reads them (names, chainage)."""
+    n, nchars, has_chainage, status, message = _core.pf_profile_list_info(_b(os.fspath(path)))
+    _check(status, message)
+    codes, ends, chainage, status, message = _core.pf_profile_list(_b(os.fspath(path)), int(n),
+                                                                   max(int(nchars), 1))
+    _check(status, message)
+    data = (np.asarray(codes[:int(nchars)]) & 0xFF).astype(np.uint8).tobytes()
+    out = []
+    start = 0
+    for k in range(int(n)):
+        end = int(ends[k])
+        out.append(ProfileEntry(data[start:end].decode("utf-8", "replace"),
+                                float(chainage[k]) if has_chainage else None))
+        start = end
+    return out
+
+
+_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6}
+
+
+def write_profiles(path: str | os.PathLike, heights, dx=None, *,
+                   names: Sequence[str] | None = None,
+                   chainage: Sequence[float] | None = None,
+                   units: str = "m", title: str = "pavefric texture profiles",
+                   compress: bool = False) -> Path:
+    """Write profiles to one NetCDF file that ``read_profile``, scenes
+    (``&surface profile_file``) and batches read.
+
+    ``heights``: a 2-D array (profiles x points; one length for all) or a
+    list of 1-D arrays (any lengths: the CF contiguous ragged layout); a
+    1-D array is one profile. Values in ``units`` ('m', 'mm' or 'um'); NaN
+    marks a dropout. ``dx``: the spacing (m), one number or one per profile
+    (None: the reader's default or the scene's dx). ``names``: one per
+    profile (default '1', '2', ...), ``chainage``: distance along the road
+    (m) of each profile. Written to a temporary name and renamed, so a failed
+    write leaves no partial file. Returns the path.
+    """
+    import netCDF4
+
+    if units not in _UNITS:
+        raise PavefricError(f"write_profiles units = {units!r}: expected 'm', 'mm' or 'um'")
+    ragged = isinstance(heights, (list, tuple))
+    if ragged:
+        profiles = [np.asarray(h, dtype=np.float64) for h in heights]
+        if any(h.ndim != 1 for h in profiles):
+            raise PavefricError("write_profiles heights: a list of 1-D arrays is expected")
+    else:
+        arr = np.asarray(heights, dtype=np.float64)
+        if arr.ndim == 1:
+            arr = arr[np.newaxis, :]
+        if arr.ndim != 2:
+            raise PavefricError(f"write_profiles heights: {arr.ndim} dimensions (expected a "
+                                "2-D array, profiles x points, or a list of 1-D arrays)")
+        profiles = list(arr)
+    n = len(profiles)
+    if n == 0 or any(h.size == 0 for h in profiles):
+        raise PavefricError("write_profiles heights: no profiles, or an empty one")
+    if any(np.isinf(h).any() for h in profiles):
+        raise PavefricError("write_profiles heights: Inf is not a height (NaN marks a dropout)")
+    if names is None:
+        names = [str(k + 1) for k in range(n)]
+    names = [str(s) for s in names]
+    if len(names) != n:
+        raise PavefricError(f"write_profiles names: {len(names)} names for {n} profiles")
+    if len(set(names)) != n:
+        raise PavefricError("write_profiles names: the names must differ")
+    dx_values = None
+    if dx is not None:
+        dx_values = np.atleast_1d(np.asarray(dx, dtype=np.float64))
+        if dx_values.size not in (1, n):
+            raise PavefricError(f"write_profiles dx: {dx_values.size} values for {n} profiles")
+        if not np.all(np.isfinite(dx_values) & (dx_values > 0)):
+            raise PavefricError("write_profiles dx: must be finite and > 0")
+    if chainage is not None:
+        chainage = np.asarray(chainage, dtype=np.float64)
+        if chainage.shape != (n,) or not np.all(np.isfinite(chainage)):
+            raise PavefricError(f"write_profiles chainage: {n} finite values expected")
+
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
+            nc.Conventions = "CF-1.10"
+            nc.title = title
+            nc.source = "pavefric.write_profiles"
+            nc.pavefric_profile_layout = "ragged" if ragged else "dense"
+            nc.createDimension("profile", n)
+            strlen = max(1, max(len(s.encode("utf-8")) for s in names))
+            nc.createDimension("name_strlen", strlen)
+            kw = dict(zlib=True, complevel=1) if compress else dict(contiguous=True)
+            if ragged:
+                total = sum(h.size for h in profiles)
+                nc.createDimension("obs", total)
+                count = nc.createVariable("profile_count", "i8", ("profile",))
+                count.long_name = "number of points of each profile"
+                count.sample_dimension = "obs"
+                count[:] = [h.size for h in profiles]
+                height = nc.createVariable("height", "f8", ("obs",), **kw)
+                height[:] = np.concatenate(profiles)
+            else:
+                nc.createDimension("point", profiles[0].size)
+                height = nc.createVariable("height", "f8", ("profile", "point"), **kw)
+                height[:, :] = np.vstack(profiles)
+            height.units = units
+            height.long_name = "texture profile height, positive up"
+            height.coordinates = "profile_name"
+            name = nc.createVariable("profile_name", "S1", ("profile", "name_strlen"))
+            name.cf_role = "profile_id"
+            name.long_name = "profile name"
+            name._Encoding = "utf-8"
+            name.set_auto_chartostring(False)
+            encoded = np.array([s.encode("utf-8") for s in names], dtype=f"S{strlen}")
+            name[:] = encoded.view("S1").reshape(n, strlen)
+            if dx_values is not None:
+                if dx_values.size == 1:
+                    var = nc.createVariable("dx", "f8", ())
+                    var[...] = dx_values[0]
+                else:
+                    var = nc.createVariable("dx", "f8", ("profile",))
+                    var[:] = dx_values
+                var.units = "m"
+                var.long_name = "spacing of the profile's points"
+            if chainage is not None:
+                var = nc.createVariable("chainage", "f8", ("profile",))
+                var.units = "m"
+                var.long_name = "distance along the road of the profile (chainage)"
+                var[:] = chainage
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
