@@ -4,7 +4,9 @@
 !> (pavefric_model), the profile through load_scene_profile, the run
 !> through run_profile, results through the output table and the file
 !> through write_results. So the program, Python and the C API give the
-!> same bits. No module variables: sessions are independent.
+!> same bits. No module variables: sessions are independent; their file
+!> I/O alone goes one at a time (pavefric_files_lock.c), their runs in
+!> parallel.
 module pavefric_session
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, pavefric_version
@@ -31,6 +33,15 @@ module pavefric_session
    !> Result names besides the output table's: the coordinates of a run.
    character(len=*), parameter :: coordinate_names = "speed_kmh speed position"
 
+   interface
+      !> The lock around file I/O (pavefric_files_lock.c): one file cannot be
+      !> open on two Fortran units at once, and netCDF-C is not thread-safe.
+      subroutine lock_files() bind(C, name="pavefric_lock_files")
+      end subroutine lock_files
+      subroutine unlock_files() bind(C, name="pavefric_unlock_files")
+      end subroutine unlock_files
+   end interface
+
    !> A scene with its profile and last results.
    type :: session_type
       !> The scene: namelist values, model, speeds.
@@ -56,7 +67,9 @@ contains
       character(len=*), intent(in) :: path
       type(session_type), intent(out) :: s
       type(error_type), allocatable, intent(out) :: error
+      call lock_files()
       call read_scene(path, s%scene, error)
+      call unlock_files()
    end subroutine load_session
 
    !> A session on namelist text (the groups of a scene file); the profile
@@ -142,6 +155,11 @@ contains
             return
          end if
       end do
+      if (.not. (ieee_is_finite(dx) .and. dx > 0.0_wp)) then
+         call fatal_error(error, "&surface dx = " // to_str(dx) // ": must be finite and > 0 " // &
+            & "(the spacing of the heights, m)")
+         return
+      end if
       call change_scene(s, "&surface dx = " // to_str(dx) // ", closed = " // &
          & trim(merge(".true. ", ".false.", closed)) // " /", error)
       if (allocated(error)) return
@@ -176,7 +194,11 @@ contains
       specs = parameter_table()
       set = s%scene%parameters
       call apply_namelist(specs, text, "", set, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         ! without a file the reader's messages end in the blank before its place
+         error%message = trim(error%message)
+         return
+      end if
       ! &batch only in a batch scene (its defaults would make any scene one)
       gs = group_table()
       groups = ""
@@ -217,7 +239,9 @@ contains
                & "pavefric program")
             return
          end if
+         call lock_files()
          call load_scene_profile(s%scene, s%clean, error)
+         call unlock_files()
          if (allocated(error)) return
          s%profile_loaded = .true.
       end if
@@ -348,7 +372,9 @@ contains
       end if
       s%meta%history = timestamp() // " pavefric " // pavefric_version // ": API run of scene " // &
          & s%scene%name
+      call lock_files()
       call write_results(path, s%res, s%meta, error)
+      call unlock_files()
    end subroutine session_write
 
    !> The warnings about the scene and, after a run, its results (one a line).
