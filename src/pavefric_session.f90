@@ -48,6 +48,9 @@ module pavefric_session
       type(scene_type) :: scene
       !> Whether the scene came from text (then the profile must be set).
       logical :: from_text = .false.
+      !> The scene's input text, and the changes made since (one line per
+      !> change, the latest of each variable): the output's input_namelist.
+      character(len=:), allocatable :: input_text, changes
       !> The profile: given by session_set_profile, or the scene's file read
       !> at the first run after the scene changed.
       type(clean_profile_type) :: clean
@@ -210,16 +213,39 @@ contains
          & arrays=s%from_text)
       if (allocated(error)) return
       scene%name = s%scene%name
-      ! the input as given, and what was changed since
-      scene%text = s%scene%text
+      ! the input as given, and the latest change of each variable changed
+      ! since (one line each: a loop over values does not grow the text)
+      if (.not. allocated(s%input_text)) s%input_text = s%scene%text
+      call record_change(s%changes, "! set through the API: " // text)
+      scene%text = s%input_text
       if (len(scene%text) > 0) then
          if (scene%text(len(scene%text):) /= achar(10)) scene%text = scene%text // achar(10)
       end if
-      scene%text = scene%text // "! set through the API: " // text // achar(10)
+      scene%text = scene%text // s%changes
       s%scene = scene
       s%profile_loaded = .false.
       s%has_results = .false.
    end subroutine change_scene
+
+   !> Add `line` to the change lines, replacing an earlier line that set the
+   !> same variable (the same text up to its first ' = ').
+   pure subroutine record_change(changes, line)
+      character(len=:), allocatable, intent(inout) :: changes
+      character(len=*), intent(in) :: line
+      character(len=:), allocatable :: key, kept, old
+      integer :: start, eol
+      if (.not. allocated(changes)) changes = ""
+      key = line(1:index(line, " = ") + 2)
+      kept = ""
+      start = 1
+      do while (start <= len(changes))
+         eol = index(changes(start:), achar(10)) + start - 1
+         old = changes(start:eol)
+         if (index(old, key) /= 1) kept = kept // old
+         start = eol + 1
+      end do
+      changes = kept // line // achar(10)
+   end subroutine record_change
 
    !> Run the model on the session's profile: the one the caller set, else
    !> the scene's profile file, read and preprocessed as the program does.

@@ -160,6 +160,15 @@ def test_c_set_parameter_gives_the_programs_numbers(tmp_path, pc_env):
     assert "set through the API: &water depth = 0.4e-3 /" in written.attrs["input_namelist"]
     for name in ref.data_vars:
         assert same_bits(written[name].values, ref[name].values), name
+    # one handle, many depths in turn: the last run is the program's at the
+    # last depth, and the input echo keeps one line for the variable
+    exe = build(tmp_path / "check", "check_api.c", pc_env)
+    depths = ["0.1e-3", "0.2e-3", "1.5e-3", "0.4e-3"]
+    out = _run([exe, "repeat", WET, tmp_path / "repeat.nc", *depths], cwd=tmp_path).stdout
+    assert same_bits(dumped(out)["mu"], ref["mu"].values)
+    echo = pavefric.open_dataset(tmp_path / "repeat.nc").attrs["input_namelist"]
+    assert echo.count("set through the API") == 1
+    assert echo.endswith("! set through the API: &water depth = 0.4e-3 /\n")
 
 
 # --- bad input through the C API: the error is set, the process goes on ---------
@@ -274,6 +283,52 @@ def test_program_python_and_c_agree_on_every_output_variable(tmp_path, pc_env, w
     assert without_dx(c_arrays.attrs["parameters"]) == without_dx(ref.attrs["parameters"])
     assert c_arrays.attrs["param_surface_dx"] == sc.dx == ref.attrs["profile_dx"]
     assert c_arrays.attrs["profile_file"] == ""
+
+
+def test_c_scene_from_text_agrees_with_python_simulate(tmp_path, pc_env, profile_m):
+    """pavefric_new_scene (namelist text, no file) + pavefric_set_profile =
+    pavefric.simulate on the same arrays and keywords, on every variable."""
+    exe = build(tmp_path, "check_api.c", pc_env)
+    heights = tmp_path / "heights.bin"
+    np.asarray(profile_m, dtype="<f8").tofile(heights)
+    text = ("text:&surface dx = 1e-3, mu_loc = 0.55 / &water depth = 0.8e-3 / "
+            "&operation speeds_kmh = 15, 45, 75 / &output series = .true. /")
+    # the heights' own spacing and closure replace the text's dx
+    got = dumped(_run([exe, "dump", text, tmp_path / "c.nc", heights, "0.87e-3", "0"],
+                      cwd=tmp_path).stdout)
+    ds = pavefric.simulate(profile_m, 0.87e-3, [15, 45, 75], closed=False, series=True,
+                           mu_loc=0.55, depth=0.8e-3)
+    names = [*ds.coords, *(v for v in ds.data_vars if v not in TEXTURE)]
+    assert set(got) - {"mu_from_run"} == set(names)
+    for name in names:
+        assert same_bits(got[name], ds[name].values), name
+    written = pavefric.open_dataset(tmp_path / "c.nc")
+    assert written.attrs["param_surface_dx"] == 0.87e-3 and written.attrs["profile_closed"] == 0
+    for name in ds.data_vars:
+        assert same_bits(written[name].values, ds[name].values), name
+    # without heights there is nothing to run, and the error says so
+    proc = subprocess.run([str(exe), "dump", text, "-"], capture_output=True, text=True)
+    assert proc.returncode == 1
+    assert "profile: not set" in proc.stdout
+
+
+def test_c_scene_with_its_profile_elsewhere(tmp_path, pc_env):
+    """A scene whose profile file is not there loads (the file is read at
+    the run); with the heights given it runs, without them the error names
+    the file."""
+    text = WET.read_text().replace("'profiles/ctm_medium.txt'", "'elsewhere/ctm_medium.txt'")
+    scene = tmp_path / "moved.nml"
+    scene.write_text(text)
+    exe = build(tmp_path, "check_api.c", pc_env)
+    proc = subprocess.run([str(exe), "dump", scene, "-"], capture_output=True, text=True)
+    assert proc.returncode == 1
+    assert "case run: check=1 status=1" in proc.stdout
+    assert str(tmp_path / "elsewhere" / "ctm_medium.txt") in proc.stdout
+    sc = pavefric.load_scene(WET)
+    heights = tmp_path / "heights.bin"
+    np.asarray(sc.heights, dtype="<f8").tofile(heights)
+    got = dumped(_run([exe, "dump", scene, "-", heights, repr(sc.dx), "1"]).stdout)
+    assert same_bits(got["mu"], program_output(WET, tmp_path / "program.nc")["mu"].values)
 
 
 # --- meson install into a prefix -------------------------------------------------

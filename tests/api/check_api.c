@@ -4,11 +4,15 @@
  *   check_api dump SCENE OUTPUT.nc [HEIGHTS.bin DX CLOSED]
  *       run the scene (its profile file, or the heights given: raw doubles,
  *       m) and print every result as "name n value..." with exact hex
- *       floats (%a); write OUTPUT.nc unless it is "-".
+ *       floats (%a); write OUTPUT.nc unless it is "-". SCENE "text:..." is
+ *       namelist text (pavefric_new_scene) instead of a file.
  *   check_api bad SCENE
  *       bad input through every entry point; print each error as
  *       "case NAME: check=C status=S length=L message=..." and go on;
  *       end with a good run ("continued: ...").
+ *   check_api repeat SCENE OUTPUT.nc DEPTH...
+ *       set &water depth to each DEPTH in turn on one handle, running after
+ *       each; write the last run to OUTPUT.nc and print its mu (%a).
  *   check_api threads SCENE DEPTH...
  *       one scene handle per depth, run at once in as many threads, then
  *       one after the other; print "depth D: same|different" (handles are
@@ -52,7 +56,9 @@ static double *read_heights(const char *path, int *n)
 static int dump(int argc, char **argv)
 {
     pavefric_error error = pavefric_new_error();
-    pavefric_scene scene = pavefric_load_scene(error, argv[2]);
+    pavefric_scene scene = strncmp(argv[2], "text:", 5) == 0
+                               ? pavefric_new_scene(error, argv[2] + 5)
+                               : pavefric_load_scene(error, argv[2]);
     if (pavefric_check_error(error)) {
         report("load", error);
         return 1;
@@ -253,8 +259,37 @@ static int threads(int argc, char **argv)
     return 0;
 }
 
+static int repeat(int argc, char **argv)
+{
+    pavefric_error error = pavefric_new_error();
+    pavefric_scene scene = pavefric_load_scene(error, argv[2]);
+    int ns = pavefric_get_speed_count(scene);
+    double *mu = malloc((ns > 0 ? ns : 1) * sizeof *mu);
+    for (int k = 4; k < argc && !pavefric_check_error(error); k++) {
+        pavefric_set_parameter(error, scene, "water", "depth", argv[k]);
+        if (!pavefric_check_error(error))
+            pavefric_run(error, scene, mu);
+    }
+    if (!pavefric_check_error(error))
+        pavefric_write_output(error, scene, argv[3]);
+    if (pavefric_check_error(error)) {
+        report("repeat", error);
+        return 1;
+    }
+    printf("mu %d", ns);
+    for (int j = 0; j < ns; j++)
+        printf(" %a", mu[j]);
+    printf("\n");
+    free(mu);
+    pavefric_delete_scene(&scene);
+    pavefric_delete_error(&error);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc >= 5 && strcmp(argv[1], "repeat") == 0)
+        return repeat(argc, argv);
     if (argc >= 4 && strcmp(argv[1], "threads") == 0)
         return threads(argc, argv);
     if (argc >= 4 && strcmp(argv[1], "dump") == 0)
@@ -262,6 +297,7 @@ int main(int argc, char **argv)
     if (argc >= 3 && strcmp(argv[1], "bad") == 0)
         return bad(argv);
     fprintf(stderr, "usage: check_api dump SCENE OUTPUT.nc [HEIGHTS.bin DX CLOSED] | "
-                    "check_api bad SCENE | check_api threads SCENE DEPTH...\n");
+                    "check_api bad SCENE | check_api repeat SCENE OUTPUT.nc DEPTH... | "
+                    "check_api threads SCENE DEPTH...\n");
     return 2;
 }
