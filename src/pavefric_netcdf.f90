@@ -195,12 +195,19 @@ contains
       character(len=*), intent(in) :: tmp, path
       type(error_type), allocatable, intent(inout) :: error
       logical :: ok
+      integer :: k
       if (.not. allocated(error)) then
          call test_pause("commit")
          if (.not. rename_file(tmp, path)) call fatal_error(error, "&output file = '" // path // &
             & "': cannot rename the finished temporary file onto it", stat_io)
       end if
-      if (allocated(error)) ok = remove_file(tmp)
+      if (allocated(error)) then
+         ok = remove_file(tmp)
+         ! the user knows the output by its name, not by the temporary one
+         k = index(error%message, "'" // tmp // "'")
+         if (k > 0) error%message = error%message(1:k) // path // &
+            & error%message(k + len(tmp) + 1:)
+      end if
       call release_temporary(tmp)
    end subroutine commit_temporary
 

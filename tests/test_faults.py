@@ -48,7 +48,7 @@ def test_full_disk_in_the_program(tmp_path, full_size, fraction):
                     tmp_path)
     # a clean error, not SIGSEGV (139) or SIGXFSZ; the line reaches a pipe
     assert r.returncode == 1, (r.returncode, r.stderr)
-    assert r.stderr.startswith("pavefric: error: &output file: writing 'out.nc.tmp"), r.stderr
+    assert r.stderr.startswith("pavefric: error: &output file: writing 'out.nc' failed"), r.stderr
     assert "File too large" in r.stderr
     assert "Backtrace" not in r.stderr
     assert not list(tmp_path.glob("out.nc.tmp*"))
@@ -66,7 +66,7 @@ def test_full_disk_leaves_a_batch_resumable(tmp_path):
     # room for the journal (well under 4 kB), not for the NetCDF file
     r = run_limited([program(), scene, "-o", "b.nc"], 4096, tmp_path)
     assert r.returncode == 1, (r.returncode, r.stderr)
-    assert "pavefric: error: &output file: writing 'b.nc.tmp" in r.stderr
+    assert "pavefric: error: &output file: writing 'b.nc' failed" in r.stderr
     assert not list(tmp_path.glob("b.nc.tmp*")) and not (tmp_path / "b.nc").exists()
     assert (tmp_path / "b.nc.journal").exists()
     r = subprocess.run([program(), str(scene), "-o", "b.nc"], cwd=tmp_path, capture_output=True,
@@ -95,7 +95,7 @@ def test_full_disk_in_python_then_a_clean_exit(tmp_path, full_size, fraction):
     r = run_limited([sys.executable, "-c", PY_RUN, scene.name, "out.nc"],
                     int(fraction * full_size), tmp_path)
     assert r.returncode == 0, (r.returncode, r.stdout, r.stderr)
-    assert r.stdout.startswith("PavefricError: &output file: writing 'out.nc.tmp"), r.stdout
+    assert r.stdout.startswith("PavefricError: &output file: writing 'out.nc' failed"), r.stdout
     assert not list(tmp_path.glob("out.nc.tmp*")) and not (tmp_path / "out.nc").exists()
 
 
@@ -109,7 +109,7 @@ def test_full_disk_in_a_python_batch_then_a_clean_exit(tmp_path):
                      "&operation speeds_kmh = 20 /\n")
     r = run_limited([sys.executable, "-c", PY_RUN, scene.name, "b.nc"], 4096, tmp_path)
     assert r.returncode == 0, (r.returncode, r.stdout, r.stderr)
-    assert r.stdout.startswith("PavefricError: &output file: writing 'b.nc.tmp"), r.stdout
+    assert r.stdout.startswith("PavefricError: &output file: writing 'b.nc' failed"), r.stdout
     assert not list(tmp_path.glob("b.nc.tmp*"))
 
 

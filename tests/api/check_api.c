@@ -1,0 +1,303 @@
+/* Test driver of the C API (tests/test_api.py builds it outside the source
+ * tree against the installed library through pkg-config).
+ *
+ *   check_api dump SCENE OUTPUT.nc [HEIGHTS.bin DX CLOSED]
+ *       run the scene (its profile file, or the heights given: raw doubles,
+ *       m) and print every result as "name n value..." with exact hex
+ *       floats (%a); write OUTPUT.nc unless it is "-". SCENE "text:..." is
+ *       namelist text (pavefric_new_scene) instead of a file.
+ *   check_api bad SCENE
+ *       bad input through every entry point; print each error as
+ *       "case NAME: check=C status=S length=L message=..." and go on;
+ *       end with a good run ("continued: ...").
+ *   check_api repeat SCENE OUTPUT.nc DEPTH...
+ *       set &water depth to each DEPTH in turn on one handle, running after
+ *       each; write the last run to OUTPUT.nc and print its mu (%a).
+ *   check_api threads SCENE DEPTH...
+ *       one scene handle per depth, run at once in as many threads, then
+ *       one after the other; print "depth D: same|different" (handles are
+ *       independent: no global state).
+ */
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pavefric.h"
+
+static void report(const char *name, pavefric_error error)
+{
+    char message[4096];
+    pavefric_get_error(error, message, (int)sizeof message);
+    printf("case %s: check=%d status=%d length=%d message=%s\n", name,
+           pavefric_check_error(error), pavefric_get_error_status(error),
+           pavefric_get_error_length(error), message);
+}
+
+static double *read_heights(const char *path, int *n)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long bytes = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    *n = (int)(bytes / (long)sizeof(double));
+    double *z = malloc((size_t)bytes);
+    if (z != NULL && fread(z, sizeof(double), (size_t)*n, f) != (size_t)*n) {
+        free(z);
+        z = NULL;
+    }
+    fclose(f);
+    return z;
+}
+
+static int dump(int argc, char **argv)
+{
+    pavefric_error error = pavefric_new_error();
+    pavefric_scene scene = strncmp(argv[2], "text:", 5) == 0
+                               ? pavefric_new_scene(error, argv[2] + 5)
+                               : pavefric_load_scene(error, argv[2]);
+    if (pavefric_check_error(error)) {
+        report("load", error);
+        return 1;
+    }
+    if (argc > 6) {
+        int n = 0;
+        double *z = read_heights(argv[4], &n);
+        if (z == NULL)
+            return 1;
+        pavefric_set_profile(error, scene, n, z, strtod(argv[5], NULL), atoi(argv[6]));
+        free(z);
+        if (pavefric_check_error(error)) {
+            report("set_profile", error);
+            return 1;
+        }
+    }
+    int ns = pavefric_get_speed_count(scene);
+    double *mu = malloc(ns * sizeof *mu);
+    pavefric_run(error, scene, mu);
+    if (pavefric_check_error(error)) {
+        report("run", error);
+        return 1;
+    }
+    printf("mu_from_run %d", ns);
+    for (int j = 0; j < ns; j++)
+        printf(" %a", mu[j]);
+    printf("\n");
+    free(mu);
+    char name[256];
+    for (int k = 0; k < pavefric_get_result_count(); k++) {
+        pavefric_get_result_name(k, name, (int)sizeof name);
+        int n = pavefric_get_result_size(error, scene, name);
+        if (n <= 0)
+            continue;
+        double *values = malloc(n * sizeof *values);
+        pavefric_get_result(error, scene, name, values, n);
+        if (pavefric_check_error(error)) {
+            report(name, error);
+            return 1;
+        }
+        printf("%s %d", name, n);
+        for (int i = 0; i < n; i++)
+            printf(" %a", values[i]);
+        printf("\n");
+        free(values);
+    }
+    if (strcmp(argv[3], "-") != 0) {
+        pavefric_write_output(error, scene, argv[3]);
+        if (pavefric_check_error(error)) {
+            report("write", error);
+            return 1;
+        }
+    }
+    pavefric_delete_scene(&scene);
+    pavefric_delete_error(&error);
+    return scene == NULL && error == NULL ? 0 : 1;
+}
+
+static int bad(char **argv)
+{
+    pavefric_error error = pavefric_new_error();
+    char text[64];
+
+    /* a missing scene file: NULL, and the message names the path */
+    pavefric_scene missing = pavefric_load_scene(error, "no/such/dir/missing.nml");
+    report("missing_scene", error);
+    printf("missing_scene_handle_null: %d\n", missing == NULL);
+
+    /* a NULL scene handle and a NULL path */
+    pavefric_run(error, NULL, NULL);
+    report("null_scene", error);
+    pavefric_load_scene(error, NULL);
+    report("null_path", error);
+    printf("null_error_handle: check=%d load=%d\n", pavefric_check_error(NULL),
+           pavefric_load_scene(NULL, argv[2]) == NULL);
+
+    pavefric_scene scene = pavefric_load_scene(error, argv[2]);
+    report("good_load", error);
+
+    /* a NaN height */
+    double z[5] = {0.0, 1e-4, NAN, -1e-4, 0.0};
+    pavefric_set_profile(error, scene, 5, z, 0.87e-3, 1);
+    report("nan_height", error);
+    /* an infinite spacing, an empty profile, a bad closed flag */
+    z[2] = 0.0;
+    pavefric_set_profile(error, scene, 5, z, INFINITY, 1);
+    report("infinite_dx", error);
+    pavefric_set_profile(error, scene, 0, z, 0.87e-3, 1);
+    report("no_heights", error);
+    pavefric_set_profile(error, scene, 5, z, 0.87e-3, 7);
+    report("bad_closed", error);
+
+    /* parameters: out of range, unknown, two at once, not a number */
+    pavefric_set_parameter(error, scene, "water", "depth", "-1e-3");
+    report("negative_depth", error);
+    pavefric_set_parameter(error, scene, "water", "deep", "1e-3");
+    report("unknown_variable", error);
+    pavefric_set_parameter(error, scene, "sea", "depth", "1e-3");
+    report("unknown_group", error);
+    pavefric_set_parameter(error, scene, "water", "depth", "1e-3, viscosity = 2e-3");
+    report("two_assignments", error);
+    pavefric_set_parameter(error, scene, "rubber", "stiffness", "1.4e8x");
+    report("not_a_number", error);
+    pavefric_set_parameter(error, scene, "pad", "radius", "0.001");
+    pavefric_set_parameter(error, scene, "pad", "shape", "'rounded'");
+    report("radius_too_small", error);
+    pavefric_get_parameter(error, scene, "water", "depth", text, (int)sizeof text);
+    printf("depth_unchanged: %s\n", text);
+
+    /* results before a run, an unknown result, a too small array */
+    double values[2];
+    pavefric_get_result(error, scene, "mu", values, 2);
+    report("result_before_run", error);
+    printf("unknown_result_size: %d\n", pavefric_get_result_size(error, scene, "friction"));
+    report("unknown_result", error);
+    pavefric_write_output(error, scene, "never.nc");
+    report("write_before_run", error);
+
+    /* a too small buffer: truncated, NUL-terminated, length tells the room */
+    pavefric_set_parameter(error, scene, "water", "depth", "-1e-3");
+    char small[8];
+    memset(small, 'x', sizeof small);
+    pavefric_get_error(error, small, (int)sizeof small);
+    printf("small_buffer: '%s' nul=%d length=%d\n", small, small[7] == '\0',
+           pavefric_get_error_length(error));
+    pavefric_get_error(error, NULL, 100);
+    pavefric_get_error(error, small, 0);
+
+    /* and the process goes on: a good run */
+    int ns = pavefric_get_speed_count(scene);
+    double *mu = malloc(ns * sizeof *mu);
+    pavefric_run(error, scene, mu);
+    report("good_run", error);
+    double *small_array = malloc(sizeof(double));
+    pavefric_get_result(error, scene, "mu", small_array, 1);
+    report("small_array", error);
+    pavefric_write_output(error, scene, "no/such/dir/out.nc");
+    report("unwritable_output", error);
+    printf("continued: speeds=%d mu0=%a\n", ns, mu[0]);
+    free(mu);
+    free(small_array);
+    pavefric_delete_scene(&scene);
+    pavefric_delete_scene(&scene); /* deleting NULL does nothing */
+    pavefric_delete_scene(NULL);
+    pavefric_delete_error(&error);
+    pavefric_delete_error(NULL);
+    printf("version: %d\n", pavefric_get_version());
+    return 0;
+}
+
+struct job {
+    const char *scene, *depth;
+    double mu[64];
+    int ns, failed;
+};
+
+static void *run_job(void *arg)
+{
+    struct job *job = arg;
+    pavefric_error error = pavefric_new_error();
+    pavefric_scene scene = pavefric_load_scene(error, job->scene);
+    if (!pavefric_check_error(error))
+        pavefric_set_parameter(error, scene, "water", "depth", job->depth);
+    job->ns = pavefric_get_speed_count(scene);
+    if (job->ns > 64)
+        job->ns = 64;
+    if (!pavefric_check_error(error))
+        pavefric_run(error, scene, job->mu);
+    job->failed = pavefric_check_error(error);
+    pavefric_delete_scene(&scene);
+    pavefric_delete_error(&error);
+    return NULL;
+}
+
+static int threads(int argc, char **argv)
+{
+    int n = argc - 3;
+    struct job *parallel = calloc(n, sizeof *parallel), *serial = calloc(n, sizeof *serial);
+    pthread_t *ids = calloc(n, sizeof *ids);
+    for (int k = 0; k < n; k++) {
+        parallel[k].scene = serial[k].scene = argv[2];
+        parallel[k].depth = serial[k].depth = argv[3 + k];
+        if (pthread_create(&ids[k], NULL, run_job, &parallel[k]) != 0)
+            return 1;
+    }
+    for (int k = 0; k < n; k++)
+        pthread_join(ids[k], NULL);
+    for (int k = 0; k < n; k++) {
+        run_job(&serial[k]);
+        int same = !parallel[k].failed && !serial[k].failed && parallel[k].ns == serial[k].ns &&
+                   memcmp(parallel[k].mu, serial[k].mu, serial[k].ns * sizeof(double)) == 0;
+        printf("depth %s: %s mu0=%a\n", argv[3 + k], same ? "same" : "different",
+               serial[k].mu[0]);
+    }
+    free(parallel);
+    free(serial);
+    free(ids);
+    return 0;
+}
+
+static int repeat(int argc, char **argv)
+{
+    pavefric_error error = pavefric_new_error();
+    pavefric_scene scene = pavefric_load_scene(error, argv[2]);
+    int ns = pavefric_get_speed_count(scene);
+    double *mu = malloc((ns > 0 ? ns : 1) * sizeof *mu);
+    for (int k = 4; k < argc && !pavefric_check_error(error); k++) {
+        pavefric_set_parameter(error, scene, "water", "depth", argv[k]);
+        if (!pavefric_check_error(error))
+            pavefric_run(error, scene, mu);
+    }
+    if (!pavefric_check_error(error))
+        pavefric_write_output(error, scene, argv[3]);
+    if (pavefric_check_error(error)) {
+        report("repeat", error);
+        return 1;
+    }
+    printf("mu %d", ns);
+    for (int j = 0; j < ns; j++)
+        printf(" %a", mu[j]);
+    printf("\n");
+    free(mu);
+    pavefric_delete_scene(&scene);
+    pavefric_delete_error(&error);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 5 && strcmp(argv[1], "repeat") == 0)
+        return repeat(argc, argv);
+    if (argc >= 4 && strcmp(argv[1], "threads") == 0)
+        return threads(argc, argv);
+    if (argc >= 4 && strcmp(argv[1], "dump") == 0)
+        return dump(argc, argv);
+    if (argc >= 3 && strcmp(argv[1], "bad") == 0)
+        return bad(argv);
+    fprintf(stderr, "usage: check_api dump SCENE OUTPUT.nc [HEIGHTS.bin DX CLOSED] | "
+                    "check_api bad SCENE | check_api repeat SCENE OUTPUT.nc DEPTH... | "
+                    "check_api threads SCENE DEPTH...\n");
+    return 2;
+}
