@@ -12,7 +12,7 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, wet_root, wet_state_type, gap_field
+   public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -70,6 +70,61 @@ contains
       end do
       call sorted_root(d, s, x, work)
    end subroutine dry_root
+
+   !> dry_root for several lanes (speeds) at once: d(lane, element), s, x0 and
+   !> x per lane. The element loops run over the lanes innermost (they
+   !> vectorise); every lane performs exactly dry_root's operations in the
+   !> same order, and a lane that has stopped is left as it is, so each x is
+   !> dry_root's to the bit.
+   pure subroutine dry_roots(d, s, x0, x, work, dl)
+      real(wp), intent(in) :: d(:, :), s(:), x0(:)
+      real(wp), intent(out) :: x(:)
+      !> Workspaces of size(d, 2), only touched by the fallback.
+      real(wp), intent(inout) :: work(:), dl(:)
+      real(wp), dimension(size(s)) :: sum_active, x_new
+      integer, dimension(size(s)) :: m, m_prev
+      logical, dimension(size(s)) :: running
+      integer :: i, j, it, nl, n
+      nl = size(s)
+      n = size(d, 2)
+      do j = 1, nl
+         x(j) = s(j)
+         if (x0(j) > 0.0_wp .and. x0(j) < s(j)) x(j) = x0(j)
+      end do
+      m_prev = -1
+      running = .true.
+      do it = 1, max_newton_dry
+         sum_active = 0.0_wp
+         m = 0
+         do i = 1, n
+            do j = 1, nl
+               sum_active(j) = sum_active(j) + merge(d(j, i), 0.0_wp, d(j, i) < x(j))
+               m(j) = m(j) + merge(1, 0, d(j, i) < x(j))
+            end do
+         end do
+         do j = 1, nl
+            if (.not. running(j)) cycle
+            if (m(j) == m_prev(j)) then             ! active set repeats: x is the root
+               running(j) = .false.
+               cycle
+            end if
+            x_new(j) = (s(j) + sum_active(j)) / real(m(j), wp)
+            ! from above, a non-decreasing step means rounding has stalled
+            if (it > 1 .and. m(j) < m_prev(j) .and. x_new(j) >= x(j)) then
+               running(j) = .false.
+               cycle
+            end if
+            m_prev(j) = m(j)
+            x(j) = x_new(j)
+         end do
+         if (.not. any(running)) return
+      end do
+      do j = 1, nl
+         if (.not. running(j)) cycle
+         dl = d(j, :)
+         call sorted_root(dl, s(j), x(j), work)
+      end do
+   end subroutine dry_roots
 
    !> The same root by sorting d and scanning the pieces.
    pure subroutine sorted_root(d, s, x, work)

@@ -16,16 +16,18 @@ module pavefric_rubber
    implicit none
    private
 
-   public :: rubber_model, rubber_step_type, kelvin_voigt_rubber, kv_step
+   public :: rubber_model, rubber_step_type, kelvin_voigt_rubber
 
-   !> What one speed's time step makes of the rubber: the same for every element.
+   !> What the time step makes of the rubber at each of a set of speeds
+   !> (lanes): the same for every element. The driver advances all the
+   !> speeds of a scene together, so every array has the lanes first.
    type :: rubber_step_type
-      !> Slope of p(u) over a step (N m-3), the effective stiffness.
-      real(wp) :: k_eff = 0.0_wp
-      !> Whether the elements carry memory from step to step.
-      logical :: memory = .false.
-      !> Coefficients of the model's state update (meaning is the model's).
-      real(wp), allocatable :: coef(:)
+      !> Slope of p(u) over a step (N m-3), the effective stiffness, per lane.
+      real(wp), allocatable :: k_eff(:)
+      !> Whether the elements carry memory from step to step, per lane.
+      logical, allocatable :: memory(:)
+      !> Coefficients of the model's state update (lanes, model's count).
+      real(wp), allocatable :: coef(:, :)
    end type rubber_step_type
 
    !> A rubber element model.
@@ -33,9 +35,9 @@ module pavefric_rubber
    contains
       !> Internal state values per element (>= 1; the first is the compression).
       procedure(state_size_interface), deferred :: state_size
-      !> Step coefficients at speed V when the pad advances `advance` per step.
+      !> Step coefficients at speeds V(:) when the pad advances `advance` per step.
       procedure(prepare_interface), deferred :: prepare
-      !> u_free of every element from its state (only called with memory).
+      !> u_free(lane, element) of every element from its state.
       procedure(free_interface), deferred :: free_compression
       !> New state after a step whose compression ends at u_free + push.
       procedure(update_interface), deferred :: update
@@ -49,10 +51,10 @@ module pavefric_rubber
          class(rubber_model), intent(in) :: self
       end function state_size_interface
 
-      pure subroutine prepare_interface(self, speed, advance, step)
+      pure subroutine prepare_interface(self, speeds, advance, step)
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
-         real(wp), intent(in) :: speed, advance
+         real(wp), intent(in) :: speeds(:), advance
          type(rubber_step_type), intent(out) :: step
       end subroutine prepare_interface
 
@@ -60,19 +62,20 @@ module pavefric_rubber
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
          type(rubber_step_type), intent(in) :: step
-         !> (state_size, elements)
-         real(wp), intent(in) :: state(:, :)
-         real(wp), intent(out) :: u_free(:)
+         !> (lanes, state_size, elements)
+         real(wp), intent(in) :: state(:, :, :)
+         !> (lanes, elements)
+         real(wp), intent(out) :: u_free(:, :)
       end subroutine free_interface
 
       pure subroutine update_interface(self, step, state, u_free, push)
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
          type(rubber_step_type), intent(in) :: step
-         real(wp), intent(inout) :: state(:, :)
+         real(wp), intent(inout) :: state(:, :, :)
          !> The free compression of the step and how far beyond it each
          !> element was pushed (0 out of contact): u = u_free + push.
-         real(wp), intent(in) :: u_free(:), push(:)
+         real(wp), intent(in) :: u_free(:, :), push(:, :)
       end subroutine update_interface
 
       pure function name_interface(self) result(name)
@@ -104,31 +107,36 @@ contains
    !> Backward Euler of K u + C du/dt = p over dt = advance / V:
    !> k_eff = K + C/dt, and with p = 0 (Eq. 8) u_free = u_prev / (1 + K dt/C)
    !> = u_prev C V / (C V + K advance), 0 for C = 0 or V = 0 (no division by
-   !> zero in either limit). coef(1) is that relaxation factor.
-   pure subroutine kv_prepare(self, speed, advance, step)
+   !> zero in either limit). coef(:, 1) is that relaxation factor.
+   pure subroutine kv_prepare(self, speeds, advance, step)
       class(kelvin_voigt_rubber), intent(in) :: self
-      real(wp), intent(in) :: speed, advance
+      real(wp), intent(in) :: speeds(:), advance
       type(rubber_step_type), intent(out) :: step
       real(wp) :: cv
-      cv = self%viscosity * speed
-      step%k_eff = self%stiffness + cv / advance            ! K + C/dt
-      step%memory = cv > 0.0_wp
-      allocate(step%coef(1))
-      if (step%memory) then
-         step%coef(1) = cv / (cv + self%stiffness * advance)
-      else
-         step%coef(1) = 0.0_wp
-      end if
+      integer :: j
+      allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), step%coef(size(speeds), 1))
+      do j = 1, size(speeds)
+         cv = self%viscosity * speeds(j)
+         step%k_eff(j) = self%stiffness + cv / advance            ! K + C/dt
+         step%memory(j) = cv > 0.0_wp
+         if (step%memory(j)) then
+            step%coef(j, 1) = cv / (cv + self%stiffness * advance)
+         else
+            step%coef(j, 1) = 0.0_wp
+         end if
+      end do
    end subroutine kv_prepare
 
    pure subroutine kv_free(self, step, state, u_free)
       class(kelvin_voigt_rubber), intent(in) :: self
       type(rubber_step_type), intent(in) :: step
-      real(wp), intent(in) :: state(:, :)
-      real(wp), intent(out) :: u_free(:)
-      integer :: i
-      do i = 1, size(u_free)
-         u_free(i) = step%coef(1) * state(1, i)
+      real(wp), intent(in) :: state(:, :, :)
+      real(wp), intent(out) :: u_free(:, :)
+      integer :: i, j
+      do i = 1, size(u_free, 2)
+         do j = 1, size(u_free, 1)
+            u_free(j, i) = step%coef(j, 1) * state(j, 1, i)
+         end do
       end do
    end subroutine kv_free
 
@@ -136,11 +144,13 @@ contains
    pure subroutine kv_update(self, step, state, u_free, push)
       class(kelvin_voigt_rubber), intent(in) :: self
       type(rubber_step_type), intent(in) :: step
-      real(wp), intent(inout) :: state(:, :)
-      real(wp), intent(in) :: u_free(:), push(:)
-      integer :: i
-      do i = 1, size(u_free)
-         state(1, i) = u_free(i) + push(i)
+      real(wp), intent(inout) :: state(:, :, :)
+      real(wp), intent(in) :: u_free(:, :), push(:, :)
+      integer :: i, j
+      do i = 1, size(u_free, 2)
+         do j = 1, size(u_free, 1)
+            state(j, 1, i) = u_free(j, i) + push(j, i)
+         end do
       end do
    end subroutine kv_update
 
@@ -149,16 +159,5 @@ contains
       character(len=:), allocatable :: name
       name = "viscous_memory"
    end function kv_memory_effect
-
-   !> Kelvin-Voigt step coefficients (kept for callers that need only the
-   !> stiffness of a step, e.g. the bearing's tests).
-   pure function kv_step(stiffness, viscosity, speed, advance) result(step)
-      real(wp), intent(in) :: stiffness, viscosity, speed, advance
-      type(rubber_step_type) :: step
-      type(kelvin_voigt_rubber) :: kv
-      kv%stiffness = stiffness
-      kv%viscosity = viscosity
-      call kv%prepare(speed, advance, step)
-   end function kv_step
 
 end module pavefric_rubber

@@ -15,12 +15,17 @@ module pavefric_simulate
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_root, wet_root, wet_state_type, gap_field
+   use pavefric_balance, only: dry_roots, wet_root, wet_state_type, gap_field
    implicit none
    private
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components
+
+   !> Speeds advanced together (lanes): a fixed width, so that the element
+   !> loops over the lanes compile to whole vectors (one AVX2 vector, two
+   !> SSE2 ones). A chunk with fewer speeds repeats its last speed.
+   integer, parameter :: lanes = 4
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -178,10 +183,10 @@ contains
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
       type(geometry_type) :: geo
-      type(speed_summary_type) :: summary
+      type(speed_summary_type), allocatable :: summaries(:)
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
-      integer :: j, ns, stat
+      integer :: j, ns, stat, c, j0, j1, n_chunks
       logical :: friction_film
 
       res%warnings = ""
@@ -225,37 +230,50 @@ contains
          return
       end if
 
-      ! Each speed is computed serially by one thread: the thread count cannot
-      ! change a bit of the result.
-      !$omp parallel do schedule(dynamic, 1) default(shared) private(j, summary)
-      do j = 1, ns
+      ! Speeds advance together in chunks of lanes (the element loops run over
+      ! the lanes innermost and vectorise); each speed's arithmetic is the
+      ! scalar one whatever chunk it is in, so neither the chunking nor the
+      ! thread count can change a bit of the result.
+      n_chunks = (ns + lanes - 1) / lanes
+      !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries)
+      do c = 1, n_chunks
+         j0 = (c - 1) * lanes + 1
+         j1 = min(ns, c * lanes)
+         allocate(summaries(lanes))
          if (want_series) then
             if (friction_film) then
-               call slide(geo, m, rubber, film, res%speed(j), summary, res%mu_inst(:, j), &
-                  & res%hydro_load(:, j), res%penetration(:, j), res%contact_elements(:, j), &
-                  & res%film_thickness(:, j), res%local_friction(:, j))
+               call slide(geo, m, rubber, film, res%speed(j0:j1), summaries, &
+                  & res%mu_inst(:, j0:j1), res%hydro_load(:, j0:j1), res%penetration(:, j0:j1), &
+                  & res%contact_elements(:, j0:j1), res%film_thickness(:, j0:j1), &
+                  & res%local_friction(:, j0:j1))
             else
-               call slide(geo, m, rubber, film, res%speed(j), summary, res%mu_inst(:, j), &
-                  & res%hydro_load(:, j), res%penetration(:, j), res%contact_elements(:, j))
+               call slide(geo, m, rubber, film, res%speed(j0:j1), summaries, &
+                  & res%mu_inst(:, j0:j1), res%hydro_load(:, j0:j1), res%penetration(:, j0:j1), &
+                  & res%contact_elements(:, j0:j1))
             end if
          else
-            call slide(geo, m, rubber, film, res%speed(j), summary)
+            call slide(geo, m, rubber, film, res%speed(j0:j1), summaries)
          end if
-         res%mu(j) = summary%mu
-         res%hydroplaning_fraction(j) = summary%hydroplaning_fraction
-         res%wet_fraction(j) = summary%wet_fraction
-         res%max_balance_residual(j) = summary%max_balance_residual
-         res%mean_hydro_load(j) = summary%mean_hydro_load
-         res%max_compression(j) = summary%max_compression
-         res%n_clamped(j) = summary%n_clamped
-         res%bearing_evaluations(j) = summary%bearing_evaluations
-         res%memory_updates(j) = summary%memory_updates
-         res%viscous_memory_ran(j) = summary%viscous_memory_ran
-         res%bearing_ran(j) = summary%bearing_ran
-         res%friction_film_ran(j) = summary%friction_film_ran
-         res%mean_local_friction(j) = summary%mean_local_friction
-         res%mean_film_thickness(j) = summary%mean_film_thickness
-         res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), summary%failed /= 0)
+         do j = j0, j1
+            associate(summary => summaries(j - j0 + 1))
+               res%mu(j) = summary%mu
+               res%hydroplaning_fraction(j) = summary%hydroplaning_fraction
+               res%wet_fraction(j) = summary%wet_fraction
+               res%max_balance_residual(j) = summary%max_balance_residual
+               res%mean_hydro_load(j) = summary%mean_hydro_load
+               res%max_compression(j) = summary%max_compression
+               res%n_clamped(j) = summary%n_clamped
+               res%bearing_evaluations(j) = summary%bearing_evaluations
+               res%memory_updates(j) = summary%memory_updates
+               res%viscous_memory_ran(j) = summary%viscous_memory_ran
+               res%bearing_ran(j) = summary%bearing_ran
+               res%friction_film_ran(j) = summary%friction_film_ran
+               res%mean_local_friction(j) = summary%mean_local_friction
+               res%mean_film_thickness(j) = summary%mean_film_thickness
+               res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), summary%failed /= 0)
+            end associate
+         end do
+         deallocate(summaries)
       end do
       !$omp end parallel do
       if (any(res%memory_updates < 0)) then
@@ -486,59 +504,86 @@ contains
       end if
    end subroutine build_geometry
 
-   !> One speed: spin-up, then the averaged positions (Eqs. 2-12).
-   subroutine slide(geo, m, rubber, film, speed, out, mu_inst, hydro_load, penetration, contact, &
-         & film_thickness, local_friction)
+   !> A set of speeds (lanes) over the same positions: spin-up, then the
+   !> averaged positions (Eqs. 2-12). The element loops run over the lanes
+   !> innermost, so they vectorise, while each lane's arithmetic is the
+   !> scalar algorithm's exactly (sums over elements in element order); the
+   !> wet balance and the friction films run lane by lane.
+   subroutine slide(geo, m, rubber, film, speeds, out, mu_inst, hydro_load, penetration, &
+         & contact, film_thickness, local_friction)
       type(geometry_type), intent(in) :: geo
       type(model_type), intent(in) :: m
       class(rubber_model), intent(in) :: rubber
       class(film_model), allocatable, intent(in) :: film
-      real(wp), intent(in) :: speed
-      type(speed_summary_type), intent(out) :: out
-      real(wp), intent(out), optional :: mu_inst(:), hydro_load(:), penetration(:)
-      integer, intent(out), optional :: contact(:)
-      real(wp), intent(out), optional :: film_thickness(:), local_friction(:)
+      !> The chunk's speeds (at most `lanes`).
+      real(wp), intent(in) :: speeds(:)
+      !> A summary per lane (the first size(speeds) are the speeds').
+      type(speed_summary_type), intent(out) :: out(lanes)
+      real(wp), intent(out), optional :: mu_inst(:,:), hydro_load(:,:), penetration(:,:)
+      integer, intent(out), optional :: contact(:,:)
+      real(wp), intent(out), optional :: film_thickness(:,:), local_friction(:,:)
 
       type(rubber_step_type) :: rstep
-      type(film_step_type) :: fstep
+      type(film_step_type), allocatable :: fstep(:)
       type(wet_state_type) :: wet
-      real(wp), allocatable :: c(:), d(:), state(:,:), u_free(:), work(:), push(:), gap(:)
-      real(wp), allocatable :: fstate(:,:), pressure(:), share(:), tan_el(:)
+      real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
+      real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
+      real(wp), allocatable :: tan_el(:), pl(:)
       integer, allocatable :: samples(:)
-      real(wp) :: kel, s_load, cmin, x, x_dry, x_guess, delta_prev, wh, sum_f, sum_ft, u_new
-      real(wp) :: mu_sum, resid_max, wh_sum, u_max, mu_j, resid, tan_max, mu_eff, film_sum
-      real(wp) :: local_sum, force_sum, film_mean_sum
-      integer(i8) :: n_clamped, n_eval
-      integer :: t, k1, k, i, n, n_contact, n_nocontact, n_wet, n_clamp_j, stat, q, lead, lead_prev
-      logical :: load_film, friction_film, series, clamped
+      real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
+      real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
+      real(wp), dimension(lanes) :: force_sum, film_mean_sum
+      integer(i8), dimension(lanes) :: n_clamped, n_eval
+      integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
+      logical, dimension(lanes) :: load_film, friction_film
+      real(wp) :: x_dry, mu_j, resid, tan_max, mu_eff, film_sum, p, tk, zk, hi
+      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
+      logical :: series, clamped, any_memory, any_load, any_friction, ck
 
       n = geo%n_el
+      nl = size(speeds)
+      ! the lanes beyond the chunk's speeds repeat its last speed (discarded)
+      v(1:nl) = speeds
+      v(nl+1:) = speeds(nl)
       series = present(mu_inst)
-      call rubber%prepare(speed, geo%advance, rstep)
-      kel = m%width * geo%dx_el * rstep%k_eff       ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
+      call rubber%prepare(v, geo%advance, rstep)
+      ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
+      kel = m%width * geo%dx_el * rstep%k_eff
       s_load = m%load / kel
+      any_memory = any(rstep%memory)
       ! Simulate only the effects the scene calls for: a film needs water and
       ! motion (Sect. 3); the rubber's memory needs viscosity and motion.
       load_film = .false.
       friction_film = .false.
+      allocate(fstep(lanes))
       if (allocated(film)) then
-         call film%prepare(speed, geo%advance, fstep)
-         load_film = fstep%active .and. film%carries_load()
-         friction_film = fstep%active .and. film%changes_friction()
+         do j = 1, nl
+            call film%prepare(v(j), geo%advance, fstep(j))
+            load_film(j) = fstep(j)%active .and. film%carries_load()
+            friction_film(j) = fstep(j)%active .and. film%changes_friction()
+         end do
       end if
+      any_load = any(load_film)
+      any_friction = any(friction_film)
 
-      allocate(c(n), d(n), work(n), push(n), u_free(n), gap(n), stat=stat)
-      if (stat == 0 .and. rstep%memory) allocate(state(rubber%state_size(), n), stat=stat)
-      if (stat == 0 .and. friction_film) allocate(fstate(film%state_size(), geo%npf), &
-         & pressure(n), share(n), tan_el(n), samples(n * geo%spacing), stat=stat)
+      ns_state = rubber%state_size()
+      allocate(c(lanes, n), d(lanes, n), push(lanes, n), u_free(lanes, n), work(n), dl(n), &
+         & gap(n), stat=stat)
+      if (stat == 0 .and. any_memory) allocate(state(lanes, ns_state, n), stat=stat)
+      if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
+         & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
       if (stat /= 0) then
          out%failed = 1
          return
       end if
       u_free = 0.0_wp
-      if (rstep%memory) state = 0.0_wp
+      if (any_memory) state = 0.0_wp
       tan_max = tan(m%theta_max_deg * acos(-1.0_wp) / 180.0_wp)
-      if (friction_film) call film%reset(fstep, fstate)
+      if (any_friction) then
+         do j = 1, nl
+            if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
+         end do
+      end if
 
       delta_prev = -huge(1.0_wp)
       mu_sum = 0.0_wp
@@ -561,131 +606,149 @@ contains
          end if
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
-         if (rstep%memory) call rubber%free_compression(rstep, state, u_free)
+         if (any_memory) call rubber%free_compression(rstep, state, u_free)
          cmin = huge(1.0_wp)
-         if (rstep%memory) then
-            do i = 1, n
-               c(i) = geo%h(i) - geo%z(k1 + (i-1) * geo%spacing) + u_free(i)
-               cmin = min(cmin, c(i))
+         do i = 1, n
+            zk = geo%z(k1 + (i-1) * geo%spacing)
+            hi = geo%h(i)
+            do j = 1, lanes
+               c(j, i) = hi - zk + u_free(j, i)
+               cmin(j) = min(cmin(j), c(j, i))
             end do
-         else
-            do i = 1, n
-               c(i) = geo%h(i) - geo%z(k1 + (i-1) * geo%spacing)
-               cmin = min(cmin, c(i))
+         end do
+         do i = 1, n
+            do j = 1, lanes
+               d(j, i) = c(j, i) - cmin(j)
             end do
-         end if
-         d = c - cmin
+         end do
          ! warm start from the previous position's penetration
-         x_guess = delta_prev - cmin
-         call dry_root(d, s_load, x_guess, x_dry, work)
-         x = x_dry
+         call dry_roots(d, s_load, delta_prev - cmin, x, work, dl)
          wh = 0.0_wp
-         if (load_film) then
-            call gap_field(d, x_dry, gap)
-            if (film%engages(fstep, gap)) then
-               call wet_root(d, kel, m%load, film, fstep, x_dry, m%wet_tolerance, x, wet, gap)
-               wh = wet%hydro_load
-               n_eval = n_eval + wet%evaluations
-            end if
+         if (any_load) then
+            do j = 1, nl
+               if (.not. load_film(j)) cycle
+               dl = d(j, :)
+               x_dry = x(j)
+               call gap_field(dl, x_dry, gap)
+               if (film%engages(fstep(j), gap)) then
+                  call wet_root(dl, kel(j), m%load, film, fstep(j), x_dry, m%wet_tolerance, &
+                     & x(j), wet, gap)
+                  wh(j) = wet%hydro_load
+                  n_eval(j) = n_eval(j) + wet%evaluations
+               end if
+            end do
          end if
 
          sum_f = 0.0_wp
+         sum_ft = 0.0_wp
          n_contact = 0
+         n_clamp_j = 0
          do i = 1, n
-            push(i) = max(0.0_wp, x - d(i))
-            sum_f = sum_f + push(i)
-            n_contact = n_contact + merge(1, 0, push(i) > 0.0_wp)
+            k = k1 + (i-1) * geo%spacing
+            tk = geo%tan_theta(k)
+            ck = geo%clamped(k)
+            do j = 1, lanes
+               p = max(0.0_wp, x(j) - d(j, i))
+               push(j, i) = p
+               sum_f(j) = sum_f(j) + p
+               n_contact(j) = n_contact(j) + merge(1, 0, p > 0.0_wp)
+               sum_ft(j) = sum_ft(j) + p * tk                         ! Eq. 10
+               n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, p > 0.0_wp .and. ck)
+               u_max(j) = max(u_max(j), u_free(j, i) + p)             ! max(g_i, u_free_i)
+            end do
          end do
 
-         n_clamp_j = 0
-         sum_ft = 0.0_wp
-         if (friction_film) then
+         if (any_friction) then
             ! the film on the road samples entering under the leading edge
             ! (counted without wrapping round a closed profile)
             lead = t * geo%stride + n * geo%spacing + merge(1, 0, geo%closed)
             if (lead_prev == -huge(1)) lead_prev = lead
-            do k = lead_prev + 1, lead
-               call film%enter(fstep, fstate, physical(k))
-            end do
-            lead_prev = lead
             do i = 1, n
-               pressure(i) = rstep%k_eff * push(i)
                do q = 1, geo%spacing
                   samples((i-1) * geo%spacing + q) = physical(k1 + (i-1) * geo%spacing + q - 1)
                end do
             end do
-            call film%friction(fstep, fstate, samples, geo%spacing, pressure, geo%dx_el, share)
-            film_sum = 0.0_wp
-            do i = 1, n
-               k = k1 + (i-1) * geo%spacing
-               if (share(i) >= 1.0_wp) then
-                  tan_el(i) = geo%tan_theta(k)
-                  clamped = geo%clamped(k)
-                  mu_eff = m%mu_loc
-               else
-                  mu_eff = m%mu_loc * share(i)
-                  call facet_tangent(geo%slope(k), mu_eff, tan_max, tan_el(i), clamped)
+            do j = 1, nl
+               if (.not. friction_film(j)) cycle
+               do k = lead_prev + 1, lead
+                  call film%enter(fstep(j), fstate(:, :, j), physical(k))
+               end do
+               pl = push(j, :)
+               pressure = rstep%k_eff(j) * pl
+               call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
+                  & geo%dx_el, share)
+               film_sum = 0.0_wp
+               sum_ft(j) = 0.0_wp
+               n_clamp_j(j) = 0
+               do i = 1, n
+                  k = k1 + (i-1) * geo%spacing
+                  if (share(i) >= 1.0_wp) then
+                     tan_el(i) = geo%tan_theta(k)
+                     clamped = geo%clamped(k)
+                     mu_eff = m%mu_loc
+                  else
+                     mu_eff = m%mu_loc * share(i)
+                     call facet_tangent(geo%slope(k), mu_eff, tan_max, tan_el(i), clamped)
+                  end if
+                  sum_ft(j) = sum_ft(j) + pl(i) * tan_el(i)
+                  n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, pl(i) > 0.0_wp .and. clamped)
+                  if (t >= 0) local_sum(j) = local_sum(j) + pl(i) * mu_eff
+                  film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing &
+                     & + 1), j))
+               end do
+               if (t >= 0) then
+                  force_sum(j) = force_sum(j) + sum_f(j)
+                  film_mean_sum(j) = film_mean_sum(j) + film_sum / real(n, wp)
+                  if (series .and. present(film_thickness)) then
+                     film_thickness(t+1, j) = film_sum / real(n, wp)
+                     local_friction(t+1, j) = 0.0_wp
+                     if (sum_f(j) > 0.0_wp) local_friction(t+1, j) = &
+                        & local_partial(pl, share, m%mu_loc) / sum_f(j)
+                  end if
                end if
-               sum_ft = sum_ft + push(i) * tan_el(i)
-               n_clamp_j = n_clamp_j + merge(1, 0, push(i) > 0.0_wp .and. clamped)
-               local_sum = local_sum + merge(push(i) * mu_eff, 0.0_wp, t >= 0)
-               film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing + 1)))
             end do
-            if (t >= 0) then
-               force_sum = force_sum + sum_f
-               film_mean_sum = film_mean_sum + film_sum / real(n, wp)
-            end if
-         else
-            do i = 1, n
-               k = k1 + (i-1) * geo%spacing
-               sum_ft = sum_ft + push(i) * geo%tan_theta(k)        ! Eq. 10
-               n_clamp_j = n_clamp_j + merge(1, 0, push(i) > 0.0_wp .and. geo%clamped(k))
-            end do
+            lead_prev = lead
          end if
-         do i = 1, n
-            u_new = u_free(i) + push(i)                          ! max(g_i, u_free_i)
-            u_max = max(u_max, u_new)
-         end do
-         if (rstep%memory) call rubber%update(rstep, state, u_free, push)
+         if (any_memory) call rubber%update(rstep, state, u_free, push)
          delta_prev = cmin + x
          if (t < 0) cycle                                    ! spin-up
 
-         sum_f = kel * sum_f
-         mu_j = kel * sum_ft / m%load                        ! Eq. 11: divided by W
-         resid = abs(sum_f + wh - m%load) / m%load
-         mu_sum = mu_sum + mu_j
-         wh_sum = wh_sum + wh
-         resid_max = max(resid_max, resid)
-         n_clamped = n_clamped + n_clamp_j
-         if (n_contact == 0) n_nocontact = n_nocontact + 1
-         if (wh > 0.0_wp) n_wet = n_wet + 1
-         if (series) then
-            mu_inst(t+1) = mu_j
-            hydro_load(t+1) = wh
-            penetration(t+1) = cmin + x
-            contact(t+1) = n_contact
-            if (present(film_thickness)) then
-               film_thickness(t+1) = film_sum / real(n, wp)
-               local_friction(t+1) = 0.0_wp
-               if (sum_f > 0.0_wp) local_friction(t+1) = kel * local_partial() / sum_f
+         do j = 1, nl
+            sum_f(j) = kel(j) * sum_f(j)
+            mu_j = kel(j) * sum_ft(j) / m%load               ! Eq. 11: divided by W
+            resid = abs(sum_f(j) + wh(j) - m%load) / m%load
+            mu_sum(j) = mu_sum(j) + mu_j
+            wh_sum(j) = wh_sum(j) + wh(j)
+            resid_max(j) = max(resid_max(j), resid)
+            n_clamped(j) = n_clamped(j) + n_clamp_j(j)
+            if (n_contact(j) == 0) n_nocontact(j) = n_nocontact(j) + 1
+            if (wh(j) > 0.0_wp) n_wet(j) = n_wet(j) + 1
+            if (series) then
+               mu_inst(t+1, j) = mu_j
+               hydro_load(t+1, j) = wh(j)
+               penetration(t+1, j) = cmin(j) + x(j)
+               contact(t+1, j) = n_contact(j)
             end if
-         end if
+         end do
       end do
 
-      out%mu = mu_sum / real(geo%n_avg, wp)                  ! Eq. 12
-      out%hydroplaning_fraction = real(n_nocontact, wp) / real(geo%n_avg, wp)
-      out%wet_fraction = real(n_wet, wp) / real(geo%n_avg, wp)
-      out%max_balance_residual = resid_max
-      out%mean_hydro_load = wh_sum / real(geo%n_avg, wp)
-      out%max_compression = u_max
-      out%n_clamped = n_clamped
-      out%bearing_evaluations = n_eval
-      if (rstep%memory) out%memory_updates = int(n, i8) * int(geo%n_avg + geo%n_spin, i8)
-      out%viscous_memory_ran = rstep%memory
-      out%bearing_ran = load_film
-      out%friction_film_ran = friction_film
-      if (friction_film .and. force_sum > 0.0_wp) out%mean_local_friction = local_sum / force_sum
-      if (friction_film) out%mean_film_thickness = film_mean_sum / real(geo%n_avg, wp)
+      do j = 1, nl
+         out(j)%mu = mu_sum(j) / real(geo%n_avg, wp)                   ! Eq. 12
+         out(j)%hydroplaning_fraction = real(n_nocontact(j), wp) / real(geo%n_avg, wp)
+         out(j)%wet_fraction = real(n_wet(j), wp) / real(geo%n_avg, wp)
+         out(j)%max_balance_residual = resid_max(j)
+         out(j)%mean_hydro_load = wh_sum(j) / real(geo%n_avg, wp)
+         out(j)%max_compression = u_max(j)
+         out(j)%n_clamped = n_clamped(j)
+         out(j)%bearing_evaluations = n_eval(j)
+         if (rstep%memory(j)) out(j)%memory_updates = int(n, i8) * int(geo%n_avg + geo%n_spin, i8)
+         out(j)%viscous_memory_ran = rstep%memory(j)
+         out(j)%bearing_ran = load_film(j)
+         out(j)%friction_film_ran = friction_film(j)
+         if (friction_film(j) .and. force_sum(j) > 0.0_wp) &
+            & out(j)%mean_local_friction = local_sum(j) / force_sum(j)
+         if (friction_film(j)) out(j)%mean_film_thickness = film_mean_sum(j) / real(geo%n_avg, wp)
+      end do
    contains
       !> The road sample an extended index stands for.
       pure integer function physical(kk)
@@ -696,17 +759,18 @@ contains
             physical = min(kk, geo%npf)
          end if
       end function physical
-
-      !> sum_i push_i mu_eff_i at the current position.
-      pure real(wp) function local_partial()
-         integer :: ii
-         local_partial = 0.0_wp
-         do ii = 1, n
-            local_partial = local_partial + push(ii) * merge(m%mu_loc, m%mu_loc * share(ii), &
-               & share(ii) >= 1.0_wp)
-         end do
-      end function local_partial
    end subroutine slide
+
+   !> sum_i push_i mu_eff_i at one position (mu_eff = mu_loc times the share).
+   pure real(wp) function local_partial(push, share, mu_loc)
+      real(wp), intent(in) :: push(:), share(:), mu_loc
+      integer :: i
+      local_partial = 0.0_wp
+      do i = 1, size(push)
+         local_partial = local_partial + push(i) * merge(mu_loc, mu_loc * share(i), &
+            & share(i) >= 1.0_wp)
+      end do
+   end function local_partial
 
    !> The effects that ran, comma-separated: what the output's `effects`
    !> attribute says.
