@@ -13,7 +13,7 @@
 !> checksum, its values (finite, index in range, a valid status) and its
 !> profile's current content all agree; any other line is recomputed.
 module pavefric_batch
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, pavefric_version
    use pavefric_error, only: error_type, fatal_error, stat_io
@@ -27,7 +27,7 @@ module pavefric_batch
    use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
-      & block_unpack, block_values, block_allocate, status_computed, status_failed
+      & block_unpack, block_values, block_allocate, status_computed, status_failed, printable_utf8
    implicit none
    private
 
@@ -44,6 +44,29 @@ module pavefric_batch
          integer(c_int), intent(out) :: count
          integer(c_int) :: need
       end function c_glob
+      function c_journal_open(path, create) bind(C, name="pavefric_journal_open") result(fd)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: create
+         integer(c_int) :: fd
+      end function c_journal_open
+      function c_journal_write(fd, buf, n) bind(C, name="pavefric_journal_write") result(err)
+         import :: c_int, c_char, c_long
+         integer(c_int), value :: fd
+         character(kind=c_char), intent(in) :: buf(*)
+         integer(c_long), value :: n
+         integer(c_int) :: err
+      end function c_journal_write
+      function c_journal_close(fd) bind(C, name="pavefric_journal_close") result(err)
+         import :: c_int
+         integer(c_int), value :: fd
+         integer(c_int) :: err
+      end function c_journal_close
+      subroutine c_strerror(err, buf, n) bind(C, name="pavefric_strerror")
+         import :: c_int, c_char
+         integer(c_int), value :: err, n
+         character(kind=c_char), intent(out) :: buf(*)
+      end subroutine c_strerror
    end interface
 
    character(len=*), parameter :: journal_magic = "pavefric-journal"
@@ -457,25 +480,32 @@ contains
    subroutine journal_start(batch, error)
       type(batch_type), intent(inout) :: batch
       type(error_type), allocatable, intent(out) :: error
-      integer :: unit, ios
-      character(len=512) :: msg
-      msg = ""
-      open(newunit=unit, file=batch%journal, status="replace", action="write", iostat=ios, &
-         & iomsg=msg)
-      if (ios /= 0) then
+      integer(c_int) :: fd, err
+      fd = c_journal_open(batch%journal // c_null_char, 1_c_int)
+      if (fd < 0) then
          call fatal_error(error, "&output file = '" // batch%output // "': cannot write the " // &
-            & "journal '" // batch%journal // "' (" // trim(msg) // ")", stat_io)
+            & "journal '" // batch%journal // "' (" // os_message(-fd) // ")", stat_io)
          return
       end if
-      write(unit, '(a)', iostat=ios, iomsg=msg) journal_header(batch)
-      if (ios == 0) then
-         close(unit, iostat=ios, iomsg=msg)
+      err = c_journal_write(fd, journal_header(batch) // achar(10), &
+         & int(len(journal_header(batch)) + 1, c_long))
+      if (err == 0) then
+         err = c_journal_close(fd)
       else
-         close(unit)
+         fd = c_journal_close(fd)
       end if
-      if (ios /= 0) call journal_error(batch, msg, error)
+      if (err /= 0) call journal_error(batch, os_message(err), error)
       batch%journal_cut = .false.
    end subroutine journal_start
+
+   !> The C library's text for an errno value.
+   function os_message(err) result(text)
+      integer(c_int), intent(in) :: err
+      character(len=:), allocatable :: text
+      character(len=256) :: buf
+      call c_strerror(err, buf, int(len(buf), c_int))
+      text = trim(buf)
+   end function os_message
 
    subroutine journal_error(batch, msg, error)
       type(batch_type), intent(in) :: batch
@@ -647,52 +677,43 @@ contains
       blk%message = line(pos+2:)
    end subroutine parse_line
 
-   !> Append a finished profile to the journal: one line, flushed at once, so
-   !> a kill loses at most the line being written (recomputed on restart).
-   !> Every write is checked: a journal that cannot grow stops the batch.
+   !> Append a finished profile to the journal: one line in one checked
+   !> write(2), so a kill loses at most the line being written (recomputed on
+   !> restart) and a full disk stops the batch.
    subroutine journal_append(batch, blk, error)
       type(batch_type), intent(inout) :: batch
       type(block_type), intent(in) :: blk
       type(error_type), allocatable, intent(out) :: error
-      integer :: unit, ios
-      character(len=512) :: msg
-      msg = ""
+      character(len=:), allocatable :: line
+      integer(c_int) :: fd, err
       if (.not. batch%journal_open) then
-         open(newunit=unit, file=batch%journal, status="old", position="append", &
-            & action="write", iostat=ios, iomsg=msg)
-         if (ios /= 0) then
-            call journal_error(batch, msg, error)
+         fd = c_journal_open(batch%journal // c_null_char, 0_c_int)
+         if (fd < 0) then
+            call journal_error(batch, os_message(-fd), error)
             return
          end if
-         batch%journal_unit = unit
+         batch%journal_unit = fd
          batch%journal_open = .true.
-         if (batch%journal_cut) then      ! end the line a kill cut short
-            write(unit, '(a)', iostat=ios, iomsg=msg) ""
-            if (ios /= 0) then
-               call journal_error(batch, msg, error)
-               return
-            end if
-            batch%journal_cut = .false.
-         end if
       end if
-      unit = batch%journal_unit
-      write(unit, '(a)', iostat=ios, iomsg=msg) journal_line(batch, blk)
-      if (ios == 0) flush(unit, iostat=ios, iomsg=msg)
-      if (ios /= 0) call journal_error(batch, msg, error)
+      line = journal_line(batch, blk) // achar(10)
+      if (batch%journal_cut) line = achar(10) // line   ! end the line a kill cut short
+      err = c_journal_write(int(batch%journal_unit, c_int), line, int(len(line), c_long))
+      if (err /= 0) then
+         call journal_error(batch, os_message(err), error)
+         return
+      end if
+      batch%journal_cut = .false.
    end subroutine journal_append
 
-   !> Close the journal if it is open (a failure to write what was buffered
-   !> is an error).
+   !> Close the journal if it is open.
    subroutine journal_close(batch, error)
       type(batch_type), intent(inout) :: batch
       type(error_type), allocatable, intent(out), optional :: error
-      integer :: ios
-      character(len=512) :: msg
-      msg = ""
-      ios = 0
-      if (batch%journal_open) close(batch%journal_unit, iostat=ios, iomsg=msg)
+      integer(c_int) :: err
+      err = 0
+      if (batch%journal_open) err = c_journal_close(int(batch%journal_unit, c_int))
       batch%journal_open = .false.
-      if (ios /= 0 .and. present(error)) call journal_error(batch, msg, error)
+      if (err /= 0 .and. present(error)) call journal_error(batch, os_message(err), error)
    end subroutine journal_close
 
    !> Line breaks (LF, CR) as blanks.
@@ -777,7 +798,7 @@ contains
       end if
       if (allocated(error)) then
          blk%status = status_failed
-         blk%message = error%message
+         blk%message = printable_utf8(error%message)
          blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
          blk%viscous = .false.
          blk%bearing = .false.

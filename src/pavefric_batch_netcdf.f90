@@ -4,7 +4,8 @@ module pavefric_batch_netcdf
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, stat_io
-   use pavefric_batch_types, only: batch_type, block_type, status_computed, status_failed
+   use pavefric_batch_types, only: batch_type, block_type, status_computed, status_failed, &
+      & printable_utf8
    use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary
    implicit none
    private
@@ -63,9 +64,9 @@ contains
       allocate(character(len=lname) :: names(np))
       allocate(character(len=lmsg) :: msgs(np))
       do i = 1, np
-         names(i) = batch%names(i)%s
+         names(i) = printable_utf8(batch%names(i)%s)
          msgs(i) = ""
-         if (allocated(blocks(i)%message)) msgs(i) = blocks(i)%message
+         if (allocated(blocks(i)%message)) msgs(i) = printable_utf8(blocks(i)%message)
       end do
       ! profiles read (their preprocessing record is known), and computed
       ok = [(blocks(i)%status == status_computed, i = 1, np)]

@@ -8,7 +8,7 @@ module pavefric_batch_types
    private
 
    public :: batch_type, block_type, string_type, block_pack, block_unpack, block_values
-   public :: block_allocate, n_head, status_computed, status_failed
+   public :: block_allocate, n_head, status_computed, status_failed, printable_utf8
 
    !> Profile status: not computed yet, computed, failed (message says why).
    integer, parameter :: status_computed = 1, status_failed = 2
@@ -34,9 +34,8 @@ module pavefric_batch_types
       !> SHA-256 of the scene text, version, profile paths, chainages, depths
       !> and speeds; each journal line carries its profile file's own digest.
       character(len=digest_len) :: fingerprint = ""
-      !> The journal's unit while it is open for appending (newunit numbers
-      !> are negative, hence the flag).
-      integer :: journal_unit = 0
+      !> The journal's file descriptor while it is open for appending.
+      integer :: journal_unit = -1
       logical :: journal_open = .false.
       !> The journal ends in a line cut short (a kill): end it before appending.
       logical :: journal_cut = .false.
@@ -167,5 +166,54 @@ contains
          if (whole) whole = v == aint(v)
       end function whole
    end subroutine block_unpack
+
+   !> `s` as printable UTF-8: control characters become blanks and bytes
+   !> that are not valid UTF-8 (a message quoting a binary file) become '?',
+   !> so that the journal stays text and readers of the NetCDF file can
+   !> decode its strings.
+   pure function printable_utf8(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i, n, m, c, c2, k
+      logical :: ok
+      t = s
+      n = len(s)
+      i = 1
+      do while (i <= n)
+         c = iachar(t(i:i))
+         if (c < 32 .or. c == 127) then
+            t(i:i) = " "
+            i = i + 1
+            cycle
+         end if
+         if (c < 128) then
+            i = i + 1
+            cycle
+         end if
+         m = 0
+         if (c >= 194 .and. c <= 223) m = 1
+         if (c >= 224 .and. c <= 239) m = 2
+         if (c >= 240 .and. c <= 244) m = 3
+         ok = m > 0 .and. i + m <= n
+         if (ok) then
+            do k = 1, m
+               ok = ok .and. iachar(t(i+k:i+k)) >= 128 .and. iachar(t(i+k:i+k)) <= 191
+            end do
+         end if
+         if (ok) then                     ! no overlong forms, surrogates, > U+10FFFF
+            c2 = iachar(t(i+1:i+1))
+            if (c == 224) ok = c2 >= 160
+            if (c == 237) ok = c2 <= 159
+            if (c == 240) ok = c2 >= 144
+            if (c == 244) ok = c2 <= 143
+         end if
+         if (ok) then
+            i = i + m + 1
+         else
+            t(i:i) = "?"
+            i = i + 1
+         end if
+      end do
+   end function printable_utf8
 
 end module pavefric_batch_types
