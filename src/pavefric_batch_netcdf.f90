@@ -64,9 +64,12 @@ contains
       allocate(character(len=lname) :: names(np))
       allocate(character(len=lmsg) :: msgs(np))
       do i = 1, np
-         names(i) = printable_utf8(batch%names(i)%s)
-         msgs(i) = ""
-         if (allocated(blocks(i)%message)) msgs(i) = printable_utf8(blocks(i)%message)
+         ! NUL-padded, as netCDF readers expect of character arrays
+         names(i) = repeat(achar(0), lname)
+         names(i)(1:len(batch%names(i)%s)) = printable_utf8(batch%names(i)%s)
+         msgs(i) = repeat(achar(0), lmsg)
+         if (allocated(blocks(i)%message)) msgs(i)(1:len(blocks(i)%message)) = &
+            & printable_utf8(blocks(i)%message)
       end do
       ! profiles read (their preprocessing record is known), and computed
       ok = [(blocks(i)%status == status_computed, i = 1, np)]

@@ -31,11 +31,26 @@ __all__ = [
     "hydro_load",
     "load_scene",
     "Scene",
+    "ProfilesFailedWarning",
 ]
 
 
 class PavefricError(ValueError):
     """Bad input or a failed run; the message names the group, variable and value."""
+
+
+class ProfilesFailedWarning(UserWarning):
+    """A batch finished but some of its profiles failed (the program's exit
+    status 4): the output is written, its ``status`` (2) and ``error_message``
+    variables say which and why. ``path`` is the output file, ``failed`` maps
+    each failed profile's name to its message. Make it an error with
+    ``warnings.simplefilter("error", pavefric.ProfilesFailedWarning)``."""
+
+    def __init__(self, message: str, path: Path | None = None,
+                 failed: dict[str, str] | None = None):
+        super().__init__(message)
+        self.path = path
+        self.failed = dict(failed or {})
 
 
 def _text(raw: Any) -> str:
@@ -223,24 +238,77 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
 
 
 def _run_batch(path: str, output: str, command: str, progress: bool | None) -> Path:
+    """The batch through the core in calls of a few profiles each (a progress
+    bar between calls). Each call re-reads the journal and checks the
+    profiles in it, a cost that grows with the profiles done: call times are
+    fitted as ``overhead_per_done * done + cost_per_profile * computed`` and
+    each call computes enough profiles to keep that overhead near 5 % (and
+    lasts at least half a second)."""
+    import time
+
     if progress is None:
         progress = sys.stderr.isatty()
     bar = _ProgressBar(progress)
     chunk = 1
+    history: list[tuple[int, int, float]] = []      # (done before, computed, seconds)
+    done_before = 0
     while True:
-        t0 = __import__("time").perf_counter()
+        t0 = time.perf_counter()
         (out_path, computed, finished, total, done, status, message) = _core.pf_batch_run(
             path, output, command, chunk)
         _check(status, message)
+        dt = time.perf_counter() - t0
         bar.update(int(done), int(total))
         if finished:
             bar.close()
-            return Path(_text(out_path))
+            out = Path(_text(out_path))
+            _warn_failed_profiles(path, out)
+            return out
         if computed == 0:
             raise PavefricError(f"batch {path}: no progress (max_profiles reached?)")
-        # aim at about half a second of work per call
-        dt = __import__("time").perf_counter() - t0
-        chunk = max(1, min(int(total), int(chunk * max(1.0, min(4.0, 0.5 / max(dt, 1e-6))))))
+        if not history:
+            done_before = int(done) - int(computed)
+        history.append((done_before, int(computed), dt))
+        done_before = int(done)
+        per_done, per_profile = _fit_call_times(history)
+        target = max(0.5, 20.0 * per_done * done_before)     # seconds of compute a call
+        chunk = max(1, min(int(total), int(target / per_profile), 4 * chunk))
+
+
+def _fit_call_times(history: list[tuple[int, int, float]]) -> tuple[float, float]:
+    """Least squares of seconds = a * done_before + b * computed (a, b >= 0)."""
+    import numpy as np
+
+    x = np.array([(d, c) for d, c, _ in history], dtype=float)
+    y = np.array([t for _, _, t in history])
+    if len(history) >= 2 and np.linalg.matrix_rank(x) == 2:
+        (a, b), *_ = np.linalg.lstsq(x, y, rcond=None)
+    else:
+        a, b = 0.0, y.sum() / max(x[:, 1].sum(), 1.0)
+    if b <= 0:
+        b = y.sum() / max(x[:, 1].sum(), 1.0)
+    return max(float(a), 0.0), max(float(b), 1e-9)
+
+
+def _warn_failed_profiles(path: str, out: Path) -> None:
+    """A ProfilesFailedWarning naming the failed profiles, if any."""
+    import warnings
+
+    import xarray as xr
+
+    with xr.open_dataset(out, engine="netcdf4") as ds:
+        if int(ds.attrs.get("profiles_failed", 0)) == 0:
+            return
+        bad = np.flatnonzero(ds["status"].values == 2)
+        names = [str(v) for v in ds["profile"].values[bad]]
+        messages = [str(v) for v in ds["error_message"].values[bad]]
+        total = ds.sizes["profile"]
+    failed = dict(zip(names, messages))
+    shown = "; ".join(f"{n}: {m}" for n, m in list(failed.items())[:5])
+    more = f"; ... {len(failed) - 5} more" if len(failed) > 5 else ""
+    warnings.warn(ProfilesFailedWarning(
+        f"batch {path}: {len(failed)} of {total} profiles failed (status = 2 and "
+        f"error_message in {out}): {shown}{more}", out, failed), stacklevel=4)
 
 
 class _ProgressBar:
