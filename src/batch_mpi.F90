@@ -2,9 +2,12 @@
 !>
 !> Under MPI, rank 0 alone decides the work: it reads (or starts) the
 !> journal, and hands the pending profiles out as ranks become free, the
-!> largest files first, two queued per rank so that no rank waits for the
-!> next; between messages it computes the smallest profiles itself (which
-!> keeps it responsive). Rank 0 records every result in the journal and
+!> largest files first (so the last to finish are small: the ranks end
+!> together), two queued per rank. Rank 0 computes too, taking the next
+!> profile in the same order and answering the others between two of its
+!> own: a rank's queued profile was handed out before the one rank 0 took,
+!> so it is at least as large, and no rank waits for rank 0 to answer.
+!> Rank 0 records every result in the journal and
 !> writes the NetCDF file, so the result is the same, bit for bit, whatever
 !> the number of ranks and the order profiles finish in. An error on any
 !> rank ends every rank with the same message and exit status (no rank is
@@ -146,6 +149,8 @@ contains
       type(block_type), allocatable :: blocks(:)
       character(len=digest_len) :: fingerprint
       integer :: ierr, outcome(4)
+      real(wp) :: cpu0, cpu1
+      real(wp), allocatable :: cpu(:)
 #endif
       call rank_and_size(rank, nranks)
       if (nranks == 1) then
@@ -172,10 +177,23 @@ contains
       call agree_error(error)
       if (allocated(error)) return
 
+      call cpu_time(cpu0)
       if (rank == 0) then
          call serve_and_compute(batch, blocks, nranks, max_profiles, command, summary, error)
       else
          call work(batch)
+      end if
+      ! how evenly the work was shared: each rank's CPU time (unaffected by
+      ! other jobs on the node, unlike wall time)
+      call cpu_time(cpu1)
+      allocate(cpu(nranks))
+      cpu1 = cpu1 - cpu0
+      call MPI_Gather(cpu1, 1, MPI_DOUBLE_PRECISION, cpu, 1, MPI_DOUBLE_PRECISION, 0, &
+         & MPI_COMM_WORLD, ierr)
+      if (rank == 0 .and. .not. allocated(error)) then
+         write(output_unit, '(a, *(1x, f0.2))') "pavefric batch: CPU seconds per rank:", cpu
+         write(output_unit, '(a, f0.3, a)') "pavefric batch: the busiest rank ", &
+            & maxval(cpu) / max(sum(cpu) / nranks, tiny(1.0_wp)), " x the mean"
       end if
       ! rank 0 tells every rank how it ended
       call agree_error(error)
@@ -193,7 +211,7 @@ contains
 
 #ifdef WITH_MPI
    !> Rank 0: hand out the pending profiles (largest first) to the other
-   !> ranks as they become free, compute the smallest ones itself between
+   !> ranks as they become free, compute the next one itself between
    !> messages, record every result, and write the file when all are done.
    subroutine serve_and_compute(batch, blocks, nranks, max_profiles, command, summary, error)
       type(batch_type), intent(inout) :: batch
@@ -253,8 +271,8 @@ contains
       do
          call serve(.false.)
          if (front <= back .and. .not. allocated(error)) then
-            i = order(back)
-            back = back - 1
+            i = order(front)
+            front = front + 1
             call batch_compute(batch, i, blocks(i))
             call record(i)
             cycle
