@@ -132,7 +132,7 @@ contains
          & "end (reference plate)", v_pre(3))
       call w%def("preprocess_dropouts", nf90_int, [d_p], "1", "dropouts interpolated", v_pre(4))
       call w%def("preprocess_spikes", nf90_int, [d_p], "1", "spike points replaced", v_pre(5))
-      call w%def("preprocess_points_used", nf90_int, [d_p], "1", "points of the profile " // &
+      call w%def("preprocess_points_out", nf90_int, [d_p], "1", "points of the profile " // &
          & "the model ran on", v_pre(6))
       call w%def("preprocess_resampled", nf90_byte, [d_p], "", "whether the profile was " // &
          & "resampled", v_pre(7))
@@ -140,7 +140,7 @@ contains
          & "low-pass filtered", v_pre(8))
       call w%def("preprocess_dx_in", nf90_double, [d_p], "m", "spacing of the profile as " // &
          & "read", v_pre(9))
-      call w%def("dx", nf90_double, [d_p], "m", "spacing of the profile the model ran on", &
+      call w%def("profile_dx", nf90_double, [d_p], "m", "spacing of the profile the model ran on", &
          & v_pre(10))
       do k = 7, 8
          call w%check(nf90_put_att(w%ncid, v_pre(k), "flag_values", [0_1, 1_1]), "flags")
@@ -231,7 +231,7 @@ contains
       counts = [(merge(blocks(i)%spikes, ifill, ok(i)), i = 1, np)]
       call w%check(nf90_put_var(w%ncid, v_pre(5), counts), "preprocess_spikes")
       counts = [(merge(blocks(i)%points_used, ifill, ok(i)), i = 1, np)]
-      call w%check(nf90_put_var(w%ncid, v_pre(6), counts), "preprocess_points_used")
+      call w%check(nf90_put_var(w%ncid, v_pre(6), counts), "preprocess_points_out")
       counts = [(merge(merge(1, 0, blocks(i)%resampled), int(bfill), ok(i)), i = 1, np)]
       call w%check(nf90_put_var(w%ncid, v_pre(7), counts), "preprocess_resampled")
       counts = [(merge(merge(1, 0, blocks(i)%filtered), int(bfill), ok(i)), i = 1, np)]
@@ -239,7 +239,7 @@ contains
       t = [(merge(blocks(i)%dx_in, fill, ok(i)), i = 1, np)]
       call w%check(nf90_put_var(w%ncid, v_pre(9), t), "preprocess_dx_in")
       t = [(merge(blocks(i)%dx, fill, ok(i)), i = 1, np)]
-      call w%check(nf90_put_var(w%ncid, v_pre(10), t), "dx")
+      call w%check(nf90_put_var(w%ncid, v_pre(10), t), "profile_dx")
 99    continue
       call w%close(error)
    contains

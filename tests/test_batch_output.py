@@ -94,14 +94,14 @@ def test_preprocessing_record_per_profile(batch_file):
     with xr.open_dataset(batch_file) as ds:
         ok = ds["status"].values == 1
         assert np.array_equal(ds["preprocess_points_read"].values[ok], np.full(7, 300.0))
-        assert np.array_equal(ds["preprocess_points_used"].values[ok], np.full(7, 300.0))
+        assert np.array_equal(ds["preprocess_points_out"].values[ok], np.full(7, 300.0))
         assert np.all(ds["preprocess_dropouts"].values[ok] == 0)
         assert np.all(ds["preprocess_resampled"].values[ok] == 0)
-        assert np.all(ds["dx"].values[ok] == 0.87e-3)
-        assert ds["dx"].attrs["units"] == "m"
+        assert np.all(ds["profile_dx"].values[ok] == 0.87e-3)
+        assert ds["profile_dx"].attrs["units"] == "m"
         # the broken profile was never read: fill values
         assert np.isnan(ds["preprocess_points_read"].values[2])
-        assert np.isnan(ds["dx"].values[2])
+        assert np.isnan(ds["profile_dx"].values[2])
 
 
 def test_preprocessing_record_counts_dropouts_and_resampling(tmp_path):
@@ -123,7 +123,7 @@ def test_preprocessing_record_counts_dropouts_and_resampling(tmp_path):
         assert int(ds["preprocess_dropouts"].values[0]) == 3
         assert int(ds["preprocess_resampled"].values[0]) == 1
         assert float(ds["preprocess_dx_in"].values[0]) == pytest.approx(0.87e-3)
-        assert float(ds["dx"].values[0]) == pytest.approx(1.0e-3)
+        assert float(ds["profile_dx"].values[0]) == pytest.approx(1.0e-3)
 
 
 def test_profile_list_format_errors_and_quoted_paths(tmp_path):
