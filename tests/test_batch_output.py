@@ -238,18 +238,3 @@ def test_plot_a_batch_file(batch_file, tmp_path):
         assert np.array_equal(curves[(1e-3, 42.0)], ds["mu"].values[:, 1, 1], equal_nan=True)
         assert np.isnan(curves[(0.0, 21.0)][2])           # the failed profile is a gap
 
-
-def test_python_batch_calls_are_sized_from_a_fit_of_their_times():
-    # pavefric.run computes a batch in calls of a few profiles; each call
-    # re-checks the journal (a cost growing with the profiles done): the fit
-    # of call times recovers that cost and the cost of a profile
-    from pavefric.core import _fit_call_times
-
-    a, b = 2.0e-4, 0.015                    # s per journal line, s per profile
-    history, done = [], 0
-    for computed in (1, 4, 16, 40, 90):
-        history.append((done, computed, a * done + b * computed))
-        done += computed
-    fa, fb = _fit_call_times(history)
-    assert fa == pytest.approx(a, rel=1e-9) and fb == pytest.approx(b, rel=1e-9)
-    assert _fit_call_times([(0, 1, 0.02)]) == (0.0, 0.02)

@@ -240,18 +240,15 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
 def _run_batch(path: str, output: str, command: str, progress: bool | None) -> Path:
     """The batch through the core in calls of a few profiles each (a progress
     bar between calls). Each call re-reads the journal and checks the
-    profiles in it, a cost that grows with the profiles done: call times are
-    fitted as ``overhead_per_done * done + cost_per_profile * computed`` and
-    each call computes enough profiles to keep that overhead near 5 % (and
-    lasts at least half a second)."""
+    profiles in it (a cost that grows with the profiles done, about 0.5 % of
+    computing them, docs/cluster.md), so a call computes at least an eighth
+    of the profiles done, and about half a second of work."""
     import time
 
     if progress is None:
         progress = sys.stderr.isatty()
     bar = _ProgressBar(progress)
     chunk = 1
-    history: list[tuple[int, int, float]] = []      # (done before, computed, seconds)
-    done_before = 0
     while True:
         t0 = time.perf_counter()
         (out_path, computed, finished, total, done, status, message) = _core.pf_batch_run(
@@ -266,28 +263,8 @@ def _run_batch(path: str, output: str, command: str, progress: bool | None) -> P
             return out
         if computed == 0:
             raise PavefricError(f"batch {path}: no progress (max_profiles reached?)")
-        if not history:
-            done_before = int(done) - int(computed)
-        history.append((done_before, int(computed), dt))
-        done_before = int(done)
-        per_done, per_profile = _fit_call_times(history)
-        target = max(0.5, 20.0 * per_done * done_before)     # seconds of compute a call
-        chunk = max(1, min(int(total), int(target / per_profile), 4 * chunk))
-
-
-def _fit_call_times(history: list[tuple[int, int, float]]) -> tuple[float, float]:
-    """Least squares of seconds = a * done_before + b * computed (a, b >= 0)."""
-    import numpy as np
-
-    x = np.array([(d, c) for d, c, _ in history], dtype=float)
-    y = np.array([t for _, _, t in history])
-    if len(history) >= 2 and np.linalg.matrix_rank(x) == 2:
-        (a, b), *_ = np.linalg.lstsq(x, y, rcond=None)
-    else:
-        a, b = 0.0, y.sum() / max(x[:, 1].sum(), 1.0)
-    if b <= 0:
-        b = y.sum() / max(x[:, 1].sum(), 1.0)
-    return max(float(a), 0.0), max(float(b), 1e-9)
+        timed = int(chunk * max(0.5, min(4.0, 0.5 / max(dt, 1e-6))))
+        chunk = max(1, min(int(total), max(timed, int(done) // 8)))
 
 
 def _warn_failed_profiles(path: str, out: Path) -> None:
