@@ -1,17 +1,26 @@
 !> The pavefric program: `pavefric SCENE.nml [-o OUT.nc]`. No Python needed.
+!>
+!> Exit status: 0 success; 1 error (bad input, a failed run); 2 bad usage;
+!> 3 a batch stopped early (--max-profiles), resumable; 4 a batch finished
+!> but some profiles failed (the output is written, the summary says how
+!> many). Under MPI every rank exits with the same status.
 program pavefric_main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use pavefric, only: pavefric_version, error_type, sim_result_type, run_scene, effects_text
    use pavefric_format, only: to_str
+   use pavefric_numbers, only: parse_integer
    use pavefric_scene, only: scene_type, read_scene
-   use pavefric_batch_mpi, only: run_batch_program, parallel_init, parallel_finalize, is_root
+   use pavefric_batch_run, only: batch_summary_type
+   use pavefric_batch_mpi, only: run_batch_program, parallel_init, parallel_finalize, is_root, &
+      & agree_error
    use pavefric_fsys, only: install_signal_cleanup
    implicit none
+   integer, parameter :: exit_error = 1, exit_usage = 2, exit_stopped = 3, exit_failures = 4
    type(sim_result_type) :: res
    type(scene_type) :: scene
    type(error_type), allocatable :: error
-   logical :: finished
-   integer :: max_profiles, ios
+   type(batch_summary_type) :: summary
+   integer :: max_profiles, stat
    character(len=:), allocatable :: scene_path, out_override, out_path, arg, command, warnings
    integer :: i, nargs, j
 
@@ -32,51 +41,46 @@ program pavefric_main
          write(output_unit, '(a)') "pavefric " // pavefric_version
          stop
       case ("--max-profiles")
-         if (i == nargs) call fail("option " // arg // " needs a number")
+         if (i == nargs) call usage_error("option " // arg // " needs a number")
          i = i + 1
          call get_arg(i, arg)
          command = command // " " // arg
-         read(arg, *, iostat=ios) max_profiles
-         if (ios /= 0 .or. max_profiles < 0) call fail("--max-profiles '" // arg // &
+         call parse_integer(arg, max_profiles, stat)
+         if (stat /= 0 .or. max_profiles < 0) call usage_error("--max-profiles '" // arg // &
             & "': not a count of profiles")
       case ("-o", "--output")
-         if (i == nargs) call fail("option " // arg // " needs a file name")
+         if (i == nargs) call usage_error("option " // arg // " needs a file name")
          i = i + 1
          call get_arg(i, out_override)
          command = command // " " // out_override
       case default
-         if (arg(1:1) == "-" .and. len(arg) > 1) call fail("unknown option '" // arg // &
-            & "' (see pavefric --help)")
-         if (len(scene_path) > 0) call fail("more than one scene file given ('" // scene_path // &
-            & "', '" // arg // "')")
+         if (len(arg) > 1) then
+            if (arg(1:1) == "-") call usage_error("unknown option '" // arg // &
+               & "' (see pavefric --help)")
+         end if
+         if (len(scene_path) > 0) call usage_error("more than one scene file given ('" // &
+            & scene_path // "', '" // arg // "')")
          scene_path = arg
       end select
       i = i + 1
    end do
    if (len(scene_path) == 0) then
       call usage(error_unit)
-      stop 2, quiet=.true.
+      stop exit_usage, quiet=.true.
    end if
 
    call parallel_init()
-   call install_signal_cleanup()   ! temp outputs removed on SIGTERM/SIGINT/SIGHUP (files)
+   call install_signal_cleanup()   ! temp outputs removed on SIGTERM/SIGINT/SIGHUP
    call read_scene(scene_path, scene, error)
+   call agree_error(error)                ! every rank ends alike
    if (allocated(error)) call fail(error%message)
    if (scene%is_batch) then
-      call run_batch_program(scene_path, out_override, command, max_profiles, out_path, &
-         & finished, error)
+      call run_batch_program(scene_path, out_override, command, max_profiles, summary, error)
       if (allocated(error)) call fail(error%message)
-      if (is_root()) then
-         if (finished) then
-            write(output_unit, '(a)') "pavefric " // pavefric_version // ": batch " // &
-               & scene_path // " -> " // out_path
-         else
-            write(error_unit, '(a)') "pavefric: batch stopped before the end " // &
-               & "(--max-profiles); run it again to resume from its journal"
-         end if
-      end if
+      if (is_root()) call report_batch()
       call parallel_finalize()
-      if (.not. finished) stop 3, quiet=.true.
+      if (.not. summary%finished) stop exit_stopped, quiet=.true.
+      if (summary%failed > 0) stop exit_failures, quiet=.true.
    else if (.not. is_root()) then
       call parallel_finalize()       ! a single scene runs on rank 0 only
    else
@@ -88,19 +92,35 @@ program pavefric_main
 
 contains
 
-   subroutine report_scene()
-
-   call print_warnings(warnings)
-   write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
-      & out_path
-   write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &
-      & ", averaged positions: ", res%n_positions, ", effects: " // effects_text(res)
-   write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
-   do j = 1, size(res%mu)
-      write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
-         & res%wet_fraction(j), res%hydroplaning_fraction(j)
-   end do
-   end subroutine report_scene
+   !> The batch's last lines: a summary on stdout; failures and an early
+   !> stop on stderr.
+   subroutine report_batch()
+      integer :: k
+      character(len=:), allocatable :: counts
+      counts = to_str(summary%total) // " profiles: " // to_str(summary%computed) // &
+         & " computed in this run, " // to_str(summary%from_journal) // &
+         & " taken from the journal, " // to_str(summary%failed) // " failed"
+      if (summary%finished) then
+         write(output_unit, '(a)') "pavefric " // pavefric_version // ": batch " // &
+            & scene_path // " -> " // summary%output // ": " // counts
+      else
+         write(output_unit, '(a)') "pavefric " // pavefric_version // ": batch " // &
+            & scene_path // " stopped: " // counts // ", " // to_str(summary%left) // " left"
+         write(error_unit, '(a)') "pavefric: batch stopped before the end (--max-profiles " // &
+            & to_str(max_profiles) // "); run it again to resume from its journal '" // &
+            & summary%output // ".journal'"
+      end if
+      if (summary%failed > 0) then
+         do k = 1, size(summary%failures)
+            write(error_unit, '(a)') "pavefric: profile " // summary%failures(k)%s
+         end do
+         if (summary%failed > size(summary%failures)) write(error_unit, '(a)') "pavefric: ... " // &
+            & to_str(summary%failed - size(summary%failures)) // " more"
+         if (summary%finished) write(error_unit, '(a)') "pavefric: " // to_str(summary%failed) // &
+            & " of " // to_str(summary%total) // " profiles failed (status = 2 and " // &
+            & "error_message in " // summary%output // "); exit status 4"
+      end if
+   end subroutine report_batch
 
    !> Each warning line on stderr (they are also in the output's `warnings`).
    subroutine print_warnings(text)
@@ -116,6 +136,20 @@ contains
       flush(error_unit)
    end subroutine print_warnings
 
+   subroutine report_scene()
+
+   call print_warnings(warnings)
+   write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
+      & out_path
+   write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &
+      & ", averaged positions: ", res%n_positions, ", effects: " // effects_text(res)
+   write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
+   do j = 1, size(res%mu)
+      write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
+         & res%wet_fraction(j), res%hydroplaning_fraction(j)
+   end do
+   end subroutine report_scene
+
    subroutine get_arg(k, value)
       integer, intent(in) :: k
       character(len=:), allocatable, intent(out) :: value
@@ -125,18 +159,26 @@ contains
       call get_command_argument(k, value)
    end subroutine get_arg
 
+   !> An error: one line on stderr (rank 0), exit status 1 on every rank.
    subroutine fail(message)
       character(len=*), intent(in) :: message
       if (is_root()) write(error_unit, '(a)') "pavefric: error: " // message
-      flush(error_unit)   ! before any exit handler can fail (files)
+      flush(error_unit)   ! before any exit handler can fail
       call parallel_finalize()
-      stop 1, quiet=.true.
+      stop exit_error, quiet=.true.
    end subroutine fail
+
+   !> Bad usage (before MPI starts): exit status 2.
+   subroutine usage_error(message)
+      character(len=*), intent(in) :: message
+      write(error_unit, '(a)') "pavefric: error: " // message
+      stop exit_usage, quiet=.true.
+   end subroutine usage_error
 
    subroutine usage(unit)
       integer, intent(in) :: unit
       write(unit, '(a)') &
-         & "usage: pavefric SCENE.nml [-o OUT.nc]", &
+         & "usage: pavefric SCENE.nml [-o OUT.nc] [--max-profiles N]", &
          & "", &
          & "Predict tyre-rubber/pavement friction (Kane et al. 2017) from a texture", &
          & "profile, dry and wet, at the speeds of the scene's &operation speeds_kmh.", &
@@ -151,10 +193,17 @@ contains
          & "", &
          & "A scene with a &batch group runs many profiles into one NetCDF file;", &
          & "under mpirun the profiles are shared among the ranks (docs/cluster.md).", &
+         & "A batch ends with a summary line: profiles computed, taken from the", &
+         & "journal of an earlier run, failed, and the output file.", &
          & "", &
-         & "Exit status: 0 on success, 1 on bad input or a failed run (one line on", &
-         & "stderr names the group, variable and value), 2 on bad usage, 3 when a", &
-         & "batch stopped early (--max-profiles) and can be resumed."
+         & "Exit status (every MPI rank exits with the same):", &
+         & "  0  success (a batch: every profile computed)", &
+         & "  1  error: bad input or a failed run; one line on stderr names the", &
+         & "     group, variable and value, or the file and line", &
+         & "  2  bad usage (options)", &
+         & "  3  a batch stopped early (--max-profiles); run it again to resume", &
+         & "  4  a batch finished but some profiles failed: the output is written,", &
+         & "     its status and error_message variables say which and why"
    end subroutine usage
 
 end program pavefric_main

@@ -5,25 +5,36 @@
 !> resumes where it stopped; the NetCDF file is built from the journal at the
 !> end, indexed by profile, so the result does not depend on the order the
 !> profiles finished in, on the number of MPI ranks, or on restarts.
+!>
+!> The journal is trusted line by line, never as a whole: its header holds
+!> the SHA-256 fingerprint of the scene text, the profile paths, depths and
+!> speeds; each line holds the SHA-256 of its profile file's bytes and a
+!> SHA-256 checksum of itself. On resume a line is taken only when its
+!> checksum, its values (finite, index in range, a valid status) and its
+!> profile's current content all agree; any other line is recomputed.
 module pavefric_batch
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-   use pavefric_kinds, only: wp, i8
-   use pavefric_error, only: error_type, fatal_error
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use pavefric_kinds, only: wp, i8, pavefric_version
+   use pavefric_error, only: error_type, fatal_error, stat_io
    use pavefric_format, only: to_str
+   use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
    use pavefric_run, only: load_scene_profile
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_texture, only: texture_type, texture_metrics
-   use pavefric_fsys, only: dir_name, base_name, join_path, remove_file, make_directory
-   use pavefric_fsys, only: output_guard_type, check_output_path   ! (files)
+   use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
+   use pavefric_fsys, only: output_guard_type, check_output_path
+   use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
-      & block_unpack, block_values
+      & block_unpack, block_values, block_allocate, status_computed, status_failed, printable_utf8
    implicit none
    private
 
-   public :: batch_type, block_type, string_type, batch_prepare, batch_compute, &
-      & journal_append, journal_close, block_pack, block_unpack, block_values, batch_output_path
+   public :: batch_type, block_type, string_type, batch_setup, batch_prepare, batch_compute, &
+      & journal_append, journal_close, block_pack, block_unpack, block_values, &
+      & batch_output_path, profile_cost, status_computed, status_failed
 
    interface
       function c_glob(pattern, out, outlen, count) bind(C, name="pavefric_glob") result(need)
@@ -34,7 +45,36 @@ module pavefric_batch
          integer(c_int), intent(out) :: count
          integer(c_int) :: need
       end function c_glob
+      function c_journal_open(path, create) bind(C, name="pavefric_journal_open") result(fd)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: create
+         integer(c_int) :: fd
+      end function c_journal_open
+      function c_journal_write(fd, buf, n) bind(C, name="pavefric_journal_write") result(err)
+         import :: c_int, c_char, c_long
+         integer(c_int), value :: fd
+         character(kind=c_char), intent(in) :: buf(*)
+         integer(c_long), value :: n
+         integer(c_int) :: err
+      end function c_journal_write
+      function c_journal_close(fd) bind(C, name="pavefric_journal_close") result(err)
+         import :: c_int
+         integer(c_int), value :: fd
+         integer(c_int) :: err
+      end function c_journal_close
+      !> strerror into `buf` (src/pavefric_ncmem.c); the length written.
+      function c_strerror(err, buf, n) bind(C, name="pavefric_strerror") result(written)
+         import :: c_int, c_char
+         integer(c_int), value :: err, n
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_int) :: written
+      end function c_strerror
    end interface
+
+   character(len=*), parameter :: journal_magic = "pavefric-journal"
+   !> Version of the journal's format (1: pavefric 0.1.0, no checksums).
+   character(len=*), parameter :: journal_version = "2"
 
 contains
 
@@ -55,17 +95,12 @@ contains
       end if
    end function batch_output_path
 
-   !> Read a batch scene, expand its profiles, and read the journal of an
-   !> earlier, interrupted run: `blocks(i)%status` > 0 for profiles done.
-   subroutine batch_prepare(path, output_override, batch, blocks, error, read_only)
+   !> Read a batch scene and expand its profiles: everything but the journal
+   !> (MPI ranks other than 0 stop here; rank 0 alone reads the journal).
+   subroutine batch_setup(path, output_override, batch, error)
       character(len=*), intent(in) :: path, output_override
       type(batch_type), intent(out) :: batch
-      type(block_type), allocatable, intent(out) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
-      !> Only read the journal, never (re)start it (MPI ranks > 0).
-      logical, intent(in), optional :: read_only
-      integer :: i
-      logical :: exists, ro
 
       call read_scene(path, batch%scene, error)
       if (allocated(error)) return
@@ -73,13 +108,12 @@ contains
          call fatal_error(error, "scene '" // path // "' has no &batch group")
          return
       end if
-      call expand_profiles(batch%scene, batch%paths, error)
+      call expand_profiles(batch%scene, batch%paths, batch%chainage, error)
       if (allocated(error)) return
       batch%n_profiles = size(batch%paths)
-      allocate(batch%names(batch%n_profiles))
-      do i = 1, batch%n_profiles
-         batch%names(i)%s = base_name(batch%paths(i)%s)
-      end do
+      batch%has_chainage = allocated(batch%chainage)
+      call profile_names(batch%scene, batch%paths, batch%names, error)
+      if (allocated(error)) return
       if (allocated(batch%scene%batch_depths)) then
          batch%depths = batch%scene%batch_depths
       else
@@ -91,18 +125,28 @@ contains
       batch%output = batch_output_path(batch%scene, output_override)
       batch%journal = batch%output // ".journal"
       call check_batch_outputs(path, output_override, batch, error); if (allocated(error)) return
-      batch%fingerprint = fingerprint(batch)
+      batch%fingerprint = batch_fingerprint(batch)
+   end subroutine batch_setup
 
+   !> Read a batch scene, expand its profiles, and read the journal of an
+   !> earlier, interrupted run (`blocks(i)%status` > 0 for profiles done), or
+   !> start a new journal.
+   subroutine batch_prepare(path, output_override, batch, blocks, error)
+      character(len=*), intent(in) :: path, output_override
+      type(batch_type), intent(out) :: batch
+      type(block_type), allocatable, intent(out) :: blocks(:)
+      type(error_type), allocatable, intent(out) :: error
+      integer :: i
+      logical :: exists
+
+      call batch_setup(path, output_override, batch, error)
+      if (allocated(error)) return
       allocate(blocks(batch%n_profiles))
       do i = 1, batch%n_profiles
          blocks(i)%index = i
       end do
-      ro = .false.
-      if (present(read_only)) ro = read_only
       inquire(file=batch%journal, exist=exists)
-      if (ro) then
-         if (exists) call journal_read(batch, blocks, error)
-      else if (exists .and. batch%scene%batch_restart) then
+      if (exists .and. batch%scene%batch_restart) then
          call journal_read(batch, blocks, error)
       else
          call journal_start(batch, error)
@@ -110,39 +154,79 @@ contains
    end subroutine batch_prepare
 
    !> The profiles of a batch: a pattern, a directory (all its files), or a
-   !> list file (one path a line, '#' comments, relative to the list).
-   subroutine expand_profiles(scene, paths, error)
+   !> list file. A list names one profile a line, relative to the list, with
+   !> an optional second column, the chainage in m (on every line or none);
+   !> '#' starts a comment; a path with blanks is quoted ('...' or "...").
+   !> Reading is linear in the list's length.
+   subroutine expand_profiles(scene, paths, chainage, error)
       type(scene_type), intent(in) :: scene
       type(string_type), allocatable, intent(out) :: paths(:)
+      real(wp), allocatable, intent(out) :: chainage(:)
       type(error_type), allocatable, intent(out) :: error
-      character(len=:), allocatable :: text, pattern, line
-      integer :: n, start, k, count, need, pos
-      logical :: is_dir
+      character(len=:), allocatable :: text, pattern, list, dir, entry
+      real(wp), allocatable :: chain(:)
+      integer, allocatable :: line_of(:)
+      integer :: n, start, last, k, count, need, line_no, n_chain, first_with, first_without
+      logical :: is_dir, has
+      real(wp) :: c
       if (len(scene%batch_profile_list) > 0) then
-         call read_text_file(scene%batch_profile_list, text, error)
+         list = scene%batch_profile_list
+         call read_text_file(list, text, error)
          if (allocated(error)) then
             error%message = "&batch profile_list: " // error%message
             return
          end if
-         allocate(paths(0))
+         ! at most one entry a line: size the arrays once
+         count = 1
+         do k = 1, len(text)
+            if (text(k:k) == achar(10)) count = count + 1
+         end do
+         allocate(paths(count), chain(count), line_of(count))
+         dir = dir_name(list)
+         n = 0
+         n_chain = 0
+         first_with = 0
+         first_without = 0
+         line_no = 0
          start = 1
          do while (start <= len(text))
             k = index(text(start:), achar(10))
             if (k == 0) then
-               line = text(start:)
-               start = len(text) + 1
+               last = len(text)
             else
-               line = text(start:start+k-2)
-               start = start + k
+               last = start + k - 2
             end if
-            pos = index(line, "#")
-            if (pos > 0) line = line(1:pos-1)
-            line = trim(adjustl(replace_newlines(line)))
-            if (len(line) == 0) cycle
-            paths = [paths, string_type(join_path(dir_name(scene%batch_profile_list), line))]
+            line_no = line_no + 1
+            call list_entry(text(start:last), entry, has, c, error)
+            start = last + 2
+            if (allocated(error)) then
+               error%message = list // ":" // to_str(line_no) // ": " // error%message
+               return
+            end if
+            if (len(entry) == 0) cycle
+            n = n + 1
+            paths(n)%s = join_path(dir, entry)
+            line_of(n) = line_no
+            chain(n) = c
+            if (has) then
+               n_chain = n_chain + 1
+               if (first_with == 0) first_with = line_no
+            else if (first_without == 0) then
+               first_without = line_no
+            end if
          end do
-         if (size(paths) == 0) call fatal_error(error, "&batch profile_list = '" // &
-            & scene%batch_profile_list // "': names no profile")
+         if (n == 0) then
+            call fatal_error(error, "&batch profile_list = '" // list // "': names no profile")
+            return
+         end if
+         if (n_chain > 0 .and. n_chain < n) then
+            call fatal_error(error, list // ":" // to_str(first_without) // ": no chainage, " // &
+               & "but line " // to_str(first_with) // " gives one: give a chainage (m) on " // &
+               & "every line or on none")
+            return
+         end if
+         paths = paths(1:n)
+         if (n_chain == n) chainage = chain(1:n)
          return
       end if
       pattern = scene%batch_profiles
@@ -174,139 +258,468 @@ contains
       end do
    end subroutine expand_profiles
 
+   !> One line of a profile list: the path (empty for a blank or comment
+   !> line) and the chainage when a second column gives one.
+   subroutine list_entry(line, path, has_chainage, chainage, error)
+      character(len=*), intent(in) :: line
+      character(len=:), allocatable, intent(out) :: path
+      logical, intent(out) :: has_chainage
+      real(wp), intent(out) :: chainage
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: blanks = " " // achar(9) // achar(13)
+      character(len=:), allocatable :: rest, token
+      integer :: p, q, stat
+      path = ""
+      has_chainage = .false.
+      chainage = 0
+      p = verify(line, blanks)
+      if (p == 0) return
+      if (line(p:p) == "#") return
+      if (line(p:p) == "'" .or. line(p:p) == '"') then
+         q = index(line(p+1:), line(p:p))
+         if (q == 0) then
+            call fatal_error(error, "the quoted path has no closing " // line(p:p))
+            return
+         end if
+         path = line(p+1:p+q-1)
+         rest = line(p+q+1:)
+      else
+         q = scan(line(p:), blanks // "#")
+         if (q == 0) then
+            path = line(p:)
+            rest = ""
+         else
+            path = line(p:p+q-2)
+            rest = line(p+q-1:)
+         end if
+      end if
+      if (len(path) == 0) then
+         call fatal_error(error, "an empty path")
+         return
+      end if
+      ! an optional chainage, then nothing but a comment
+      q = index(rest, "#")
+      if (q > 0) rest = rest(1:q-1)
+      p = verify(rest, blanks)
+      if (p == 0) return
+      q = scan(rest(p:), blanks)
+      if (q == 0) then
+         token = rest(p:)
+         rest = ""
+      else
+         token = rest(p:p+q-2)
+         rest = rest(p+q-1:)
+      end if
+      call parse_real(token, chainage, stat)
+      if (stat /= 0) then
+         call fatal_error(error, "chainage '" // token // "' is not a number")
+         return
+      end if
+      if (.not. ieee_is_finite(chainage)) then
+         call fatal_error(error, "chainage '" // token // "' must be finite")
+         return
+      end if
+      if (verify(rest, blanks) /= 0) then
+         call fatal_error(error, "'" // trim(adjustl(rest)) // "' after the chainage: a line " // &
+            & "holds a path and an optional chainage (m)")
+         return
+      end if
+      has_chainage = .true.
+   end subroutine list_entry
 
-   !> Adler-32 of the scene text, profile paths, depths and speeds, in hex:
-   !> a journal only resumes the batch it was written for.
-   function fingerprint(batch) result(hex)
-      type(batch_type), intent(in) :: batch
-      character(len=:), allocatable :: hex
-      integer(i8) :: a, b
-      integer :: i
-      character(len=16) :: buf
-      a = 1
-      b = 0
-      call add(batch%scene%text)
-      do i = 1, batch%n_profiles
-         call add(batch%paths(i)%s // achar(10))
+   !> Profile names: the file names without directory and extension, or,
+   !> when two files share a name, their paths below the common directory.
+   !> A profile given twice is an error (names index the output).
+   subroutine profile_names(scene, paths, names, error)
+      type(scene_type), intent(in) :: scene
+      type(string_type), intent(in) :: paths(:)
+      type(string_type), allocatable, intent(out) :: names(:)
+      type(error_type), allocatable, intent(out) :: error
+      integer :: i, j, n, common
+      character(len=:), allocatable :: where
+      n = size(paths)
+      allocate(names(n))
+      do i = 1, n
+         names(i)%s = base_name(paths(i)%s)
       end do
-      call add(to_str(batch%n_depths) // to_str(batch%n_speeds))
-      do i = 1, batch%n_depths
-         call add(to_str(batch%depths(i)))
-      end do
-      write(buf, '(z8.8)') b * 65536_i8 + a
-      hex = trim(buf)
-   contains
-      subroutine add(s)
-         character(len=*), intent(in) :: s
-         integer :: j
-         do j = 1, len(s)
-            a = mod(a + iachar(s(j:j)), 65521_i8)
-            b = mod(b + a, 65521_i8)
+      call first_duplicate(names, i, j)
+      if (i == 0) return
+      ! the longest directory prefix every path shares
+      common = 0
+      if (n > 0) common = index(paths(1)%s, "/", back=.true.)
+      do i = 2, n
+         do while (common > 0)
+            if (len(paths(i)%s) >= common) then
+               if (paths(i)%s(1:common) == paths(1)%s(1:common)) exit
+            end if
+            common = index(paths(1)%s(1:common-1), "/", back=.true.)
          end do
-      end subroutine add
-   end function fingerprint
+      end do
+      do i = 1, n
+         names(i)%s = strip_extension(paths(i)%s(common+1:))
+      end do
+      call first_duplicate(names, i, j)
+      if (i == 0) return
+      where = "&batch profiles = '" // scene%batch_profiles // "'"
+      if (len(scene%batch_profile_list) > 0) where = "&batch profile_list = '" // &
+         & scene%batch_profile_list // "'"
+      call fatal_error(error, where // ": profile '" // paths(i)%s // "' is given twice " // &
+         & "(entries " // to_str(min(i, j)) // " and " // to_str(max(i, j)) // ")")
+   end subroutine profile_names
+
+   pure function strip_extension(path) result(out)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: out
+      integer :: dot, slash
+      out = path
+      dot = index(path, ".", back=.true.)
+      slash = index(path, "/", back=.true.)
+      if (dot > slash + 1) out = path(1:dot-1)
+   end function strip_extension
+
+   !> Indices of two equal strings (i = 0 when all differ): a merge sort of
+   !> the indices, then neighbours compared; n log n for long lists.
+   subroutine first_duplicate(s, i, j)
+      type(string_type), intent(in) :: s(:)
+      integer, intent(out) :: i, j
+      integer, allocatable :: order(:), work(:)
+      integer :: k, n
+      n = size(s)
+      i = 0
+      j = 0
+      allocate(order(n), work(n))
+      order = [(k, k = 1, n)]
+      call sort(1, n)
+      do k = 1, n - 1
+         if (s(order(k))%s == s(order(k+1))%s .and. &
+               & len(s(order(k))%s) == len(s(order(k+1))%s)) then
+            i = order(k)
+            j = order(k+1)
+            return
+         end if
+      end do
+   contains
+      recursive subroutine sort(lo, hi)
+         integer, intent(in) :: lo, hi
+         integer :: mid, a, b, k
+         if (hi <= lo) return
+         mid = (lo + hi) / 2
+         call sort(lo, mid)
+         call sort(mid + 1, hi)
+         a = lo
+         b = mid + 1
+         do k = lo, hi
+            if (b > hi) then
+               work(k) = order(a); a = a + 1
+            else if (a > mid) then
+               work(k) = order(b); b = b + 1
+            else if (.not. llt(s(order(b))%s, s(order(a))%s)) then
+               work(k) = order(a); a = a + 1
+            else
+               work(k) = order(b); b = b + 1
+            end if
+         end do
+         order(lo:hi) = work(lo:hi)
+      end subroutine sort
+   end subroutine first_duplicate
+
+   !> SHA-256 of what a journal must agree with besides the profiles'
+   !> contents: the version, the scene text, the profile paths and chainages,
+   !> the depths and speeds (as exact bit patterns). Built in one buffer of
+   !> known length, so linear in the number of profiles.
+   function batch_fingerprint(batch) result(hex)
+      type(batch_type), intent(in) :: batch
+      character(len=digest_len) :: hex
+      character(len=:), allocatable :: buf
+      integer :: i, n, pos
+      n = len(pavefric_version) + len(batch%scene%text) + 64 + 17 * (batch%n_profiles + &
+         & batch%n_depths + batch%n_speeds)
+      do i = 1, batch%n_profiles
+         n = n + len(batch%paths(i)%s) + 1
+      end do
+      allocate(character(len=n) :: buf)
+      pos = 0
+      call put("pavefric " // pavefric_version // achar(10))
+      call put(batch%scene%text // achar(0))
+      call put(to_str(batch%n_profiles) // " " // to_str(batch%n_depths) // " " // &
+         & to_str(batch%n_speeds) // achar(10))
+      do i = 1, batch%n_profiles
+         call put(batch%paths(i)%s // achar(0))
+      end do
+      if (batch%has_chainage) then
+         do i = 1, batch%n_profiles
+            call put(bits(batch%chainage(i)))
+         end do
+      end if
+      do i = 1, batch%n_depths
+         call put(bits(batch%depths(i)))
+      end do
+      do i = 1, batch%n_speeds
+         call put(bits(batch%speeds(i)))
+      end do
+      hex = sha256_hex(buf(1:pos))
+   contains
+      subroutine put(s)
+         character(len=*), intent(in) :: s
+         buf(pos+1:pos+len(s)) = s
+         pos = pos + len(s)
+      end subroutine put
+      function bits(x) result(s)
+         real(wp), intent(in) :: x
+         character(len=17) :: s
+         write(s, '(z16.16, a)') transfer(x, 0_i8), " "
+      end function bits
+   end function batch_fingerprint
+
+   !> The journal's first line.
+   function journal_header(batch) result(line)
+      type(batch_type), intent(in) :: batch
+      character(len=:), allocatable :: line
+      line = journal_magic // " " // journal_version // " " // batch%fingerprint // " " // &
+         & to_str(batch%n_profiles) // " " // to_str(batch%n_depths) // " " // &
+         & to_str(batch%n_speeds)
+   end function journal_header
 
    !> A new journal (replacing any old one).
    subroutine journal_start(batch, error)
-      type(batch_type), intent(in) :: batch
+      type(batch_type), intent(inout) :: batch
       type(error_type), allocatable, intent(out) :: error
-      integer :: unit, ios
-      character(len=512) :: msg
-      open(newunit=unit, file=batch%journal, status="replace", action="write", iostat=ios, &
-         & iomsg=msg)
-      if (ios /= 0) then
+      integer(c_int) :: fd, err
+      fd = c_journal_open(batch%journal // c_null_char, 1_c_int)
+      if (fd < 0) then
          call fatal_error(error, "&output file = '" // batch%output // "': cannot write the " // &
-            & "journal '" // batch%journal // "' (" // trim(msg) // ")")
+            & "journal '" // batch%journal // "' (" // os_message(-fd) // ")", stat_io)
          return
       end if
-      write(unit, '(a)') "pavefric-journal 1 " // batch%fingerprint // " " // &
-         & to_str(batch%n_profiles) // " " // to_str(batch%n_depths) // " " // &
-         & to_str(batch%n_speeds)
-      close(unit)
+      err = c_journal_write(fd, journal_header(batch) // achar(10), &
+         & int(len(journal_header(batch)) + 1, c_long))
+      if (err == 0) then
+         err = c_journal_close(fd)
+      else
+         fd = c_journal_close(fd)
+      end if
+      if (err /= 0) call journal_error(batch, os_message(err), error)
+      batch%journal_cut = .false.
    end subroutine journal_start
 
-   !> Profiles recorded in the journal. A line cut short by a kill is ignored.
-   subroutine journal_read(batch, blocks, error)
+   !> The C library's text for an errno value.
+   function os_message(err) result(text)
+      integer(c_int), intent(in) :: err
+      character(len=:), allocatable :: text
+      character(len=256) :: buf
+      integer(c_int) :: n
+      buf = ""
+      n = c_strerror(err, buf, int(len(buf), c_int))
+      text = buf(1:n)
+   end function os_message
+
+   subroutine journal_error(batch, msg, error)
       type(batch_type), intent(in) :: batch
+      character(len=*), intent(in) :: msg
+      type(error_type), allocatable, intent(out) :: error
+      call fatal_error(error, "&output file = '" // batch%output // "': writing the journal '" // &
+         & batch%journal // "' failed (" // trim(msg) // "); the batch stops (the profiles " // &
+         & "recorded so far are kept: run it again to resume once the disk has room)", stat_io)
+   end subroutine journal_error
+
+   !> Profiles recorded in the journal, each line checked (see the module's
+   !> comment); a line that fails a check is counted and recomputed.
+   subroutine journal_read(batch, blocks, error)
+      type(batch_type), intent(inout) :: batch
       type(block_type), intent(inout) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
-      character(len=:), allocatable :: text, line, header, message
-      real(wp), allocatable :: values(:)
-      integer :: start, k, ios, i, nv
+      character(len=:), allocatable :: text, header
+      character(len=digest_len), allocatable :: current(:)
+      logical, allocatable :: hashed(:), changed(:)
+      type(block_type) :: blk
+      integer :: start, k, i, last
+      logical :: ok
       call read_text_file(batch%journal, text, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         error%stat = stat_io
+         return
+      end if
       k = index(text, achar(10))
-      if (k == 0) then
+      if (k == 0) then                    ! empty, or a header cut short: start again
          call journal_start(batch, error)
          return
       end if
       header = text(1:k-1)
-      if (header /= "pavefric-journal 1 " // batch%fingerprint // " " // &
-            & to_str(batch%n_profiles) // " " // to_str(batch%n_depths) // " " // &
-            & to_str(batch%n_speeds)) then
-         call fatal_error(error, "&batch restart: the journal '" // batch%journal // &
-            & "' belongs to another batch (its inputs changed); delete it, or set " // &
-            & "&batch restart = .false. to start again")
+      if (header /= journal_header(batch)) then
+         if (index(header, journal_magic // " ") == 1 .and. &
+               & index(header, journal_magic // " " // journal_version // " ") /= 1) then
+            call fatal_error(error, "&batch restart: the journal '" // batch%journal // &
+               & "' was written by another version of pavefric; delete it, or set " // &
+               & "&batch restart = .false. to start again")
+         else
+            call fatal_error(error, "&batch restart: the journal '" // batch%journal // &
+               & "' belongs to another batch (its inputs changed); delete it, or set " // &
+               & "&batch restart = .false. to start again")
+         end if
          return
       end if
-      nv = block_values(batch)
-      allocate(values(nv))
-      message = ""
+      allocate(current(size(blocks)), hashed(size(blocks)), changed(size(blocks)))
+      hashed = .false.
+      changed = .false.
       start = k + 1
       do while (start <= len(text))
          k = index(text(start:), achar(10))
-         if (k == 0) exit                       ! no newline: cut short, ignore
-         line = text(start:start+k-2)
-         start = start + k
-         if (len(line) < 3) cycle
-         if (line(1:2) == "E ") then
-            message = line(index(line(3:), " ") + 3:)
-         else if (line(1:2) == "P ") then
-            read(line(3:), *, iostat=ios) values
-            if (ios /= 0) cycle
-            i = nint(values(1))
-            if (i < 1 .or. i > size(blocks)) cycle
-            call block_unpack(batch, values, blocks(i))
-            if (blocks(i)%status == 2) blocks(i)%message = message
-            message = ""
+         if (k == 0) then                 ! no newline: cut short by a kill
+            batch%journal_cut = .true.
+            exit
          end if
+         last = start + k - 2
+         if (last >= start) then
+            call parse_line(batch, text(start:last), blk, ok)
+            if (.not. ok) then
+               batch%journal_damaged = batch%journal_damaged + 1
+            else
+               i = blk%index
+               if (.not. hashed(i)) then
+                  call sha256_file(batch%paths(i)%s, current(i))
+                  hashed(i) = .true.
+               end if
+               if (blk%digest /= current(i)) then
+                  changed(i) = .true.
+               else
+                  call move_alloc_block(blk, blocks(i))
+                  changed(i) = .false.
+               end if
+            end if
+         end if
+         start = last + 2
       end do
+      batch%journal_taken = count([(blocks(i)%status /= 0, i = 1, size(blocks))])
+      batch%journal_changed = count(changed .and. [(blocks(i)%status == 0, i = 1, size(blocks))])
    end subroutine journal_read
 
-   !> Append a finished profile to the journal: one line, flushed at once, so
-   !> a kill loses at most the line being written (ignored on restart).
+   subroutine move_alloc_block(from, to)
+      type(block_type), intent(inout) :: from
+      type(block_type), intent(inout) :: to
+      to%index = from%index
+      to%status = from%status
+      to%digest = from%digest
+      to%has_texture = from%has_texture
+      to%mpd = from%mpd
+      to%rms_height = from%rms_height
+      to%rms_slope = from%rms_slope
+      to%points_read = from%points_read
+      to%trimmed_start = from%trimmed_start
+      to%trimmed_end = from%trimmed_end
+      to%dropouts = from%dropouts
+      to%spikes = from%spikes
+      to%points_used = from%points_used
+      to%resampled = from%resampled
+      to%filtered = from%filtered
+      to%dx_in = from%dx_in
+      to%dx = from%dx
+      to%viscous = from%viscous
+      to%bearing = from%bearing
+      call move_alloc(from%mu, to%mu)
+      call move_alloc(from%wet, to%wet)
+      call move_alloc(from%hydroplaning, to%hydroplaning)
+      call move_alloc(from%residual, to%residual)
+      call move_alloc(from%n_clamped, to%n_clamped)
+      call move_alloc(from%message, to%message)
+   end subroutine move_alloc_block
+
+   !> One journal line: `P <checksum> <digest> <values...> ;<message>`, the
+   !> checksum the SHA-256 of everything after it.
+   function journal_line(batch, blk) result(line)
+      type(batch_type), intent(in) :: batch
+      type(block_type), intent(in) :: blk
+      character(len=:), allocatable :: line, body, message
+      real(wp), allocatable :: values(:)
+      integer, parameter :: w = 26
+      integer :: k, nv
+      nv = block_values(batch)
+      allocate(values(nv))
+      call block_pack(batch, blk, values)
+      message = ""
+      if (allocated(blk%message)) message = replace_newlines(blk%message)
+      allocate(character(len=digest_len + w * nv + 2 + len(message)) :: body)
+      body(1:digest_len) = blk%digest
+      do k = 1, nv
+         write(body(digest_len+(k-1)*w+1:digest_len+k*w), '(1x, es25.17e3)') values(k)
+      end do
+      body(digest_len+nv*w+1:) = " ;" // message
+      line = "P " // sha256_hex(body) // " " // body
+   end function journal_line
+
+   !> Parse and check one journal line; `ok` false when any check fails.
+   subroutine parse_line(batch, line, blk, ok)
+      type(batch_type), intent(in) :: batch
+      character(len=*), intent(in) :: line
+      type(block_type), intent(out) :: blk
+      logical, intent(out) :: ok
+      integer, parameter :: b0 = 2 + digest_len + 2   ! where the body starts
+      real(wp), allocatable :: values(:)
+      integer :: nv, k, pos, e, stat
+      ok = .false.
+      if (len(line) < b0 + digest_len + 1) return
+      if (line(1:2) /= "P " .or. line(b0-1:b0-1) /= " ") return
+      if (sha256_hex(line(b0:)) /= line(3:2+digest_len)) return
+      blk%digest = line(b0:b0+digest_len-1)
+      if (blk%digest /= no_digest .and. verify(blk%digest, "0123456789abcdef") /= 0) return
+      nv = block_values(batch)
+      allocate(values(nv))
+      pos = b0 + digest_len
+      do k = 1, nv
+         e = verify(line(pos:), " ")
+         if (e == 0) return
+         pos = pos + e - 1
+         e = index(line(pos:), " ")
+         if (e <= 1) return
+         call parse_real(line(pos:pos+e-2), values(k), stat)
+         if (stat /= 0) return
+         if (.not. ieee_is_finite(values(k))) return
+         pos = pos + e - 1
+      end do
+      if (len(line) < pos + 1) return
+      if (line(pos:pos+1) /= " ;") return
+      call block_allocate(batch, blk)
+      call block_unpack(batch, values, blk, ok)
+      if (.not. ok) return
+      blk%message = line(pos+2:)
+   end subroutine parse_line
+
+   !> Append a finished profile to the journal: one line in one checked
+   !> write(2), so a kill loses at most the line being written (recomputed on
+   !> restart) and a full disk stops the batch.
    subroutine journal_append(batch, blk, error)
       type(batch_type), intent(inout) :: batch
       type(block_type), intent(in) :: blk
       type(error_type), allocatable, intent(out) :: error
-      real(wp), allocatable :: values(:)
-      integer :: unit, ios
-      character(len=512) :: msg
-      allocate(values(block_values(batch)))
-      call block_pack(batch, blk, values)
+      character(len=:), allocatable :: line
+      integer(c_int) :: fd, err
       if (.not. batch%journal_open) then
-         open(newunit=unit, file=batch%journal, status="old", position="append", &
-            & action="write", iostat=ios, iomsg=msg)
-         if (ios /= 0) then
-            call fatal_error(error, "cannot append to the journal '" // batch%journal // &
-               & "' (" // trim(msg) // ")")
+         fd = c_journal_open(batch%journal // c_null_char, 0_c_int)
+         if (fd < 0) then
+            call journal_error(batch, os_message(-fd), error)
             return
          end if
-         batch%journal_unit = unit
+         batch%journal_unit = fd
          batch%journal_open = .true.
       end if
-      unit = batch%journal_unit
-      if (blk%status == 2) write(unit, '(a)') "E " // to_str(blk%index) // " " // &
-         & replace_newlines(blk%message)
-      write(unit, '(a, *(1x, es25.17e3))') "P", values
-      flush(unit)
+      line = journal_line(batch, blk) // achar(10)
+      if (batch%journal_cut) line = achar(10) // line   ! end the line a kill cut short
+      err = c_journal_write(int(batch%journal_unit, c_int), line, int(len(line), c_long))
+      if (err /= 0) then
+         call journal_error(batch, os_message(err), error)
+         return
+      end if
+      batch%journal_cut = .false.
    end subroutine journal_append
 
    !> Close the journal if it is open.
-   subroutine journal_close(batch)
+   subroutine journal_close(batch, error)
       type(batch_type), intent(inout) :: batch
-      if (batch%journal_open) close(batch%journal_unit)
+      type(error_type), allocatable, intent(out), optional :: error
+      integer(c_int) :: err
+      err = 0
+      if (batch%journal_open) err = c_journal_close(int(batch%journal_unit, c_int))
       batch%journal_open = .false.
+      if (err /= 0 .and. present(error)) call journal_error(batch, os_message(err), error)
    end subroutine journal_close
 
    !> Line breaks (LF, CR) as blanks.
@@ -320,8 +733,21 @@ contains
       end do
    end function replace_newlines
 
+   !> An estimate of profile i's cost for scheduling: its file's size in
+   !> bytes (0 when unknown).
+   function profile_cost(batch, i) result(cost)
+      type(batch_type), intent(in) :: batch
+      integer, intent(in) :: i
+      integer(i8) :: cost
+      integer :: ios
+      cost = 0
+      inquire(file=batch%paths(i)%s, size=cost, iostat=ios)
+      if (ios /= 0 .or. cost < 0) cost = 0
+   end function profile_cost
+
    !> Compute profile i at every depth and speed. Never fails: a profile that
-   !> cannot be read or run is returned with status 2 and the reason.
+   !> cannot be read or run, or whose result is not finite, is returned with
+   !> status_failed and the reason.
    subroutine batch_compute(batch, i, blk)
       type(batch_type), intent(in) :: batch
       integer, intent(in) :: i
@@ -331,18 +757,26 @@ contains
       type(sim_result_type) :: res
       type(texture_type) :: tex
       type(error_type), allocatable :: error, texture_error
-      integer :: d
+      integer :: d, s
       blk%index = i
       blk%message = ""
-      allocate(blk%mu(batch%n_speeds, batch%n_depths), blk%wet(batch%n_speeds, batch%n_depths), &
-         & blk%hydroplaning(batch%n_speeds, batch%n_depths), &
-         & blk%residual(batch%n_speeds, batch%n_depths), &
-         & blk%n_clamped(batch%n_speeds, batch%n_depths))
-      blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
+      call block_allocate(batch, blk)
+      ! the digest first: an edit after it is found on resume
+      call sha256_file(batch%paths(i)%s, blk%digest)
       scene = batch%scene
       scene%profile_file = batch%paths(i)%s
       call load_scene_profile(scene, clean, error)
       if (.not. allocated(error)) then
+         blk%points_read = clean%report%points_read
+         blk%trimmed_start = clean%report%trimmed_start
+         blk%trimmed_end = clean%report%trimmed_end
+         blk%dropouts = clean%report%dropouts
+         blk%spikes = clean%report%spikes
+         blk%points_used = clean%report%points_out
+         blk%resampled = clean%report%resampled
+         blk%filtered = clean%report%filtered
+         blk%dx_in = clean%report%dx_in
+         blk%dx = clean%dx
          do d = 1, batch%n_depths
             scene%model%depth = batch%depths(d)
             call simulate(scene%model, clean%z, clean%dx, scene%closed, batch%speeds, .false., &
@@ -355,18 +789,33 @@ contains
             blk%n_clamped(:, d) = real(res%n_clamped, wp)
             blk%viscous = blk%viscous .or. any(res%viscous_memory_ran)
             blk%bearing = blk%bearing .or. any(res%bearing_ran)
+            do s = 1, batch%n_speeds
+               if (.not. (ieee_is_finite(res%mu(s)) .and. ieee_is_finite(res%wet_fraction(s)) &
+                     & .and. ieee_is_finite(res%hydroplaning_fraction(s)) .and. &
+                     & ieee_is_finite(res%max_balance_residual(s)))) then
+                  call fatal_error(error, "'" // batch%paths(i)%s // "': the result is not " // &
+                     & "finite (mu = " // to_str(res%mu(s)) // ") at water depth " // &
+                     & to_str(batch%depths(d)) // " m and " // to_str(batch%speeds(s)) // " km/h")
+                  exit
+               end if
+            end do
+            if (allocated(error)) exit
          end do
       end if
       if (allocated(error)) then
-         blk%status = 2
-         blk%message = error%message
+         blk%status = status_failed
+         blk%message = printable_utf8(error%message)
          blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
+         blk%viscous = .false.
+         blk%bearing = .false.
          return
       end if
-      blk%status = 1
+      blk%status = status_computed
       call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., tex, texture_error, &
          & dropout_fraction=clean%dropout_fraction, spike=clean%spike)
       blk%has_texture = .not. allocated(texture_error)
+      if (blk%has_texture) blk%has_texture = ieee_is_finite(tex%mpd) .and. &
+         & ieee_is_finite(tex%rms_height) .and. ieee_is_finite(tex%rms_slope)
       if (blk%has_texture) then
          blk%mpd = tex%mpd
          blk%rms_height = tex%rms_height

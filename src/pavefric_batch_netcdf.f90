@@ -1,10 +1,11 @@
-!> NetCDF-4 output of a batch run (profile x depth x speed), through the
+!> NetCDF-4 output of a batch run (profile x water_depth x speed_kmh), through the
 !> checked writer of pavefric_netcdf: temp file and rename, first error kept.
 module pavefric_batch_netcdf
    use netcdf
-   use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_memory
-   use pavefric_batch_types, only: batch_type, block_type
+   use pavefric_kinds, only: wp, i8, pavefric_version, kmh_to_ms
+   use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
+   use pavefric_batch_types, only: batch_type, block_type, status_computed, status_failed, &
+      & printable_utf8
    use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary
    implicit none
    private
@@ -13,7 +14,7 @@ module pavefric_batch_netcdf
 
 contains
 
-   !> Write a batch's results (profile x depth x speed) to `path`, via a
+   !> Write a batch's results (profile x water_depth x speed_kmh) to `path`, via a
    !> temporary file and a rename. `history` goes into the history attribute.
    subroutine write_batch_results(path, batch, blocks, history, error)
       character(len=*), intent(in) :: path, history
@@ -26,20 +27,30 @@ contains
       call commit_temporary(tmp, path, error)
    end subroutine write_batch_results
 
+   !> The file: dimensions profile x water_depth x speed_kmh, each with a
+   !> coordinate variable (`profile` holds the names, so `ds.sel(profile=
+   !> "seg_0001", speed_kmh=60)` works on the file as xarray opens it);
+   !> `speed` (m/s) and `chainage` (when the list gives it) are auxiliary
+   !> coordinates. No `depth` dimension: CF reads a dimension of that name as
+   !> the vertical axis, which a water film's thickness is not.
    subroutine write_batch_file(path, batch, blocks, history, error)
       character(len=*), intent(in) :: path, history
       type(batch_type), intent(in) :: batch
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      integer :: stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i
+      integer :: stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i, k
       integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
-      integer :: v_rs, v_status, v_err, ids(10)
+      integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
+      integer, allocatable :: counts(:)
+      logical, allocatable :: ok(:)
       character(len=:), allocatable :: names(:), msgs(:)
-      character(len=:), allocatable :: effects
+      character(len=:), allocatable :: effects, profile_coords, result_coords
       integer(i8), allocatable :: c(:,:,:)
       real(wp), parameter :: fill = nf90_fill_double
+      integer, parameter :: ifill = nf90_fill_int
+      integer(1), parameter :: bfill = nf90_fill_byte
 
       np = size(blocks)
       nd = batch%n_depths
@@ -58,27 +69,41 @@ contains
          return
       end if
       do i = 1, np
-         names(i) = batch%names(i)%s
-         msgs(i) = ""
-         if (allocated(blocks(i)%message)) msgs(i) = blocks(i)%message
+         ! NUL-padded, as netCDF readers expect of character arrays
+         names(i) = repeat(achar(0), lname)
+         names(i)(1:len(batch%names(i)%s)) = printable_utf8(batch%names(i)%s)
+         msgs(i) = repeat(achar(0), lmsg)
+         if (allocated(blocks(i)%message)) msgs(i)(1:len(blocks(i)%message)) = &
+            & printable_utf8(blocks(i)%message)
       end do
+      ! profiles read (their preprocessing record is known), and computed
+      ok = [(blocks(i)%status == status_computed, i = 1, np)]
       effects = "elastic_contact,facet_friction"
       if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
       if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
+      profile_coords = ""
+      if (batch%has_chainage) profile_coords = "chainage"
+      result_coords = trim("speed " // profile_coords)
 
       call w%create(path)
       if (allocated(w%error)) goto 99
       call w%check(nf90_def_dim(w%ncid, "profile", np, d_p), "dimension profile")
-      call w%check(nf90_def_dim(w%ncid, "depth", nd, d_d), "dimension depth")
-      call w%check(nf90_def_dim(w%ncid, "speed", ns, d_s), "dimension speed")
+      call w%check(nf90_def_dim(w%ncid, "water_depth", nd, d_d), "dimension water_depth")
+      call w%check(nf90_def_dim(w%ncid, "speed_kmh", ns, d_s), "dimension speed_kmh")
       call w%check(nf90_def_dim(w%ncid, "name_strlen", lname, d_name), "dimension name_strlen")
       call w%check(nf90_def_dim(w%ncid, "message_strlen", lmsg, d_msg), "dimension message_strlen")
-      call w%def("profile_name", nf90_char, [d_name, d_p], "", "profile file name, without " // &
-         & "directory and extension", v_name)
+      call w%def("profile", nf90_char, [d_name, d_p], "", "profile name: the file name " // &
+         & "without directory and extension (the path below the profiles' common " // &
+         & "directory when two files share a name)", v_name)
       call w%check(nf90_put_att(w%ncid, v_name, "_Encoding", "utf-8"), "encoding")
-      call w%def("depth", nf90_double, [d_d], "m", "water depth (inlet film of the bearing)", v_depth)
-      call w%def("speed", nf90_double, [d_s], "m s-1", "sliding speed of the pad", v_speed)
+      call w%def("water_depth", nf90_double, [d_d], "m", "depth of the water film on " // &
+         & "the road surface (the bearing's inlet film; 0: dry)", v_depth)
       call w%def("speed_kmh", nf90_double, [d_s], "km h-1", "sliding speed of the pad", v_kmh)
+      call w%def("speed", nf90_double, [d_s], "m s-1", "sliding speed of the pad", v_speed)
+      if (batch%has_chainage) then
+         call w%def("chainage", nf90_double, [d_p], "m", "distance along the road of the " // &
+            & "profile (chainage, from the profile list)", v_chain)
+      end if
       call w%def("mu", nf90_double, [d_s, d_d, d_p], "1", &
          & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
       call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
@@ -98,49 +123,93 @@ contains
       call w%check(nf90_put_att(w%ncid, v_status, "flag_meanings", "computed failed"), "flags")
       call w%def("error_message", nf90_char, [d_msg, d_p], "", "why a profile failed", v_err)
       call w%check(nf90_put_att(w%ncid, v_err, "_Encoding", "utf-8"), "encoding")
-      do i = 1, 7
-         call fillatt([v_mu, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], i)
+      ! the preprocessing record of each profile (as a scene file's preprocess_* attributes)
+      call w%def("preprocess_points_read", nf90_int, [d_p], "1", "points read from the " // &
+         & "profile file", v_pre(1))
+      call w%def("preprocess_trimmed_start", nf90_int, [d_p], "1", "points trimmed at the " // &
+         & "start (reference plate)", v_pre(2))
+      call w%def("preprocess_trimmed_end", nf90_int, [d_p], "1", "points trimmed at the " // &
+         & "end (reference plate)", v_pre(3))
+      call w%def("preprocess_dropouts", nf90_int, [d_p], "1", "dropouts interpolated", v_pre(4))
+      call w%def("preprocess_spikes", nf90_int, [d_p], "1", "spike points replaced", v_pre(5))
+      call w%def("preprocess_points_out", nf90_int, [d_p], "1", "points of the profile " // &
+         & "the model ran on", v_pre(6))
+      call w%def("preprocess_resampled", nf90_byte, [d_p], "", "whether the profile was " // &
+         & "resampled", v_pre(7))
+      call w%def("preprocess_filtered", nf90_byte, [d_p], "", "whether the profile was " // &
+         & "low-pass filtered", v_pre(8))
+      call w%def("preprocess_dx_in", nf90_double, [d_p], "m", "spacing of the profile as " // &
+         & "read", v_pre(9))
+      call w%def("profile_dx", nf90_double, [d_p], "m", "spacing of the profile the model ran on", &
+         & v_pre(10))
+      do k = 7, 8
+         call w%check(nf90_put_att(w%ncid, v_pre(k), "flag_values", [0_1, 1_1]), "flags")
+         call w%check(nf90_put_att(w%ncid, v_pre(k), "flag_meanings", "no yes"), "flags")
       end do
-      ! the profile names label every per-profile variable (CF auxiliary coordinate)
-      ids = [v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh, v_rs, v_status, v_err]
-      do i = 1, size(ids)
-         call w%check(nf90_put_att(w%ncid, ids(i), "coordinates", "profile_name"), "coordinates")
+      if (allocated(w%error)) goto 99
+      do k = 1, 10
+         select case (k)
+         case (1:6)
+            call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, ifill), "fill value")
+         case (7:8)
+            call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, bfill), "fill value")
+         case default
+            call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, fill), "fill value")
+         end select
+         if (len(profile_coords) > 0) call w%check(nf90_put_att(w%ncid, v_pre(k), &
+            & "coordinates", profile_coords), "coordinates")
       end do
+      do k = 1, 7
+         call fillatt([v_mu, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
+      end do
+      do k = 1, 5
+         call coordatt([v_mu, v_wet, v_hyd, v_res, v_ncl], k, result_coords)
+      end do
+      if (len(profile_coords) > 0) then
+         do k = 1, 5
+            call coordatt([v_mpd, v_rh, v_rs, v_status, v_err], k, profile_coords)
+         end do
+      end if
       call w%gatt("Conventions", "CF-1.10")
       call w%gatt("title", "pavefric batch " // batch%scene%name)
       call w%gatt("source", "pavefric " // pavefric_version)
       call w%gatt("pavefric_version", pavefric_version)
+      call w%gatt("references", "Kane, Do, Cerezo, Rado & Khelifi (2017), Contribution to " // &
+         & "pavement friction modelling: an introduction of the wetting effect, " // &
+         & "Int. J. Pavement Eng., doi:10.1080/10298436.2017.1369776")
       call w%gatt("history", history)
       call w%gatt("effects", effects)
       call w%gatt("input_namelist", batch%scene%text)
-      call w%check(nf90_put_att(w%ncid, nf90_global, "profiles_failed", count([(blocks(i)%status &
-         & == 2, i = 1, np)])), "att")
+      call w%gatt("profiles_computed", count(ok))
+      call w%gatt("profiles_failed", count([(blocks(i)%status == status_failed, i = 1, np)]))
       if (allocated(w%error)) goto 99
       call w%check(nf90_enddef(w%ncid), "end of definitions")
       if (allocated(w%error)) goto 99
 
-      call w%check(nf90_put_var(w%ncid, v_name, names), "profile_name")
-      call w%check(nf90_put_var(w%ncid, v_depth, batch%depths), "depth")
-      call w%check(nf90_put_var(w%ncid, v_speed, batch%speeds / 3.6_wp), "speed")
+      call w%check(nf90_put_var(w%ncid, v_name, names), "profile")
+      call w%check(nf90_put_var(w%ncid, v_depth, batch%depths), "water_depth")
       call w%check(nf90_put_var(w%ncid, v_kmh, batch%speeds), "speed_kmh")
-      allocate(a(ns, nd, np), c(ns, nd, np), t(np), stat=stat)
+      call w%check(nf90_put_var(w%ncid, v_speed, batch%speeds * kmh_to_ms), "speed")
+      if (batch%has_chainage) call w%check(nf90_put_var(w%ncid, v_chain, batch%chainage), &
+         & "chainage")
+      allocate(a(ns, nd, np), c(ns, nd, np), t(np), counts(np), stat=stat)
       if (stat /= 0) call fatal_error(w%error, "&output file: not enough memory to write '" // &
-         & path // "'", stat_memory)                       ! (files) stat_memory
+         & path // "'", stat_memory)
       if (allocated(w%error)) goto 99
       do i = 1, np
-         a(:, :, i) = merge(blocks(i)%mu, fill, blocks(i)%status == 1)
+         a(:, :, i) = merge(blocks(i)%mu, fill, ok(i))
       end do
       call w%check(nf90_put_var(w%ncid, v_mu, a), "mu")
       do i = 1, np
-         a(:, :, i) = merge(blocks(i)%wet, fill, blocks(i)%status == 1)
+         a(:, :, i) = merge(blocks(i)%wet, fill, ok(i))
       end do
       call w%check(nf90_put_var(w%ncid, v_wet, a), "wet_fraction")
       do i = 1, np
-         a(:, :, i) = merge(blocks(i)%hydroplaning, fill, blocks(i)%status == 1)
+         a(:, :, i) = merge(blocks(i)%hydroplaning, fill, ok(i))
       end do
       call w%check(nf90_put_var(w%ncid, v_hyd, a), "hydroplaning_fraction")
       do i = 1, np
-         a(:, :, i) = merge(blocks(i)%residual, fill, blocks(i)%status == 1)
+         a(:, :, i) = merge(blocks(i)%residual, fill, ok(i))
          c(:, :, i) = nint(blocks(i)%n_clamped, i8)
       end do
       call w%check(nf90_put_var(w%ncid, v_res, a), "max_balance_residual")
@@ -153,6 +222,27 @@ contains
       call w%check(nf90_put_var(w%ncid, v_rs, t), "rms_slope")
       call w%check(nf90_put_var(w%ncid, v_status, [(blocks(i)%status, i = 1, np)]), "status")
       call w%check(nf90_put_var(w%ncid, v_err, msgs), "error_message")
+      ! the preprocessing record of the profiles that were read and run
+      counts = [(merge(blocks(i)%points_read, ifill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(1), counts), "preprocess_points_read")
+      counts = [(merge(blocks(i)%trimmed_start, ifill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(2), counts), "preprocess_trimmed_start")
+      counts = [(merge(blocks(i)%trimmed_end, ifill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(3), counts), "preprocess_trimmed_end")
+      counts = [(merge(blocks(i)%dropouts, ifill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(4), counts), "preprocess_dropouts")
+      counts = [(merge(blocks(i)%spikes, ifill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(5), counts), "preprocess_spikes")
+      counts = [(merge(blocks(i)%points_used, ifill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(6), counts), "preprocess_points_out")
+      counts = [(merge(merge(1, 0, blocks(i)%resampled), int(bfill), ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(7), counts), "preprocess_resampled")
+      counts = [(merge(merge(1, 0, blocks(i)%filtered), int(bfill), ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(8), counts), "preprocess_filtered")
+      t = [(merge(blocks(i)%dx_in, fill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(9), t), "preprocess_dx_in")
+      t = [(merge(blocks(i)%dx, fill, ok(i)), i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_pre(10), t), "profile_dx")
 99    continue
       call w%close(error)
    contains
@@ -160,6 +250,11 @@ contains
          integer, intent(in) :: ids(:), k
          call w%check(nf90_def_var_fill(w%ncid, ids(k), 0, fill), "fill value")
       end subroutine fillatt
+      subroutine coordatt(ids, k, text)
+         integer, intent(in) :: ids(:), k
+         character(len=*), intent(in) :: text
+         call w%check(nf90_put_att(w%ncid, ids(k), "coordinates", text), "coordinates")
+      end subroutine coordatt
    end subroutine write_batch_file
 
 end module pavefric_batch_netcdf

@@ -3,10 +3,18 @@
 module pavefric_batch_types
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type
+   use pavefric_batch_hash, only: digest_len, no_digest
    implicit none
    private
 
    public :: batch_type, block_type, string_type, block_pack, block_unpack, block_values
+   public :: block_allocate, n_head, status_computed, status_failed, printable_utf8
+
+   !> Profile status: not computed yet, computed, failed (message says why).
+   integer, parameter :: status_computed = 1, status_failed = 2
+
+   !> Reals before the result arrays in a packed block (see block_pack).
+   integer, parameter :: n_head = 18
 
    !> A string in an array of strings.
    type :: string_type
@@ -17,22 +25,39 @@ module pavefric_batch_types
    type :: batch_type
       type(scene_type) :: scene
       type(string_type), allocatable :: paths(:), names(:)
+      !> Chainage (m) of each profile, when the profile list gives it.
+      real(wp), allocatable :: chainage(:)
+      logical :: has_chainage = .false.
       real(wp), allocatable :: depths(:), speeds(:)
       integer :: n_profiles = 0, n_depths = 0, n_speeds = 0
-      character(len=:), allocatable :: output, journal, fingerprint
-      !> The journal's unit while it is open for appending (newunit numbers
-      !> are negative, hence the flag).
-      integer :: journal_unit = 0
+      character(len=:), allocatable :: output, journal
+      !> SHA-256 of the scene text, version, profile paths, chainages, depths
+      !> and speeds; each journal line carries its profile file's own digest.
+      character(len=digest_len) :: fingerprint = ""
+      !> The journal's file descriptor while it is open for appending.
+      integer :: journal_unit = -1
       logical :: journal_open = .false.
+      !> The journal ends in a line cut short (a kill): end it before appending.
+      logical :: journal_cut = .false.
+      !> What reading the journal found: profiles taken from it, damaged lines
+      !> ignored, profiles whose file changed since (recomputed).
+      integer :: journal_taken = 0, journal_damaged = 0, journal_changed = 0
    end type batch_type
 
    !> One profile's results (arrays are speed x depth).
    type :: block_type
       integer :: index = 0
-      !> 1: computed; 2: failed (message says why).
+      !> 0: not computed yet; status_computed; status_failed (message says why).
       integer :: status = 0
+      !> SHA-256 of the profile file's bytes when it was computed.
+      character(len=digest_len) :: digest = no_digest
       logical :: has_texture = .false.
       real(wp) :: mpd = 0, rms_height = 0, rms_slope = 0
+      !> The preprocessing record (preprocess_report_type of pavefric_preprocess).
+      integer :: points_read = 0, trimmed_start = 0, trimmed_end = 0, dropouts = 0, &
+         & spikes = 0, points_used = 0
+      logical :: resampled = .false., filtered = .false.
+      real(wp) :: dx_in = 0, dx = 0
       real(wp), allocatable :: mu(:,:), wet(:,:), hydroplaning(:,:), residual(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.
@@ -44,35 +69,70 @@ contains
    !> Number of reals in a packed block.
    pure integer function block_values(batch)
       type(batch_type), intent(in) :: batch
-      block_values = 9 + 5 * batch%n_speeds * batch%n_depths
+      block_values = n_head + 5 * batch%n_speeds * batch%n_depths
    end function block_values
 
-   !> A block as reals (for the journal and for MPI).
+   !> Result arrays of the batch's shape, zero.
+   pure subroutine block_allocate(batch, blk)
+      type(batch_type), intent(in) :: batch
+      type(block_type), intent(inout) :: blk
+      integer :: ns, nd
+      ns = batch%n_speeds
+      nd = batch%n_depths
+      if (allocated(blk%mu)) deallocate(blk%mu, blk%wet, blk%hydroplaning, blk%residual, &
+         & blk%n_clamped)
+      allocate(blk%mu(ns, nd), blk%wet(ns, nd), blk%hydroplaning(ns, nd), blk%residual(ns, nd), &
+         & blk%n_clamped(ns, nd))
+      blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
+   end subroutine block_allocate
+
+   !> A block as reals (for the journal and for MPI); the digest and the
+   !> message travel beside them as text.
    pure subroutine block_pack(batch, blk, values)
       type(batch_type), intent(in) :: batch
       type(block_type), intent(in) :: blk
       real(wp), intent(out) :: values(:)
-      integer :: m
+      integer :: m, k
       m = batch%n_speeds * batch%n_depths
-      values(1:9) = [real(blk%index, wp), real(blk%status, wp), merge(1.0_wp, 0.0_wp, &
-         & blk%has_texture), blk%mpd, blk%rms_height, blk%rms_slope, merge(1.0_wp, 0.0_wp, &
-         & blk%viscous), merge(1.0_wp, 0.0_wp, blk%bearing), 0.0_wp]
-      values(10:9+m) = reshape(blk%mu, [m])
-      values(10+m:9+2*m) = reshape(blk%wet, [m])
-      values(10+2*m:9+3*m) = reshape(blk%hydroplaning, [m])
-      values(10+3*m:9+4*m) = reshape(blk%residual, [m])
-      values(10+4*m:9+5*m) = reshape(blk%n_clamped, [m])
+      values(1:n_head) = [real(blk%index, wp), real(blk%status, wp), flag(blk%has_texture), &
+         & blk%mpd, blk%rms_height, blk%rms_slope, flag(blk%viscous), flag(blk%bearing), &
+         & real(blk%points_read, wp), real(blk%trimmed_start, wp), real(blk%trimmed_end, wp), &
+         & real(blk%dropouts, wp), real(blk%spikes, wp), real(blk%points_used, wp), &
+         & flag(blk%resampled), flag(blk%filtered), blk%dx_in, blk%dx]
+      k = n_head
+      values(k+1:k+m) = reshape(blk%mu, [m]);           k = k + m
+      values(k+1:k+m) = reshape(blk%wet, [m]);          k = k + m
+      values(k+1:k+m) = reshape(blk%hydroplaning, [m]); k = k + m
+      values(k+1:k+m) = reshape(blk%residual, [m]);     k = k + m
+      values(k+1:k+m) = reshape(blk%n_clamped, [m])
+   contains
+      pure real(wp) function flag(yes)
+         logical, intent(in) :: yes
+         flag = merge(1.0_wp, 0.0_wp, yes)
+      end function flag
    end subroutine block_pack
 
-   !> The inverse of block_pack.
-   pure subroutine block_unpack(batch, values, blk)
+   !> The inverse of block_pack. `valid` (optional) is false when the values
+   !> cannot be a block of this batch: an index out of range, a status or flag
+   !> that is not one, a count that is not a whole number >= 0.
+   pure subroutine block_unpack(batch, values, blk, valid)
       type(batch_type), intent(in) :: batch
       real(wp), intent(in) :: values(:)
       type(block_type), intent(inout) :: blk
-      integer :: m, ns, nd
+      logical, intent(out), optional :: valid
+      integer :: m, ns, nd, k
+      logical :: ok
       ns = batch%n_speeds
       nd = batch%n_depths
       m = ns * nd
+      ok = size(values) == block_values(batch)
+      if (ok) ok = whole(values(1), 1.0_wp, real(batch%n_profiles, wp)) .and. &
+         & whole(values(2), 1.0_wp, 2.0_wp) .and. whole(values(3), 0.0_wp, 1.0_wp) .and. &
+         & whole(values(7), 0.0_wp, 1.0_wp) .and. whole(values(8), 0.0_wp, 1.0_wp) .and. &
+         & all([(whole(values(k), 0.0_wp, 2.0e9_wp), k = 9, 14)]) .and. &
+         & whole(values(15), 0.0_wp, 1.0_wp) .and. whole(values(16), 0.0_wp, 1.0_wp)
+      if (present(valid)) valid = ok
+      if (.not. ok) return
       blk%index = nint(values(1))
       blk%status = nint(values(2))
       blk%has_texture = values(3) > 0.5_wp
@@ -81,12 +141,79 @@ contains
       blk%rms_slope = values(6)
       blk%viscous = values(7) > 0.5_wp
       blk%bearing = values(8) > 0.5_wp
-      blk%mu = reshape(values(10:9+m), [ns, nd])
-      blk%wet = reshape(values(10+m:9+2*m), [ns, nd])
-      blk%hydroplaning = reshape(values(10+2*m:9+3*m), [ns, nd])
-      blk%residual = reshape(values(10+3*m:9+4*m), [ns, nd])
-      blk%n_clamped = reshape(values(10+4*m:9+5*m), [ns, nd])
+      blk%points_read = nint(values(9))
+      blk%trimmed_start = nint(values(10))
+      blk%trimmed_end = nint(values(11))
+      blk%dropouts = nint(values(12))
+      blk%spikes = nint(values(13))
+      blk%points_used = nint(values(14))
+      blk%resampled = values(15) > 0.5_wp
+      blk%filtered = values(16) > 0.5_wp
+      blk%dx_in = values(17)
+      blk%dx = values(18)
+      k = n_head
+      blk%mu = reshape(values(k+1:k+m), [ns, nd]);           k = k + m
+      blk%wet = reshape(values(k+1:k+m), [ns, nd]);          k = k + m
+      blk%hydroplaning = reshape(values(k+1:k+m), [ns, nd]); k = k + m
+      blk%residual = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
+      blk%n_clamped = reshape(values(k+1:k+m), [ns, nd])
       if (.not. allocated(blk%message)) blk%message = ""
+   contains
+      !> Whether v is a whole number in [lo, hi] (NaN is not).
+      pure logical function whole(v, lo, hi)
+         real(wp), intent(in) :: v, lo, hi
+         whole = v >= lo .and. v <= hi
+         if (whole) whole = v == aint(v)
+      end function whole
    end subroutine block_unpack
+
+   !> `s` as printable UTF-8: control characters become blanks and bytes
+   !> that are not valid UTF-8 (a message quoting a binary file) become '?',
+   !> so that the journal stays text and readers of the NetCDF file can
+   !> decode its strings.
+   pure function printable_utf8(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i, n, m, c, c2, k
+      logical :: ok
+      t = s
+      n = len(s)
+      i = 1
+      do while (i <= n)
+         c = iachar(t(i:i))
+         if (c < 32 .or. c == 127) then
+            t(i:i) = " "
+            i = i + 1
+            cycle
+         end if
+         if (c < 128) then
+            i = i + 1
+            cycle
+         end if
+         m = 0
+         if (c >= 194 .and. c <= 223) m = 1
+         if (c >= 224 .and. c <= 239) m = 2
+         if (c >= 240 .and. c <= 244) m = 3
+         ok = m > 0 .and. i + m <= n
+         if (ok) then
+            do k = 1, m
+               ok = ok .and. iachar(t(i+k:i+k)) >= 128 .and. iachar(t(i+k:i+k)) <= 191
+            end do
+         end if
+         if (ok) then                     ! no overlong forms, surrogates, > U+10FFFF
+            c2 = iachar(t(i+1:i+1))
+            if (c == 224) ok = c2 >= 160
+            if (c == 237) ok = c2 <= 159
+            if (c == 240) ok = c2 >= 144
+            if (c == 244) ok = c2 <= 143
+         end if
+         if (ok) then
+            i = i + m + 1
+         else
+            t(i:i) = "?"
+            i = i + 1
+         end if
+      end do
+   end function printable_utf8
 
 end module pavefric_batch_types

@@ -7,8 +7,9 @@ package wraps it for pre- and post-processing.
 >>> ds = pavefric.simulate(heights_m, 0.87e-3, [20, 40, 60], mu_loc=0.6, depth=1e-3)
 >>> ds["mu"].values
 """
-from .core import (CTM_DX, PavefricError, PavefricKeywordError, PavefricWarning, Profile, Scene,
-                   defaults, groups, layout, load_scene, open_dataset, parameters, run, simulate)
+from .core import (CTM_DX, PavefricError, PavefricKeywordError, PavefricWarning, Profile,
+                   ProfilesFailedWarning, Scene, defaults, groups, layout, load_scene,
+                   open_dataset, parameters, run, simulate)
 from .profiles import ProfileEntry, list_profiles, read_profile, write_profiles
 from .plot import plot_mu_speed, plot_profile
 from .texture import ifi, texture
@@ -17,7 +18,8 @@ open = open_dataset  # noqa: A001  - pavefric.open(path) reads an output file
 
 __version__ = "0.1.0"
 
-__all__ = ["CTM_DX", "PavefricError", "PavefricKeywordError", "PavefricWarning", "Profile", "Scene",
-           "load_scene", "defaults", "groups", "parameters", "layout", "open", "open_dataset",
-           "ifi", "plot_mu_speed", "plot_profile", "read_profile", "texture", "run", "simulate",
-           "__version__", "write_profiles", "list_profiles", "ProfileEntry"]
+__all__ = ["CTM_DX", "PavefricError", "PavefricKeywordError", "PavefricWarning", "Profile",
+           "ProfilesFailedWarning", "Scene", "load_scene", "defaults", "groups", "parameters",
+           "layout", "open", "open_dataset", "ifi", "plot_mu_speed", "plot_profile",
+           "read_profile", "texture", "run", "simulate", "__version__", "write_profiles",
+           "list_profiles", "ProfileEntry"]

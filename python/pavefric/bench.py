@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from . import bench_mpi
+
 DX = 0.87e-3
 
 
@@ -253,6 +255,7 @@ def run(report: str | None = None, largest: int = 10_000_000) -> dict:
         "threads": threads(log),
         "mpi": mpi_batch(log),
         "reading": bench_io.reading(log, largest),   # profile input (bench_io.py)
+        "batch": bench_mpi.run(log),
     }
     if report:
         from .reports import performance_report

@@ -34,6 +34,7 @@ __all__ = [
     "hydro_load",
     "load_scene",
     "Scene",
+    "ProfilesFailedWarning",
 ]
 
 
@@ -48,6 +49,20 @@ class PavefricKeywordError(PavefricError, TypeError):
 class PavefricWarning(UserWarning):
     """Plausible-but-suspicious input or results (also recorded in the output's
     ``warnings`` attribute)."""
+
+
+class ProfilesFailedWarning(UserWarning):
+    """A batch finished but some of its profiles failed (the program's exit
+    status 4): the output is written, its ``status`` (2) and ``error_message``
+    variables say which and why. ``path`` is the output file, ``failed`` maps
+    each failed profile's name to its message. Make it an error with
+    ``warnings.simplefilter("error", pavefric.ProfilesFailedWarning)``."""
+
+    def __init__(self, message: str, path: Path | None = None,
+                 failed: dict[str, str] | None = None):
+        super().__init__(message)
+        self.path = path
+        self.failed = dict(failed or {})
 
 
 def _text(raw: Any) -> str:
@@ -473,24 +488,54 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
 
 
 def _run_batch(path: str, output: str, command: str, progress: bool | None) -> Path:
+    """The batch through the core in calls of a few profiles each (a progress
+    bar between calls). Each call re-reads the journal and checks the
+    profiles in it (a cost that grows with the profiles done, about 0.5 % of
+    computing them, docs/cluster.md), so a call computes at least an eighth
+    of the profiles done, and about half a second of work."""
+    import time
+
     if progress is None:
         progress = sys.stderr.isatty()
     bar = _ProgressBar(progress)
     chunk = 1
     while True:
-        t0 = __import__("time").perf_counter()
+        t0 = time.perf_counter()
         (out_path, computed, finished, total, done, status, message) = _core.pf_batch_run(
             path, output, command, chunk)
         _check(status, message)
+        dt = time.perf_counter() - t0
         bar.update(int(done), int(total))
         if finished:
             bar.close()
-            return Path(_text(out_path))
+            out = Path(_text(out_path))
+            _warn_failed_profiles(path, out)
+            return out
         if computed == 0:
             raise PavefricError(f"batch {path}: no progress (max_profiles reached?)")
-        # aim at about half a second of work per call
-        dt = __import__("time").perf_counter() - t0
-        chunk = max(1, min(int(total), int(chunk * max(1.0, min(4.0, 0.5 / max(dt, 1e-6))))))
+        timed = int(chunk * max(0.5, min(4.0, 0.5 / max(dt, 1e-6))))
+        chunk = max(1, min(int(total), max(timed, int(done) // 8)))
+
+
+def _warn_failed_profiles(path: str, out: Path) -> None:
+    """A ProfilesFailedWarning naming the failed profiles, if any."""
+    import warnings
+
+    import xarray as xr
+
+    with xr.open_dataset(out, engine="netcdf4") as ds:
+        if int(ds.attrs.get("profiles_failed", 0)) == 0:
+            return
+        bad = np.flatnonzero(ds["status"].values == 2)
+        names = [str(v) for v in ds["profile"].values[bad]]
+        messages = [str(v) for v in ds["error_message"].values[bad]]
+        total = ds.sizes["profile"]
+    failed = dict(zip(names, messages))
+    shown = "; ".join(f"{n}: {m}" for n, m in list(failed.items())[:5])
+    more = f"; ... {len(failed) - 5} more" if len(failed) > 5 else ""
+    warnings.warn(ProfilesFailedWarning(
+        f"batch {path}: {len(failed)} of {total} profiles failed (status = 2 and "
+        f"error_message in {out}): {shown}{more}", out, failed), stacklevel=4)
 
 
 class _ProgressBar:

@@ -5,26 +5,37 @@ import os
 from typing import Sequence
 
 
+def is_batch(ds) -> bool:
+    """Whether a dataset is a batch output (a ``profile`` dimension)."""
+    return "profile" in ds.dims
+
+
 def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
                   labels: Sequence[str] | None = None, title: str | None = None) -> str:
     """Friction coefficient against sliding speed, one curve per dataset (or path).
 
-    Positions where the pad hydroplaned are marked; returns the PNG path.
+    A batch output (one file) is drawn by :func:`plot_batch` instead: friction
+    along the road. Returns the PNG path.
     """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .core import open_dataset
+    from .core import PavefricError, open_dataset
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=120)
+    opened = []
     for i, ds in enumerate(datasets):
         if not hasattr(ds, "variables"):
-            label_default = os.path.splitext(os.path.basename(str(ds)))[0]
-            ds = open_dataset(ds)
+            opened.append((os.path.splitext(os.path.basename(str(ds)))[0], open_dataset(ds)))
         else:
-            label_default = f"scene {i + 1}"
+            opened.append((f"scene {i + 1}", ds))
+    if any(is_batch(ds) for _, ds in opened):
+        if len(opened) != 1:
+            raise PavefricError("plot: a batch output is plotted on its own (one file)")
+        return plot_batch(opened[0][1], output, title=title)
+    fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=120)
+    for i, (label_default, ds) in enumerate(opened):
         label = labels[i] if labels else label_default
         effects = ds.attrs.get("effects", "")
         if "hydrodynamic_bearing" in effects:
@@ -41,6 +52,73 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
     ax.legend(loc="lower left")
     if title:
         ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(output)
+    plt.close(fig)
+    return str(output)
+
+
+def batch_curves(ds) -> tuple:
+    """What :func:`plot_batch` draws: the position of each profile along the
+    road (chainage in m when the profile list gives it, else the profile's
+    number), its label, and mu per (water depth, speed) as arrays over the
+    profiles (NaN where a profile failed)."""
+    import numpy as np
+
+    if "chainage" in ds.variables:
+        x, xlabel = np.asarray(ds["chainage"].values, dtype=float), "chainage (m)"
+    else:
+        x, xlabel = np.arange(1, ds.sizes["profile"] + 1, dtype=float), "profile number"
+    mu = ds["mu"].transpose("profile", "water_depth", "speed_kmh").values
+    curves = {}
+    for j, depth in enumerate(ds["water_depth"].values):
+        for k, speed in enumerate(ds["speed_kmh"].values):
+            curves[(float(depth), float(speed))] = np.asarray(mu[:, j, k], dtype=float)
+    return x, xlabel, curves
+
+
+def plot_batch(ds, output: str | os.PathLike, title: str | None = None) -> str:
+    """A batch output (a path or dataset): friction along the road, one panel
+    per water depth and one line per speed, failed profiles as gaps (and
+    marked), with the texture depth (MPD) below. Returns the PNG path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from .core import open_dataset
+
+    if not hasattr(ds, "variables"):
+        ds = open_dataset(ds)
+    x, xlabel, curves = batch_curves(ds)
+    depths = list(ds["water_depth"].values)
+    speeds = list(ds["speed_kmh"].values)
+    order = np.argsort(x, kind="stable")
+    fig, axes = plt.subplots(len(depths) + 1, 1, figsize=(9, 2.2 * (len(depths) + 1) + 0.6),
+                             dpi=110, sharex=True, squeeze=False)
+    axes = axes[:, 0]
+    failed = np.asarray(ds["status"].values) == 2
+    cmap = plt.get_cmap("viridis")
+    for j, depth in enumerate(depths):
+        ax = axes[j]
+        for k, speed in enumerate(speeds):
+            colour = cmap(k / max(len(speeds) - 1, 1))
+            ax.plot(x[order], curves[(float(depth), float(speed))][order], lw=0.9,
+                    color=colour, label=f"{speed:g} km/h")
+        if failed.any():
+            ax.plot(x[failed], np.zeros(failed.sum()), "rx", ms=5, label="failed profile")
+        ax.set_ylabel("$\\mu$")
+        ax.set_title("dry" if depth == 0 else f"water depth {depth * 1e3:g} mm", fontsize=9)
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7, ncol=min(len(speeds) + 1, 6), loc="lower left")
+    mpd = np.asarray(ds["mpd"].values, dtype=float) * 1e3
+    axes[-1].plot(x[order], mpd[order], color="0.3", lw=0.8)
+    axes[-1].set_ylabel("MPD (mm)")
+    axes[-1].set_xlabel(xlabel)
+    axes[-1].grid(alpha=0.3)
+    fig.suptitle(title or ds.attrs.get("title", "pavefric batch"), fontsize=10)
     fig.tight_layout()
     fig.savefig(output)
     plt.close(fig)

@@ -1,0 +1,240 @@
+"""Batch output conventions (issue 10 item 10), exit codes and the summary
+(item 7), the profile list (items 8 and 10), plots of batch files."""
+import json
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import program, run_program
+from test_batch import make_batch
+
+KMH_TO_MS = 1.0 / 3.6          # pavefric_kinds: speed = speed_kmh * kmh_to_ms
+
+
+def list_batch(tmp_path, n=8, broken=3, chainage=True, speeds="21, 42", depths="0.0, 1.0e-3"):
+    """A batch over a profile list with a chainage column (m) and one broken
+    profile (text where a height should be)."""
+    from pavefric.surfaces import road_profiles
+
+    road_profiles(str(tmp_path / "profiles"), n=n, points=300)
+    if broken:
+        (tmp_path / "profiles" / f"seg_{broken:04d}.txt").write_text("height_mm\n0.1\nx\n")
+    rows = [f"profiles/seg_{k:04d}.txt" + (f"  {1000.0 + 0.5 * (k - 1):.1f}" if chainage else "")
+            for k in range(1, n + 1)]
+    (tmp_path / "list.txt").write_text("# segment  chainage_m\n" + "\n".join(rows) + "\n")
+    scene = tmp_path / "batch.nml"
+    scene.write_text(f"&batch profile_list = 'list.txt', depths = {depths} /\n"
+                     "&surface closed = .false., mu_loc = 0.6 /\n"
+                     f"&operation speeds_kmh = {speeds} /\n")
+    return scene
+
+
+@pytest.fixture(scope="module")
+def batch_file(tmp_path_factory):
+    d = tmp_path_factory.mktemp("out")
+    scene = list_batch(d)
+    out = d / "b.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 4, r.stderr
+    return out
+
+
+def cf_check(path, tmp_path):
+    """The IOOS compliance checker's CF 1.10 suite at its strictest: the
+    points scored and possible, and every message it reports."""
+    from compliance_checker.runner import CheckSuite, ComplianceChecker
+
+    CheckSuite.load_all_available_checkers()
+    report = tmp_path / "cf.json"
+    ComplianceChecker.run_checker(str(path), ["cf:1.10"], 0, "strict",
+                                  output_filename=str(report), output_format="json")
+    r = json.loads(report.read_text())["cf:1.10"]
+    msgs = [m for level in ("high_priorities", "medium_priorities", "low_priorities")
+            for item in r[level] for m in item["msgs"]]
+    return r["scored_points"], r["possible_points"], msgs
+
+
+def test_batch_file_passes_the_cf_1_10_checker(batch_file, tmp_path):
+    scored, possible, msgs = cf_check(batch_file, tmp_path)
+    assert msgs == [] and scored == possible, msgs
+
+
+def test_sel_by_speed_kmh_and_profile_name(batch_file):
+    with xr.open_dataset(batch_file) as ds:
+        assert set(ds.indexes) == {"profile", "water_depth", "speed_kmh"}
+        mu = ds["mu"].sel(speed_kmh=42, profile="seg_0005", water_depth=1.0e-3)
+        assert float(mu) == float(ds["mu"].values[4, 1, 1]) and 0 < float(mu) < 1
+        assert ds["mu"].sel(speed_kmh=21).dims == ("profile", "water_depth")
+        # speed (m/s) is an auxiliary coordinate, not an axis (not a longitude)
+        assert "speed" in ds.coords and "axis" not in ds["speed"].attrs
+        assert ds["speed"].attrs["units"] == "m s-1"
+        # the one conversion: speed_kmh * kmh_to_ms (21 / 3.6 is another number)
+        assert np.array_equal(ds["speed"].values, ds["speed_kmh"].values * KMH_TO_MS)
+        assert ds["speed"].values[0] != 21 / 3.6
+        assert "standard_name" not in ds["water_depth"].attrs
+        assert "water film" in ds["water_depth"].attrs["long_name"]
+
+
+def test_chainage_from_the_profile_list(batch_file):
+    with xr.open_dataset(batch_file) as ds:
+        assert ds["chainage"].attrs["units"] == "m"
+        assert np.array_equal(ds["chainage"].values, 1000.0 + 0.5 * np.arange(8))
+        assert "chainage" in ds["mu"].coords and "chainage" in ds["mpd"].coords
+        # along the road by chainage
+        assert float(ds["mu"].swap_dims(profile="chainage").sel(
+            chainage=1001.5, speed_kmh=21, water_depth=0.0)) == float(ds["mu"].values[3, 0, 0])
+
+
+def test_preprocessing_record_per_profile(batch_file):
+    with xr.open_dataset(batch_file) as ds:
+        ok = ds["status"].values == 1
+        assert np.array_equal(ds["preprocess_points_read"].values[ok], np.full(7, 300.0))
+        assert np.array_equal(ds["preprocess_points_out"].values[ok], np.full(7, 300.0))
+        assert np.all(ds["preprocess_dropouts"].values[ok] == 0)
+        assert np.all(ds["preprocess_resampled"].values[ok] == 0)
+        assert np.all(ds["profile_dx"].values[ok] == 0.87e-3)
+        assert ds["profile_dx"].attrs["units"] == "m"
+        # the broken profile was never read: fill values
+        assert np.isnan(ds["preprocess_points_read"].values[2])
+        assert np.isnan(ds["profile_dx"].values[2])
+
+
+def test_preprocessing_record_counts_dropouts_and_resampling(tmp_path):
+    from pavefric.surfaces import spectral_profile
+
+    z = spectral_profile(400, 0.87e-3, rms=0.4e-3, seed=2) * 1e3
+    rows = [f"{v:.6f}" for v in z]
+    rows[100] = rows[200] = rows[201] = "nan"
+    (tmp_path / "p.txt").write_text("height_mm\n" + "\n".join(rows) + "\n")
+    (tmp_path / "list.txt").write_text("p.txt\n")
+    scene = tmp_path / "s.nml"
+    scene.write_text("&batch profile_list = 'list.txt' /\n&surface closed = .false. /\n"
+                     "&preprocess dropouts = 'interpolate', resample_dx = 1.0e-3 /\n"
+                     "&operation speeds_kmh = 20 /\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        assert int(ds["preprocess_points_read"].values[0]) == 400
+        assert int(ds["preprocess_dropouts"].values[0]) == 3
+        assert int(ds["preprocess_resampled"].values[0]) == 1
+        assert float(ds["preprocess_dx_in"].values[0]) == pytest.approx(0.87e-3)
+        assert float(ds["profile_dx"].values[0]) == pytest.approx(1.0e-3)
+
+
+def test_profile_list_format_errors_and_quoted_paths(tmp_path):
+    scene = list_batch(tmp_path, n=4, broken=0)
+    lst = tmp_path / "list.txt"
+    # mixed: chainage on some lines only
+    lst.write_text("profiles/seg_0001.txt 10\nprofiles/seg_0002.txt\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "list.txt:2: no chainage, but line 1 gives one" in r.stderr
+    lst.write_text("profiles/seg_0001.txt 10\nprofiles/seg_0002.txt 1-3\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "list.txt:2: chainage '1-3' is not a number" in r.stderr
+    lst.write_text("profiles/seg_0001.txt 10 20\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "list.txt:1: '20' after the chainage" in r.stderr
+    lst.write_text("profiles/seg_0001.txt\nprofiles/seg_0002.txt\nprofiles/seg_0001.txt\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "is given twice (entries 1 and 3)" in r.stderr
+    # a path with blanks, quoted; '#' comments; two files of the same name
+    (tmp_path / "my dir").mkdir()
+    (tmp_path / "other").mkdir()
+    (tmp_path / "profiles" / "seg_0001.txt").rename(tmp_path / "my dir" / "seg.txt")
+    (tmp_path / "profiles" / "seg_0002.txt").rename(tmp_path / "other" / "seg.txt")
+    lst.write_text("'my dir/seg.txt' 5.0  # first\n\n# a comment line\nother/seg.txt 7.5\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        assert list(ds["profile"].values) == ["my dir/seg", "other/seg"]
+        assert list(ds["chainage"].values) == [5.0, 7.5]
+
+
+def test_long_profile_list(tmp_path):
+    # 40,000 entries (the old reader grew its array by concatenation: 23 s on
+    # every restart; the figure is in docs/cluster.md, from the benchmark)
+    d = tmp_path / "p"
+    d.mkdir()
+    body = "height_mm\n" + "\n".join("0.1" if k % 2 else "-0.1" for k in range(64)) + "\n"
+    names = []
+    for k in range(40_000):
+        (d / f"{k:05d}.txt").write_text(body)
+        names.append(f"p/{k:05d}.txt {0.25 * k}")
+    (tmp_path / "list.txt").write_text("\n".join(names) + "\n")
+    scene = tmp_path / "s.nml"
+    scene.write_text("&batch profile_list = 'list.txt' /\n&surface closed = .false. /\n"
+                     "&operation speeds_kmh = 20 /\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc", "--max-profiles", "2")
+    assert r.returncode == 3, r.stderr
+    assert "40000 profiles: 2 computed in this run" in r.stdout and "39998 left" in r.stdout
+    r = run_program(scene, "-o", tmp_path / "o.nc", "--max-profiles", "1")
+    assert r.returncode == 3 and "resuming: 2 of 40000 profiles already done" in r.stdout
+
+
+def test_failed_batch_does_not_look_like_success(tmp_path):
+    # every profile failing: exit 4 (the old code: 0 and "100 %")
+    scene = make_batch(tmp_path, n=5)
+    for p in (tmp_path / "profiles").glob("*.txt"):
+        p.write_text("height_mm\nabc\n")
+    out = tmp_path / "o.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 4, r.stdout + r.stderr
+    assert "5/5 profiles (100.0 %, 5 failed)" in r.stdout
+    assert f"-> {out}: 5 profiles: 5 computed in this run, 0 taken from the journal, " \
+           "5 failed" in r.stdout
+    assert "pavefric: profile seg_0001: " in r.stderr and "'abc'" in r.stderr
+    assert "5 of 5 profiles failed" in r.stderr
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["profiles_failed"] == 5 and ds.attrs["profiles_computed"] == 0
+
+
+def test_python_run_warns_naming_the_failed_profiles(tmp_path):
+    scene = make_batch(tmp_path, n=6, broken=True)
+    with pytest.warns(pavefric.ProfilesFailedWarning) as caught:
+        out = pavefric.run(scene, tmp_path / "o.nc", progress=False)
+    assert out == tmp_path / "o.nc" and out.exists()
+    w = caught[0].message
+    assert w.path == out and list(w.failed) == ["seg_0005"]
+    assert "seg_0005.txt:3" in w.failed["seg_0005"]
+    assert "1 of 6 profiles failed" in str(w)
+    # a batch without failures: no warning
+    scene = make_batch(tmp_path / "good", n=3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pavefric.run(scene, tmp_path / "good.nc", progress=False)
+
+
+def test_help_documents_exit_codes():
+    r = subprocess.run([program(), "--help"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0
+    for code, words in (("0", "success"), ("1", "error"), ("2", "bad usage"),
+                        ("3", "stopped early"), ("4", "some profiles failed")):
+        assert any(line.strip().startswith(code + " ") and words in line
+                   for line in r.stdout.splitlines()), (code, words)
+    r = subprocess.run([program(), "--frobnicate"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2
+
+
+def test_plot_a_batch_file(batch_file, tmp_path):
+    png = tmp_path / "road.png"
+    r = subprocess.run([sys.executable, "-m", "pavefric", "plot", str(batch_file), "-o", str(png)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    import matplotlib.image
+
+    img = matplotlib.image.imread(png)
+    assert img.ndim == 3 and img.shape[0] > 300 and img.shape[1] > 500
+    from pavefric.plot import batch_curves
+
+    with xr.open_dataset(batch_file) as ds:
+        x, xlabel, curves = batch_curves(ds)
+        assert xlabel == "chainage (m)" and np.array_equal(x, ds["chainage"].values)
+        assert set(curves) == {(0.0, 21.0), (0.0, 42.0), (1e-3, 21.0), (1e-3, 42.0)}
+        assert np.array_equal(curves[(1e-3, 42.0)], ds["mu"].values[:, 1, 1], equal_nan=True)
+        assert np.isnan(curves[(0.0, 21.0)][2])           # the failed profile is a gap
+
