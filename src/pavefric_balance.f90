@@ -12,7 +12,12 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field
+   public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field, lanes, lane_count
+
+   !> Speeds advanced together (lanes): a fixed width, so that the element
+   !> loops over the lanes compile to whole vectors (one AVX2 vector, two
+   !> SSE2 ones) and the lanes' work arrays live on the stack.
+   integer, parameter :: lanes = 8
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -76,33 +81,35 @@ contains
    !> vectorise); every lane performs exactly dry_root's operations in the
    !> same order, and a lane that has stopped is left as it is, so each x is
    !> dry_root's to the bit.
-   pure subroutine dry_roots(d, s, x0, x, work, dl)
-      real(wp), intent(in) :: d(:, :), s(:), x0(:)
-      real(wp), intent(out) :: x(:)
-      !> Workspaces of size(d, 2), only touched by the fallback.
+   pure subroutine dry_roots(nl, n, d, s, x0, x, work, dl)
+      !> Lanes (lanes of them, given at run time: the lane loops then compile
+      !> to vector loops, a constant count to unrolled scalar code) and elements.
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n)
+      real(wp), intent(in) :: s(lanes), x0(lanes)
+      real(wp), intent(out) :: x(lanes)
+      !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
-      real(wp), dimension(size(s)) :: sum_active, x_new
-      integer, dimension(size(s)) :: m, m_prev
-      logical, dimension(size(s)) :: running
-      integer :: i, j, it, nl, n
-      nl = size(s)
-      n = size(d, 2)
-      do j = 1, nl
-         x(j) = s(j)
-         if (x0(j) > 0.0_wp .and. x0(j) < s(j)) x(j) = x0(j)
-      end do
+      real(wp), dimension(lanes) :: sum_active, x_new, count
+      integer, dimension(lanes) :: m, m_prev
+      logical, dimension(lanes) :: running
+      integer :: i, j, it
+      x = s
+      where (x0 > 0.0_wp .and. x0 < s) x = x0
       m_prev = -1
       running = .true.
       do it = 1, max_newton_dry
          sum_active = 0.0_wp
-         m = 0
+         count = 0.0_wp
          do i = 1, n
+            ! the count in a real (exact below 2**53): one type in the loop
             do j = 1, nl
                sum_active(j) = sum_active(j) + merge(d(j, i), 0.0_wp, d(j, i) < x(j))
-               m(j) = m(j) + merge(1, 0, d(j, i) < x(j))
+               count(j) = count(j) + merge(1.0_wp, 0.0_wp, d(j, i) < x(j))
             end do
          end do
-         do j = 1, nl
+         m = nint(count)
+         do j = 1, lanes
             if (.not. running(j)) cycle
             if (m(j) == m_prev(j)) then             ! active set repeats: x is the root
                running(j) = .false.
@@ -119,12 +126,19 @@ contains
          end do
          if (.not. any(running)) return
       end do
-      do j = 1, nl
+      do j = 1, lanes
          if (.not. running(j)) cycle
          dl = d(j, :)
          call sorted_root(dl, s(j), x(j), work)
       end do
    end subroutine dry_roots
+
+   !> `lanes` as a value the compiler of another module cannot fold: lane
+   !> loops bounded by it compile to vector loops (a constant bound is
+   !> unrolled into scalar code).
+   integer function lane_count()
+      lane_count = lanes
+   end function lane_count
 
    !> The same root by sorting d and scanning the pieces.
    pure subroutine sorted_root(d, s, x, work)

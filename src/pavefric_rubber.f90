@@ -63,19 +63,19 @@ module pavefric_rubber
          class(rubber_model), intent(in) :: self
          type(rubber_step_type), intent(in) :: step
          !> (lanes, state_size, elements)
-         real(wp), intent(in) :: state(:, :, :)
+         real(wp), intent(in), contiguous :: state(:, :, :)
          !> (lanes, elements)
-         real(wp), intent(out) :: u_free(:, :)
+         real(wp), intent(out), contiguous :: u_free(:, :)
       end subroutine free_interface
 
       pure subroutine update_interface(self, step, state, u_free, push)
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
          type(rubber_step_type), intent(in) :: step
-         real(wp), intent(inout) :: state(:, :, :)
+         real(wp), intent(inout), contiguous :: state(:, :, :)
          !> The free compression of the step and how far beyond it each
          !> element was pushed (0 out of contact): u = u_free + push.
-         real(wp), intent(in) :: u_free(:, :), push(:, :)
+         real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       end subroutine update_interface
 
       pure function name_interface(self) result(name)
@@ -130,8 +130,8 @@ contains
    pure subroutine kv_free(self, step, state, u_free)
       class(kelvin_voigt_rubber), intent(in) :: self
       type(rubber_step_type), intent(in) :: step
-      real(wp), intent(in) :: state(:, :, :)
-      real(wp), intent(out) :: u_free(:, :)
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      real(wp), intent(out), contiguous :: u_free(:, :)
       integer :: i, j
       do i = 1, size(u_free, 2)
          do j = 1, size(u_free, 1)
@@ -144,8 +144,8 @@ contains
    pure subroutine kv_update(self, step, state, u_free, push)
       class(kelvin_voigt_rubber), intent(in) :: self
       type(rubber_step_type), intent(in) :: step
-      real(wp), intent(inout) :: state(:, :, :)
-      real(wp), intent(in) :: u_free(:, :), push(:, :)
+      real(wp), intent(inout), contiguous :: state(:, :, :)
+      real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       integer :: i, j
       do i = 1, size(u_free, 2)
          do j = 1, size(u_free, 1)

@@ -15,17 +15,13 @@ module pavefric_simulate
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, wet_root, wet_state_type, gap_field
+   use pavefric_balance, only: dry_roots, wet_root, wet_state_type, gap_field, lanes, lane_count
    implicit none
    private
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components
 
-   !> Speeds advanced together (lanes): a fixed width, so that the element
-   !> loops over the lanes compile to whole vectors (one AVX2 vector, two
-   !> SSE2 ones). A chunk with fewer speeds repeats its last speed.
-   integer, parameter :: lanes = 4
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -537,7 +533,7 @@ contains
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film
       real(wp) :: x_dry, mu_j, resid, tan_max, mu_eff, film_sum, p, tk, zk, hi
-      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
+      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, nlanes
       logical :: series, clamped, any_memory, any_load, any_friction, ck
 
       n = geo%n_el
@@ -567,8 +563,11 @@ contains
       any_friction = any(friction_film)
 
       ns_state = rubber%state_size()
-      allocate(c(lanes, n), d(lanes, n), push(lanes, n), u_free(lanes, n), work(n), dl(n), &
-         & gap(n), stat=stat)
+      ! the lane count as a run-time value: the lane loops then compile to
+      ! vector loops (a constant count is unrolled into scalar code)
+      allocate(c(lanes, n), d(lanes, n), push(lanes, n), u_free(lanes, n), work(n), &
+         & dl(n), gap(n), stat=stat)
+      nlanes = lanes
       if (stat == 0 .and. any_memory) allocate(state(lanes, ns_state, n), stat=stat)
       if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
          & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
@@ -611,18 +610,18 @@ contains
          do i = 1, n
             zk = geo%z(k1 + (i-1) * geo%spacing)
             hi = geo%h(i)
-            do j = 1, lanes
+            do j = 1, nlanes
                c(j, i) = hi - zk + u_free(j, i)
                cmin(j) = min(cmin(j), c(j, i))
             end do
          end do
          do i = 1, n
-            do j = 1, lanes
+            do j = 1, nlanes
                d(j, i) = c(j, i) - cmin(j)
             end do
          end do
          ! warm start from the previous position's penetration
-         call dry_roots(d, s_load, delta_prev - cmin, x, work, dl)
+         call dry_roots(lane_count(), n, d, s_load, delta_prev - cmin, x, work, dl)
          wh = 0.0_wp
          if (any_load) then
             do j = 1, nl
@@ -647,7 +646,7 @@ contains
             k = k1 + (i-1) * geo%spacing
             tk = geo%tan_theta(k)
             ck = geo%clamped(k)
-            do j = 1, lanes
+            do j = 1, nlanes
                p = max(0.0_wp, x(j) - d(j, i))
                push(j, i) = p
                sum_f(j) = sum_f(j) + p
