@@ -10,7 +10,7 @@ module pavefric_simulate
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
    use pavefric_format, only: to_str
    use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded
-   use pavefric_profile, only: refine_profile, check_heights
+   use pavefric_heights, only: refine_profile, check_heights
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
