@@ -358,7 +358,7 @@ contains
    !> Ranks > 0: compute the profiles rank 0 sends until it says stop (0),
    !> sending each result back without waiting for rank 0 to take it.
    subroutine work(batch)
-      type(batch_type), intent(in) :: batch
+      type(batch_type), intent(inout) :: batch
       type(block_type) :: blk
       real(wp), allocatable :: outbox(:,:)
       type :: text_type

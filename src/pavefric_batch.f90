@@ -21,6 +21,8 @@ module pavefric_batch
    use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
    use pavefric_run, only: load_scene_profile
+   use pavefric_profile, only: raw_profile_type, detect_format, open_profile_catalog, &
+      & read_catalog_profile, unit_factor
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_texture, only: texture_type, texture_metrics
@@ -108,12 +110,18 @@ contains
          call fatal_error(error, "scene '" // path // "' has no &batch group")
          return
       end if
-      call expand_profiles(batch%scene, batch%paths, batch%chainage, error)
+      call netcdf_source(batch, error)
       if (allocated(error)) return
-      batch%n_profiles = size(batch%paths)
-      batch%has_chainage = allocated(batch%chainage)
-      call profile_names(batch%scene, batch%paths, batch%names, error)
-      if (allocated(error)) return
+      if (batch%from_netcdf) then
+         batch%n_profiles = batch%catalog%n_profiles
+      else
+         call expand_profiles(batch%scene, batch%paths, batch%chainage, error)
+         if (allocated(error)) return
+         batch%n_profiles = size(batch%paths)
+         batch%has_chainage = allocated(batch%chainage)
+         call profile_names(batch%scene, batch%paths, batch%names, error)
+         if (allocated(error)) return
+      end if
       if (allocated(batch%scene%batch_depths)) then
          batch%depths = batch%scene%batch_depths
       else
@@ -152,6 +160,44 @@ contains
          call journal_start(batch, error)
       end if
    end subroutine batch_prepare
+
+   !> `&batch profiles` naming one NetCDF file of many profiles (a survey):
+   !> its catalogue opened once (names, chainage), every profile read from it
+   !> by index, and the file hashed once for the journal.
+   subroutine netcdf_source(batch, error)
+      type(batch_type), intent(inout) :: batch
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: path, fmt
+      logical :: exists, is_dir
+      integer :: i
+      path = batch%scene%batch_profiles
+      if (len(path) == 0) return
+      if (scan(path, "*?[") > 0) return
+      inquire(file=path // "/.", exist=is_dir)
+      if (is_dir) return
+      inquire(file=path, exist=exists)
+      if (.not. exists) return
+      call detect_format(path, fmt, error)
+      if (allocated(error)) then
+         error%message = "&batch profiles = '" // path // "': " // error%message
+         return
+      end if
+      if (fmt /= "netcdf") return
+      call open_profile_catalog(path, batch%catalog, error)
+      if (allocated(error)) then
+         error%message = "&batch profiles = '" // path // "': " // error%message
+         return
+      end if
+      batch%from_netcdf = .true.
+      allocate(batch%paths(batch%catalog%n_profiles), batch%names(batch%catalog%n_profiles))
+      do i = 1, batch%catalog%n_profiles
+         batch%paths(i)%s = path
+         batch%names(i)%s = batch%catalog%names(i)%s
+      end do
+      batch%has_chainage = batch%catalog%has_chainage
+      if (batch%has_chainage) batch%chainage = batch%catalog%chainage
+      call sha256_file(path, batch%source_digest)
+   end subroutine netcdf_source
 
    !> The profiles of a batch: a pattern, a directory (all its files), or a
    !> list file. A list names one profile a line, relative to the list, with
@@ -435,7 +481,7 @@ contains
       n = len(pavefric_version) + len(batch%scene%text) + 64 + 17 * (batch%n_profiles + &
          & batch%n_depths + batch%n_speeds)
       do i = 1, batch%n_profiles
-         n = n + len(batch%paths(i)%s) + 1
+         n = n + len(batch%paths(i)%s) + len(batch%names(i)%s) + 2
       end do
       allocate(character(len=n) :: buf)
       pos = 0
@@ -445,6 +491,7 @@ contains
          & to_str(batch%n_speeds) // achar(10))
       do i = 1, batch%n_profiles
          call put(batch%paths(i)%s // achar(0))
+         if (batch%from_netcdf) call put(batch%names(i)%s // achar(0))
       end do
       if (batch%has_chainage) then
          do i = 1, batch%n_profiles
@@ -576,7 +623,11 @@ contains
             else
                i = blk%index
                if (.not. hashed(i)) then
-                  call sha256_file(batch%paths(i)%s, current(i))
+                  if (batch%from_netcdf) then
+                     current(i) = batch%source_digest      ! hashed once in setup
+                  else
+                     call sha256_file(batch%paths(i)%s, current(i))
+                  end if
                   hashed(i) = .true.
                end if
                if (blk%digest /= current(i)) then
@@ -741,6 +792,10 @@ contains
       integer(i8) :: cost
       integer :: ios
       cost = 0
+      if (batch%from_netcdf) then
+         cost = 8 * batch%catalog%count(i)
+         return
+      end if
       inquire(file=batch%paths(i)%s, size=cost, iostat=ios)
       if (ios /= 0 .or. cost < 0) cost = 0
    end function profile_cost
@@ -749,11 +804,12 @@ contains
    !> cannot be read or run, or whose result is not finite, is returned with
    !> status_failed and the reason.
    subroutine batch_compute(batch, i, blk)
-      type(batch_type), intent(in) :: batch
+      type(batch_type), intent(inout) :: batch
       integer, intent(in) :: i
       type(block_type), intent(out) :: blk
       type(scene_type) :: scene
       type(clean_profile_type) :: clean
+      type(raw_profile_type) :: raw
       type(sim_result_type) :: res
       type(texture_type) :: tex
       type(error_type), allocatable :: error, texture_error
@@ -761,11 +817,18 @@ contains
       blk%index = i
       blk%message = ""
       call block_allocate(batch, blk)
-      ! the digest first: an edit after it is found on resume
-      call sha256_file(batch%paths(i)%s, blk%digest)
       scene = batch%scene
       scene%profile_file = batch%paths(i)%s
-      call load_scene_profile(scene, clean, error)
+      if (batch%from_netcdf) then
+         ! one file of many profiles: its digest, and the profile by index
+         blk%digest = batch%source_digest
+         call read_catalog_profile(batch%catalog, i, unit_factor(scene%height_unit), raw, error)
+         if (.not. allocated(error)) call load_scene_profile(scene, clean, error, raw_in=raw)
+      else
+         ! the digest first: an edit after it is found on resume
+         call sha256_file(batch%paths(i)%s, blk%digest)
+         call load_scene_profile(scene, clean, error)
+      end if
       if (.not. allocated(error)) then
          blk%points_read = clean%report%points_read
          blk%trimmed_start = clean%report%trimmed_start

@@ -3,6 +3,7 @@
 module pavefric_batch_types
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type
+   use pavefric_profile, only: profile_catalog_type
    use pavefric_batch_hash, only: digest_len, no_digest
    implicit none
    private
@@ -42,6 +43,11 @@ module pavefric_batch_types
       !> What reading the journal found: profiles taken from it, damaged lines
       !> ignored, profiles whose file changed since (recomputed).
       integer :: journal_taken = 0, journal_damaged = 0, journal_changed = 0
+      !> The profiles are those of one NetCDF file (&batch profiles names it):
+      !> its catalogue, kept open, and the file's digest (one for all profiles).
+      logical :: from_netcdf = .false.
+      type(profile_catalog_type) :: catalog
+      character(len=digest_len) :: source_digest = ""
    end type batch_type
 
    !> One profile's results (arrays are speed x depth).

@@ -33,18 +33,25 @@ contains
 
    !> Read the scene's profile (any supported format), preprocess it as the
    !> scene says, and settle its spacing.
-   subroutine load_scene_profile(scene, clean, error, raw_out)
+   subroutine load_scene_profile(scene, clean, error, raw_out, raw_in)
       type(scene_type), intent(in) :: scene
       type(clean_profile_type), intent(out) :: clean
       type(error_type), allocatable, intent(out) :: error
       !> The profile as the file delivered it (Python's read_profile shows it).
       type(raw_profile_type), intent(out), optional :: raw_out
+      !> The profile already read (a batch reads a NetCDF survey's profiles
+      !> from its open catalogue): only the rest of the path is taken.
+      type(raw_profile_type), intent(in), optional :: raw_in
       type(raw_profile_type) :: raw
       real(wp) :: dx, file_dx
       integer :: n
-      call read_raw_profile(scene%profile_file, scene%format, unit_factor(scene%height_unit), &
-         & scene%x_column, scene%z_column, raw, error, profile_name=scene%profile_name)
-      if (allocated(error)) return
+      if (present(raw_in)) then
+         raw = raw_in
+      else
+         call read_raw_profile(scene%profile_file, scene%format, unit_factor(scene%height_unit), &
+            & scene%x_column, scene%z_column, raw, error, profile_name=scene%profile_name)
+         if (allocated(error)) return
+      end if
       ! The spacing: &surface dx, else the file's stated spacing (NetCDF dx),
       ! else a CTM's; distances in the file then set it (preprocessing).
       dx = ctm_dx
