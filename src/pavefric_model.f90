@@ -45,11 +45,11 @@ module pavefric_model
       & p_wet_model = 27, p_depth = 28, p_water_viscosity = 29, p_alpha = 30, p_beta = 31, &
       & p_speeds_kmh = 32, &
       & p_theta_max_deg = 33, p_substeps = 34, p_elements_per_sample = 35, &
-      & p_position_stride = 36, p_wet_tolerance = 37, &
-      & p_output_file = 38, p_series = 39, &
-      & p_batch_profiles = 40, p_batch_profile_list = 41, p_batch_depths = 42, &
-      & p_batch_restart = 43, p_batch_progress_every = 44
-   integer, parameter :: n_parameters = 44
+      & p_position_stride = 36, p_wet_tolerance = 37, p_tolerance = 38, &
+      & p_output_file = 39, p_series = 40, &
+      & p_batch_profiles = 41, p_batch_profile_list = 42, p_batch_depths = 43, &
+      & p_batch_restart = 44, p_batch_progress_every = 45
+   integer, parameter :: n_parameters = 45
    integer, parameter :: n_groups = 9
 
    !> A namelist group and what it is for (docs/inputs.md sections).
@@ -118,7 +118,7 @@ module pavefric_model
       real(wp) :: depth = 0.0_wp, water_viscosity = 0.0_wp, alpha = 0.0_wp, beta = 0.0_wp
       real(wp) :: theta_max_deg = 0.0_wp
       integer :: substeps = 1, elements_per_sample = 1, position_stride = 1
-      real(wp) :: wet_tolerance = 0.0_wp
+      real(wp) :: wet_tolerance = 0.0_wp, tolerance = 0.0_wp
    end type model_type
 
 contains
@@ -306,6 +306,13 @@ contains
          & "the wet load balance stops when |residual| <= wet_tolerance x W (or when the " // &
          & "bracket has closed to adjacent doubles)", lower=epsilon(1.0_wp), upper=1.0_wp, &
          & upper_strict=.true.)
+
+      s(p_tolerance) = real_param("numerics", "tolerance", "0", "1", "model", &
+         & "accuracy on demand: when > 0, the time step (substeps, from the value given) " // &
+         & "is halved until every speed's friction changes by at most this much; the " // &
+         & "output records that change as the estimated error (mu_error_estimate) and the " // &
+         & "substeps reached (substeps_used). 0: the knobs as given (docs/accuracy.md)", &
+         & lower=0.0_wp, upper=1.0_wp)
 
       ! &output
       s(p_output_file) = text("output", "file", "", "path", "output", &
@@ -917,6 +924,7 @@ contains
       m%elements_per_sample = set%v(p_elements_per_sample)%i
       m%position_stride = set%v(p_position_stride)%i
       m%wet_tolerance = set%v(p_wet_tolerance)%r
+      m%tolerance = set%v(p_tolerance)%r
    end function model_from_parameters
 
    !> Integer code of a pad shape name; -1 when unknown.

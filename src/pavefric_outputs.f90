@@ -24,7 +24,7 @@ module pavefric_outputs
    !> Dimensions: per speed, or per position and speed (series).
    integer, parameter :: dim_speed = 1, dim_position_speed = 2
 
-   integer, parameter :: n_outputs = 20
+   integer, parameter :: n_outputs = 22
 
    !> One result variable.
    type :: output_var_type
@@ -88,6 +88,10 @@ contains
          & "microtexture piercing the film, force-weighted over contacts and positions")
       t(14) = var("mean_film_thickness", "m", "water film left under the pad, averaged " // &
          & "over elements and positions")
+      t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step: its " // &
+         & "change from the previous (twice coarser) step (&numerics tolerance)")
+      t(22) = var("substeps_used", "1", "time steps per element spacing the tolerance " // &
+         & "reached (&numerics tolerance)", out_int64)
       t(15) = var("mu_inst", "1", "instantaneous friction coefficient (Kane et al. 2017, " // &
          & "Eq. 11)", dims=dim_position_speed)
       t(16) = var("hydro_load", "N", "load carried by the water film (Eq. 15)", &
@@ -126,6 +130,8 @@ contains
          output_present = allocated(res%mu_inst)
       case (19:20)
          output_present = allocated(res%film_thickness)
+      case (21:22)
+         output_present = allocated(res%mu_error)
       case default
          output_present = .true.
       end select
@@ -196,6 +202,10 @@ contains
          values(1:np*ns) = reshape(res%film_thickness, [np*ns])
       case (20)
          values(1:np*ns) = reshape(res%local_friction, [np*ns])
+      case (21)
+         values(1:ns) = res%mu_error
+      case (22)
+         values(1:ns) = real(res%substeps_used, wp)
       end select
    end subroutine output_values
 

@@ -191,6 +191,7 @@ contains
             & groups="surface preprocess pad rubber water operation numerics output")
       end if
       meta%warnings = scene%warnings
+      if (len(res%warnings) > 0) call add_warning(meta%warnings, res%warnings)
       ! Texture metrics: reported when the profile holds a whole valid segment.
       if (allocated(clean%dropout_fraction)) then
          call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., meta%texture, &

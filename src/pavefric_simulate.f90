@@ -23,6 +23,9 @@ module pavefric_simulate
    public :: make_components
 
 
+   !> Finest time step the tolerance refinement may reach (&numerics substeps' bound).
+   integer, parameter :: max_substeps = 4096
+
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
    real(wp), parameter :: max_height = 1.0e6_wp
@@ -70,6 +73,10 @@ module pavefric_simulate
       logical, allocatable :: bearing_ran(:)
       !> Whether a friction-changing film ran at this speed.
       logical, allocatable :: friction_film_ran(:)
+      !> With &numerics tolerance: the estimated error of mu (the change
+      !> from the previous time step) and the substeps that met it.
+      real(wp), allocatable :: mu_error(:)
+      integer, allocatable :: substeps_used(:)
       !> Mean local friction over the contacts (force-weighted) with a
       !> friction-changing film, and the mean film under the pad (m).
       real(wp), allocatable :: mean_local_friction(:), mean_film_thickness(:)
@@ -171,8 +178,136 @@ contains
    end subroutine make_components
 
    !> Run the friction model on heights `z` (m) at spacing `dx` (m) for each
-   !> speed in `speeds_kmh`.
+   !> speed in `speeds_kmh`. With &numerics tolerance > 0 the time step is
+   !> refined until the estimated error of every speed's friction meets it
+   !> (simulate_to_tolerance); otherwise the knobs are taken as given.
    subroutine simulate(m, z, dx, closed, speeds_kmh, want_series, res, error)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
+      logical, intent(in) :: closed, want_series
+      type(sim_result_type), intent(out) :: res
+      type(error_type), allocatable, intent(out) :: error
+      if (m%tolerance > 0.0_wp) then
+         call simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error)
+      else
+         call simulate_fixed(m, z, dx, closed, speeds_kmh, want_series, res, error)
+      end if
+   end subroutine simulate
+
+   !> Accuracy on demand: the time step (substeps) halved until, for every
+   !> speed, the estimated error of its friction is at most &numerics
+   !> tolerance. The estimate at substeps s is twice the larger of the last
+   !> two changes, 2 max(|mu(s) - mu(s/2)|, |mu(s/2) - mu(s/4)|): the time
+   !> stepping converges with order 1 (docs/accuracy.md), for which the error
+   !> of mu(s) equals the last change; the larger of two changes and the
+   !> factor 2 guard the coarse steps, where one change can be accidentally
+   !> small. A speed that meets the tolerance keeps its result and is not run
+   !> again (with `series` every speed is refined together, so that the
+   !> series share positions). The pad's elements (elements_per_sample) are
+   !> a model choice, not refined here.
+   subroutine simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
+      logical, intent(in) :: closed, want_series
+      type(sim_result_type), intent(out) :: res
+      type(error_type), allocatable, intent(out) :: error
+      type(model_type) :: mm
+      type(sim_result_type) :: r
+      real(wp), allocatable :: prev(:), last_change(:)
+      logical, allocatable :: active(:)
+      integer, allocatable :: idx(:)
+      integer :: ns, k, j, level
+      real(wp) :: change, est
+      ns = size(speeds_kmh)
+      mm = m
+      call simulate_fixed(mm, z, dx, closed, speeds_kmh, want_series, res, error)
+      if (allocated(error)) return
+      allocate(res%mu_error(ns), res%substeps_used(ns), active(ns))
+      res%mu_error = huge(1.0_wp)
+      res%substeps_used = mm%substeps
+      prev = res%mu
+      allocate(last_change(ns))
+      last_change = huge(1.0_wp)
+      active = .true.
+      level = 0
+      do
+         if (2 * mm%substeps > max_substeps) exit
+         mm%substeps = 2 * mm%substeps
+         level = level + 1
+         if (want_series) then
+            idx = [(j, j = 1, ns)]
+         else
+            idx = pack([(j, j = 1, ns)], active)
+         end if
+         call simulate_fixed(mm, z, dx, closed, speeds_kmh(idx), want_series, r, error)
+         if (allocated(error)) return
+         do k = 1, size(idx)
+            j = idx(k)
+            change = abs(r%mu(k) - prev(j))
+            prev(j) = r%mu(k)
+            if (.not. active(j) .and. .not. want_series) cycle
+            call copy_speed(r, k, res, j)
+            res%substeps_used(j) = mm%substeps
+            if (.not. active(j)) cycle
+            if (level >= 2) then
+               est = 2.0_wp * max(change, last_change(j))
+               res%mu_error(j) = est
+               if (est <= m%tolerance) active(j) = .false.
+            end if
+            last_change(j) = change
+         end do
+         res%n_elements = r%n_elements
+         res%n_positions = max(res%n_positions, r%n_positions)
+         res%n_spinup = max(res%n_spinup, r%n_spinup)
+         if (len(r%effects) > len(res%effects)) res%effects = r%effects
+         if (want_series) call move_series(r, res)
+         if (.not. any(active)) exit
+      end do
+      if (any(active)) call add_warning(res%warnings, "&numerics tolerance = " // &
+         & to_str(m%tolerance) // ": not met at substeps = " // to_str(mm%substeps) // &
+         & " (the largest allowed); estimated error " // &
+         & to_str(maxval(res%mu_error, mask=active)) // " at " // &
+         & to_str(res%speed_kmh(findloc(active, .true., dim=1))) // " km/h")
+   end subroutine simulate_to_tolerance
+
+   !> Speed k of `from` into speed j of `to` (every per-speed result).
+   pure subroutine copy_speed(from, k, to, j)
+      type(sim_result_type), intent(in) :: from
+      integer, intent(in) :: k, j
+      type(sim_result_type), intent(inout) :: to
+      to%mu(j) = from%mu(k)
+      to%hydroplaning_fraction(j) = from%hydroplaning_fraction(k)
+      to%wet_fraction(j) = from%wet_fraction(k)
+      to%max_balance_residual(j) = from%max_balance_residual(k)
+      to%mean_hydro_load(j) = from%mean_hydro_load(k)
+      to%max_compression(j) = from%max_compression(k)
+      to%n_clamped(j) = from%n_clamped(k)
+      to%bearing_evaluations(j) = from%bearing_evaluations(k)
+      to%memory_updates(j) = from%memory_updates(k)
+      to%viscous_memory_ran(j) = from%viscous_memory_ran(k)
+      to%bearing_ran(j) = from%bearing_ran(k)
+      to%friction_film_ran(j) = from%friction_film_ran(k)
+      to%mean_local_friction(j) = from%mean_local_friction(k)
+      to%mean_film_thickness(j) = from%mean_film_thickness(k)
+   end subroutine copy_speed
+
+   !> The series of the last level (every speed refined together).
+   pure subroutine move_series(from, to)
+      type(sim_result_type), intent(inout) :: from, to
+      call move_alloc(from%position, to%position)
+      call move_alloc(from%mu_inst, to%mu_inst)
+      call move_alloc(from%hydro_load, to%hydro_load)
+      call move_alloc(from%penetration, to%penetration)
+      call move_alloc(from%contact_elements, to%contact_elements)
+      if (allocated(from%film_thickness)) then
+         call move_alloc(from%film_thickness, to%film_thickness)
+         call move_alloc(from%local_friction, to%local_friction)
+      end if
+      to%n_positions = from%n_positions
+   end subroutine move_series
+
+   !> The friction model at the knobs given.
+   subroutine simulate_fixed(m, z, dx, closed, speeds_kmh, want_series, res, error)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
       logical, intent(in) :: closed, want_series
@@ -284,7 +419,7 @@ contains
             & res%effects = res%effects // "," // film%effect()
       end if
       call check_results(res, error)
-   end subroutine simulate
+   end subroutine simulate_fixed
 
    !> Checks that need the profile and speeds as well as the parameters.
    subroutine check_inputs(m, z, dx, closed, speeds_kmh, error)
