@@ -309,8 +309,8 @@ contains
 
       s(p_tolerance) = real_param("numerics", "tolerance", "0", "1", "model", &
          & "accuracy on demand: when > 0, the time step (substeps, from the value given) " // &
-         & "is halved until every speed's friction changes by at most this much; the " // &
-         & "output records that change as the estimated error (mu_error_estimate) and the " // &
+         & "is halved until every speed's estimated error (from its last two changes) is at " // &
+         & "most this much; the output records the estimate (mu_error_estimate) and the " // &
          & "substeps reached (substeps_used). 0: the knobs as given (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
 

@@ -196,14 +196,16 @@ contains
 
    !> Accuracy on demand: the time step (substeps) halved until, for every
    !> speed, the estimated error of its friction is at most &numerics
-   !> tolerance. The estimate at substeps s is twice the larger of the last
-   !> two changes, 2 max(|mu(s) - mu(s/2)|, |mu(s/2) - mu(s/4)|): the time
-   !> stepping converges with order 1 (docs/accuracy.md), for which the error
-   !> of mu(s) equals the last change; the larger of two changes and the
-   !> factor 2 guard the coarse steps, where one change can be accidentally
-   !> small. A speed that meets the tolerance keeps its result and is not run
-   !> again (with `series` every speed is refined together, so that the
-   !> series share positions). The pad's elements (elements_per_sample) are
+   !> tolerance. With d1 = |mu(s/2) - mu(s/4)| and d2 = |mu(s) - mu(s/2)| the
+   !> estimate at substeps s is 2 max(d1, d2). The time stepping converges
+   !> with order 1 (docs/accuracy.md), for which the error left in mu(s)
+   !> equals d2; the larger of two changes and the factor 2 guard the coarse
+   !> steps, where the sequence is not yet monotone and one change can be
+   !> accidentally small (a sharper Richardson estimate, 2 d2 when d2 <= d1/2,
+   !> was measured to under-estimate there, on GSP wet). A speed that meets
+   !> the tolerance keeps its result and is not run again (with `series`
+   !> every speed is refined together, so that the series share positions).
+   !> The pad's elements (elements_per_sample) are
    !> a model choice, not refined here.
    subroutine simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error)
       type(model_type), intent(in) :: m

@@ -110,6 +110,37 @@ def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = No
     )
 
 
+TOLERANCES = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
+
+
+def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequence[float],
+                    tolerances: Sequence[float] = TOLERANCES, repeats: int = 3,
+                    overrides: dict | None = None) -> list[dict]:
+    """The cost of each ``&numerics tolerance`` on one scene: for each
+    tolerance, the error the run reports (``mu_error_estimate``), its actual
+    error against ``mu_limit`` (the converged limit from :func:`study`), the
+    substeps it chose, and its wall time against the default settings."""
+    from .core import load_scene
+
+    scene = load_scene(scene_path)
+    scene.parameters.update(overrides or {})
+    speeds = np.asarray(speeds_kmh, dtype=float)
+    _, t_default = _timed(scene, speeds, repeats)
+    rows = []
+    for tol in tolerances:
+        ds, seconds = _timed(scene, speeds, repeats, tolerance=float(tol))
+        rows.append({
+            "tolerance": float(tol),
+            "estimate": float(np.max(ds["mu_error_estimate"].values)),
+            "actual": float(np.max(np.abs(ds["mu"].values - np.asarray(mu_limit)))),
+            "substeps": int(np.max(ds["substeps_used"].values)),
+            "time_s": seconds,
+            "cost": seconds / t_default,
+            "met": bool(np.all(ds["mu_error_estimate"].values <= tol)),
+        })
+    return rows
+
+
 def to_csv(table, path: str | os.PathLike) -> None:
     """One row per setting: knob, value, error, time, element-steps, mu per speed."""
     speeds = table["speed_kmh"].values

@@ -47,6 +47,17 @@ def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats:
         print(f"accuracy: {stem}: {table.sizes['setting']} settings in "
               f"{time.perf_counter() - t0:.1f} s -> {out}/accuracy_{stem}.csv")
         tables.append(table)
+        t0 = time.perf_counter()
+        table.attrs["tolerance_rows"] = accuracy.tolerance_study(
+            scene, table["mu_limit"].values, table["speed_kmh"].values, repeats=repeats,
+            overrides=overrides)
+        with open(out / f"tolerance_{stem}.csv", "w", encoding="utf-8") as fh:
+            fh.write("tolerance,estimate,actual,substeps,time_s,cost,met\n")
+            for r in table.attrs["tolerance_rows"]:
+                fh.write(f"{r['tolerance']:g},{r['estimate']:.6g},{r['actual']:.6g},"
+                         f"{r['substeps']},{r['time_s']:.6g},{r['cost']:.4g},{int(r['met'])}\n")
+        print(f"accuracy: {stem}: tolerances in {time.perf_counter() - t0:.1f} s "
+              f"-> {out}/tolerance_{stem}.csv")
     png = accuracy.plot(tables, out / "accuracy.png", title="error against cost, per knob")
     print(f"accuracy: wrote {png}")
     rec = accuracy.recommend(tables)
@@ -108,7 +119,45 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "",
         "![error against time](figures/accuracy.png)",
         "",
+        "## Accuracy on demand: the cost of each `&numerics tolerance`",
+        "",
+        "With `tolerance > 0` the time step is halved (`substeps` doubled from the "
+        "scene's value) until each speed's estimated error is within the tolerance: "
+        "twice the larger of the last two changes of its friction (first-order "
+        "convergence leaves an error equal to the last change; the doubling and the "
+        "larger of two guard the coarse steps, where the sequence is not yet monotone). "
+        "The estimate is written as "
+        "`mu_error_estimate`, the substeps chosen as `substeps_used`. The pad "
+        "(`elements_per_sample`) is not refined: its effect is a property of the "
+        "measured texture between samples (below). `actual` is the largest "
+        "|mu - converged limit| over the speeds; `cost` is the wall time against the "
+        "default settings (every refinement level run counts). Worst over the scenes:",
+        "",
+        "| tolerance | largest estimate | largest actual error | substeps chosen | "
+        "cost vs default | met everywhere |",
+        "|---|---|---|---|---|---|",
     ]
+    tols = [r["tolerance"] for r in tables[0].attrs.get("tolerance_rows", [])]
+    for i, tol in enumerate(tols):
+        rows = [t.attrs["tolerance_rows"][i] for t in tables]
+        lines.append(
+            f"| {tol:g} | {max(r['estimate'] for r in rows):.2g} | "
+            f"{max(r['actual'] for r in rows):.2g} | "
+            f"{min(r['substeps'] for r in rows)}–{max(r['substeps'] for r in rows)} | "
+            f"{min(r['cost'] for r in rows):.2g}–{max(r['cost'] for r in rows):.2g}x | "
+            f"{'yes' if all(r['met'] for r in rows) else 'no'} |")
+    lines += [
+        "",
+        "Per scene (tolerance: actual error / estimate, substeps, cost):",
+        "",
+        "| scene | " + " | ".join(f"{t:g}" for t in tols) + " |",
+        "|---|" + "---|" * len(tols),
+    ]
+    for t in tables:
+        cells = [f"{r['actual']:.1g} / {r['estimate']:.1g}, {r['substeps']}, {r['cost']:.2g}x"
+                 for r in t.attrs.get("tolerance_rows", [])]
+        lines.append(f"| {t.attrs['label']} | " + " | ".join(cells) + " |")
+    lines += [""]
     for table in tables:
         name = table.attrs["label"]
         kind = "wet" if table.attrs["wet"] else "dry"
