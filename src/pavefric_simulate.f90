@@ -12,6 +12,7 @@ module pavefric_simulate
    use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded
    use pavefric_profile, only: refine_profile, check_heights
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
+   use pavefric_maxwell, only: maxwell_rubber, wlf_shift
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
@@ -162,7 +163,20 @@ contains
       type(model_type), intent(in) :: m
       class(rubber_model), allocatable, intent(out) :: rubber
       class(film_model), allocatable, intent(out) :: film
-      allocate(rubber, source=kelvin_voigt_rubber(stiffness=m%stiffness, viscosity=m%viscosity))
+      real(wp) :: a_t
+      character(len=:), allocatable :: law
+      law = "kelvin_voigt"
+      if (allocated(m%rubber_model)) law = m%rubber_model
+      ! the WLF shift of every relaxation time (exactly 1 at the reference temperature)
+      a_t = wlf_shift(m%temperature, m%reference_temperature, m%wlf_c1, m%wlf_c2)
+      select case (law)
+      case ("maxwell")
+         allocate(rubber, source=maxwell_rubber(stiffness=m%stiffness, &
+            & arm_stiffness=m%prony_stiffness, arm_times=a_t * m%prony_times))
+      case default
+         allocate(rubber, source=kelvin_voigt_rubber(stiffness=m%stiffness, &
+            & viscosity=a_t * m%viscosity))
+      end select
       if (.not. m%depth > 0.0_wp) return
       select case (m%wet_model)
       case ("squeeze")
