@@ -102,18 +102,13 @@ contains
       type(rubber_step_type), intent(in) :: step
       real(wp), intent(in) :: state(:, :, :)
       real(wp), intent(out) :: u_free(:, :)
-      integer :: i, j, k, n
-      n = size(self%arm_stiffness)
-      do i = 1, size(u_free, 2)
-         do j = 1, size(u_free, 1)
-            u_free(j, i) = step%coef(j, 1) * state(j, 1, i)
-         end do
-         do k = 1, n
-            do j = 1, size(u_free, 1)
-               u_free(j, i) = u_free(j, i) + step%coef(j, 1 + k) * state(j, 1 + k, i)
-            end do
-         end do
-      end do
+      if (size(u_free, 1) == 4) then
+         call free_kernel4(size(state, 2), size(u_free, 2), size(self%arm_stiffness), &
+            & step%coef, state, u_free)
+      else
+         call free_kernel(size(u_free, 1), size(state, 2), size(u_free, 2), &
+            & size(self%arm_stiffness), step%coef, state, u_free)
+      end if
    end subroutine mx_free
 
    !> u1 = u_free + push; v_k <- (1 - G_k) u1 + (G_k - E_k) u0 + E_k v_k.
@@ -122,25 +117,91 @@ contains
       type(rubber_step_type), intent(in) :: step
       real(wp), intent(inout) :: state(:, :, :)
       real(wp), intent(in) :: u_free(:, :), push(:, :)
-      real(wp) :: u1(size(u_free, 1))
-      integer :: i, j, k, n
-      n = size(self%arm_stiffness)
-      do i = 1, size(u_free, 2)
-         do j = 1, size(u_free, 1)
-            u1(j) = u_free(j, i) + push(j, i)
+      if (size(u_free, 1) == 4) then
+         call update_kernel4(size(state, 2), size(u_free, 2), size(self%arm_stiffness), &
+            & step%coef, state, u_free, push)
+      else
+         call update_kernel(size(u_free, 1), size(state, 2), size(u_free, 2), &
+            & size(self%arm_stiffness), step%coef, state, u_free, push)
+      end if
+   end subroutine mx_update
+
+   !> mx_free's loops on explicit shapes (nl lanes, ns state values, n
+   !> elements, na arms), so that the lane loops compile to vectors.
+   pure subroutine free_kernel(nl, ns, n, na, coef, state, u_free)
+      integer, intent(in) :: nl, ns, n, na
+      real(wp), intent(in) :: coef(nl, 1 + 4 * na), state(nl, ns, n)
+      real(wp), intent(out) :: u_free(nl, n)
+      integer :: i, j, k
+      do i = 1, n
+         do j = 1, nl
+            u_free(j, i) = coef(j, 1) * state(j, 1, i)
          end do
-         do k = 1, n
-            do j = 1, size(u_free, 1)
-               state(j, 1 + k, i) = step%coef(j, 1 + n + k) * u1(j) &
-                  & + step%coef(j, 1 + 2 * n + k) * state(j, 1, i) &
-                  & + step%coef(j, 1 + 3 * n + k) * state(j, 1 + k, i)
+         do k = 1, na
+            do j = 1, nl
+               u_free(j, i) = u_free(j, i) + coef(j, 1 + k) * state(j, 1 + k, i)
             end do
          end do
-         do j = 1, size(u_free, 1)
+      end do
+   end subroutine free_kernel
+
+   !> free_kernel for four lanes (the driver's width): whole vectors.
+   pure subroutine free_kernel4(ns, n, na, coef, state, u_free)
+      integer, intent(in) :: ns, n, na
+      real(wp), intent(in) :: coef(4, 1 + 4 * na), state(4, ns, n)
+      real(wp), intent(out) :: u_free(4, n)
+      real(wp) :: acc(4)
+      integer :: i, k
+      do i = 1, n
+         acc = coef(:, 1) * state(:, 1, i)
+         do k = 1, na
+            acc = acc + coef(:, 1 + k) * state(:, 1 + k, i)
+         end do
+         u_free(:, i) = acc
+      end do
+   end subroutine free_kernel4
+
+   !> update_kernel for four lanes.
+   pure subroutine update_kernel4(ns, n, na, coef, state, u_free, push)
+      integer, intent(in) :: ns, n, na
+      real(wp), intent(in) :: coef(4, 1 + 4 * na), u_free(4, n), push(4, n)
+      real(wp), intent(inout) :: state(4, ns, n)
+      real(wp) :: u0(4), u1(4)
+      integer :: i, k
+      do i = 1, n
+         u0 = state(:, 1, i)
+         u1 = u_free(:, i) + push(:, i)
+         do k = 1, na
+            state(:, 1 + k, i) = coef(:, 1 + na + k) * u1 + coef(:, 1 + 2 * na + k) * u0 &
+               & + coef(:, 1 + 3 * na + k) * state(:, 1 + k, i)
+         end do
+         state(:, 1, i) = u1
+      end do
+   end subroutine update_kernel4
+
+   !> mx_update's loops on explicit shapes.
+   pure subroutine update_kernel(nl, ns, n, na, coef, state, u_free, push)
+      integer, intent(in) :: nl, ns, n, na
+      real(wp), intent(in) :: coef(nl, 1 + 4 * na), u_free(nl, n), push(nl, n)
+      real(wp), intent(inout) :: state(nl, ns, n)
+      real(wp) :: u1(nl)
+      integer :: i, j, k
+      do i = 1, n
+         do j = 1, nl
+            u1(j) = u_free(j, i) + push(j, i)
+         end do
+         do k = 1, na
+            do j = 1, nl
+               state(j, 1 + k, i) = coef(j, 1 + na + k) * u1(j) &
+                  & + coef(j, 1 + 2 * na + k) * state(j, 1, i) &
+                  & + coef(j, 1 + 3 * na + k) * state(j, 1 + k, i)
+            end do
+         end do
+         do j = 1, nl
             state(j, 1, i) = u1(j)
          end do
       end do
-   end subroutine mx_update
+   end subroutine update_kernel
 
    pure function mx_memory_effect(self) result(name)
       class(maxwell_rubber), intent(in) :: self
