@@ -20,7 +20,8 @@ master curve, a Prony series fitted by non-negative least squares, and the
   decade beyond them on either side); E_inf and the E_k are the non-negative
   least-squares solution (``scipy.optimize.nnls``) of the storage and loss
   moduli, each point weighted by the inverse of its measured value (relative
-  errors: the moduli span decades). Arms whose E_k is zero are dropped.
+  errors: the moduli span decades). Arms whose E_k is zero (or below 1e-9 of
+  the largest modulus, rounding residue) are dropped.
 - **Per unit length**: the core's element works with stiffness per unit
   length of pad (N m-3, like the paper's K): a modulus (Pa) becomes one by
   dividing it by a length. A thin layer of thickness h pressed between
@@ -53,8 +54,9 @@ THICKNESS = 0.006
 #: at the reference temperature, shifted by the WLF constants above. Not a
 #: measurement: E_r = 3 MPa (a passenger-car tread's low-frequency Young's
 #: modulus), E_g = 1.5 GPa (glassy elastomers: 1-3 GPa), beta = 0.5, and tau,
-#: alpha set so that tan delta at 10 Hz is 0.50 at 0 C and 0.12 at 60 C, the
-#: wet-grip and rolling-resistance indicators of a passenger-car tread compound.
+#: alpha set so that tan delta at 10 Hz is 0.50 at 0 C and 0.12 at 60 C, typical
+#: values of the wet-grip and rolling-resistance indicators of passenger-car
+#: tread compounds.
 REPRESENTATIVE = dict(e_rubbery=3.0e6, e_glassy=1.5e9, tau=8.6e-9, alpha=0.332, beta=0.5)
 REPRESENTATIVE_TEMPERATURES = (-20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
 
@@ -221,10 +223,12 @@ def _design(omega: np.ndarray, times: np.ndarray, storage: np.ndarray, loss: np.
 
 
 def fit_prony(data: DMAData, reference: float = T_REF, c1: float = WLF_C1,
-              c2: float = WLF_C2, per_decade: float = 1.0, fit_wlf: bool = False) -> PronyFit:
+              c2: float = WLF_C2, per_decade: float = 1.0, fit_wlf: bool = False,
+              times=None) -> PronyFit:
     """A Prony series fitted to ``data`` (module docstring). With ``fit_wlf``
     C1 and C2 are fitted too (Nelder-Mead on their logarithms, from the given
-    values), minimising the same residual."""
+    values), minimising the same residual. ``times`` (s, at the reference
+    temperature) replaces the log-spaced candidate relaxation times."""
     from scipy.optimize import minimize, nnls
 
     if per_decade <= 0:
@@ -232,12 +236,17 @@ def fit_prony(data: DMAData, reference: float = T_REF, c1: float = WLF_C1,
 
     def solve(c1_, c2_):
         w = data.omega * 10.0 ** wlf_log10_shift(data.temperature, reference, c1_, c2_)
-        lo, hi = np.log10(1.0 / w.max()) - 1.0, np.log10(1.0 / w.min()) + 1.0
-        n = max(2, int(math.ceil((hi - lo) * per_decade)) + 1)
-        times = np.logspace(lo, hi, n)
-        a, b = _design(w, times, data.storage, data.loss)
+        if times is None:
+            lo, hi = np.log10(1.0 / w.max()) - 1.0, np.log10(1.0 / w.min()) + 1.0
+            n = max(2, int(math.ceil((hi - lo) * per_decade)) + 1)
+            candidates = np.logspace(lo, hi, n)
+        else:
+            candidates = np.sort(np.asarray(times, dtype=float))
+            if candidates.ndim != 1 or candidates.size == 0 or not np.all(candidates > 0):
+                raise ValueError("times: relaxation times must be a list of numbers > 0")
+        a, b = _design(w, candidates, data.storage, data.loss)
         x, rnorm = nnls(a, b, maxiter=50 * a.shape[1])
-        return x, times, w, rnorm
+        return x, candidates, w, rnorm
 
     if fit_wlf:
         if np.unique(data.temperature).size < 2:
@@ -253,7 +262,8 @@ def fit_prony(data: DMAData, reference: float = T_REF, c1: float = WLF_C1,
                        options=dict(xatol=1e-6, fatol=1e-12, maxiter=2000))
         c1, c2 = (float(v) for v in np.exp(res.x))
     x, times, w, _ = solve(c1, c2)
-    keep = x[1:] > 0
+    # arms NNLS set to zero, or to rounding residue of the others
+    keep = x[1:] > 1e-9 * max(x.max(), 0.0)
     fit = PronyFit(float(x[0]), x[1:][keep], times[keep], reference, float(c1), float(c2),
                    omega_range=(float(w.min()), float(w.max())), points=int(w.size),
                    temperatures=tuple(float(t) for t in np.unique(data.temperature)))
@@ -299,11 +309,11 @@ REPRESENTATIVE_HEADER = """\
 # inputs/data/tread_compound_dma.csv` from a stated model, as an example input
 # for `python -m pavefric prony` (see inputs/data/README.md and docs/rubber.md).
 # Model: Young's modulus E*(w) = E_g - (E_g - E_r) / (1 + (i w a_T tau)^alpha)^beta
-#   (Havriliak & Negami 1967, J. Polym. Sci. C 14, 99) with E_r = {e_rubbery:g} Pa
+#   (Havriliak & Negami 1966, J. Polym. Sci. C 14, 99) with E_r = {e_rubbery:g} Pa
 #   (low-frequency modulus of a tread compound), E_g = {e_glassy:g} Pa (glassy
 #   elastomer, 1-3 GPa), beta = {beta:g}, tau = {tau:g} s and alpha = {alpha:g} chosen so
-#   that tan delta at 10 Hz is 0.50 at 0 C and 0.12 at 60 C (the wet-grip and
-#   rolling-resistance indicators of a passenger-car tread compound).
+#   that tan delta at 10 Hz is 0.50 at 0 C and 0.12 at 60 C (typical values of the
+#   wet-grip and rolling-resistance indicators of passenger-car tread compounds).
 # WLF shift (Williams, Landel & Ferry 1955, J. Am. Chem. Soc. 77, 3701):
 #   log10 a_T = -{c1:g} (T - {tref:g}) / ({c2:g} + T - {tref:g}), reference {tref:g} C taken
 #   50 K above a glass transition of -30 C.
@@ -393,11 +403,12 @@ def main_prony(args) -> int:
     data = read_dma(args.data, modulus=args.modulus, temperature=args.reference_temperature)
     fit = fit_prony(data, reference=args.reference_temperature, c1=args.c1, c2=args.c2,
                     per_decade=args.per_decade, fit_wlf=args.fit_wlf)
-    first = next((ln for ln in data.source.split("; ") if ln), str(args.data))
+    header = [ln for ln in data.source.split("; ") if ln][:2] or [str(args.data)]
     comments = [
         f"Prony series fitted by `python -m pavefric prony {args.data}` "
         f"({time.strftime('%Y-%m-%d')}).",
-        f"Data: {first}",
+        f"Data ({args.data}): {header[0]}",
+        *[f"  {ln}" for ln in header[1:]],
         f"{fit.points} points at {', '.join(f'{t:g}' for t in fit.temperatures)} C, shifted "
         f"to Tref = {fit.reference_temperature:g} C with WLF C1 = {fit.c1:.6g}, "
         f"C2 = {fit.c2:.6g} K" + (" (fitted)" if args.fit_wlf else "") + ".",
