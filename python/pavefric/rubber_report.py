@@ -371,8 +371,8 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "- **Free recovery**: out of contact the element ends the step at u1 = u_free, where "
         "its pressure is zero; every arm then updates with u1 = u_free. The pressure is zero "
         "at the step's end, not all through it: the true free path (p ≡ 0, a sum of "
-        "exponentials) is replaced by its linear interpolation between steps, an O(Δt²) "
-        "difference, the same order as the piecewise-linear profile.",
+        "exponentials) is replaced by its linear interpolation between steps, a difference "
+        "of O(Δt²) per step, as for the piecewise-linear profile.",
         "- The new state is u1 = u_free + push, push = max(0, g − u_free) (never negative), "
         "then each v_k as above; the driver and the load balance see only k_eff and u_free.",
         "",
@@ -392,8 +392,9 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "the update 3n; the lane loops run on explicit shapes, four lanes a vector.",
         "",
         "Kelvin–Voigt (backward Euler, first order in Δt) stays the default; the Maxwell step "
-        "is exact for the piecewise-linear compression, so its only discretisation is the "
-        "profile's.",
+        "is exact for the piecewise-linear compression, so what remains of the time "
+        "discretisation is the profile's sampling and the contact's timing (an element "
+        "gains or loses contact at a step's end only; see Resolution below).",
         "",
         "## Temperature: the WLF shift",
         "",
@@ -484,7 +485,8 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "data are converted by E = 3G (`--modulus shear`). This is an assumption of the "
         "element model, not a property of the compound: a pad indented by texture of "
         "wavelength λ responds more like a half-space, p/u ≈ E k/(2(1 − ν²)) = 2πE/(1.5λ), "
-        "which is E/h with h = λ/4 (λ = 24 mm at h = 6 mm). Note what it means: the compound's "
+        "which is E/h with h ≈ λ/4 (h = 6 mm for λ ≈ 25 mm). Note what it means: the "
+        "compound's "
         f"K∞ = {rubber['stiffness']:.3g} N m⁻³ is {rubber['stiffness'] / 1.4e8:.1f}x the "
         "paper's K, and at texture frequencies (10³–10⁵ rad/s at 20 °C) the compound's "
         f"storage modulus is {stiff_lo:.0f}–{stiff_hi:.0f} times its equilibrium one; the "
