@@ -129,8 +129,10 @@ def main(argv: list[str] | None = None) -> int:
 
     p_prony = sub.add_parser("prony", help="fit a Prony series to dynamic mechanical data and "
                              "write the &rubber group", description="Fit a generalised "
-                             "Maxwell (Prony) series to DMA data (CSV: temperature_c, "
-                             "frequency_hz, storage_pa, loss_pa), shifted to a master curve by "
+                             "Maxwell (Prony) series to DMA data (CSV with a header: "
+                             "temperature_c (optional), frequency_hz or omega_rad_s, storage_pa "
+                             "or storage_mpa, loss_pa or loss_mpa; '#' comments), shifted to a "
+                             "master curve by "
                              "the WLF equation, by non-negative least squares; write the "
                              "&rubber group (moduli divided by the rubber thickness). See "
                              "docs/rubber.md.")
