@@ -202,8 +202,10 @@ def sinusoid_case(per_wave: int, pad_waves: int = 16, waves: int = 64, speed_kmh
     return ds, mu_cont, mu_disc, n
 
 
-def test_sinusoid_friction_is_the_schemes_closed_form_to_rounding():
-    ds, _, mu_disc, n = sinusoid_case(32)
+@pytest.mark.parametrize("per_wave", [8, 32])
+def test_sinusoid_friction_is_the_schemes_closed_form_to_rounding(per_wave):
+    """dt/tau spans 0.07-2.6 here: both branches of the arm's weights."""
+    ds, _, mu_disc, n = sinusoid_case(per_wave)
     assert np.all(ds["contact_elements"].values == n)        # always every element
     mu = float(ds["mu"].values[0])
     assert mu == pytest.approx(mu_disc, rel=1e-12)
