@@ -6,18 +6,13 @@
 !> kel = l dx_el K_eff. The unknown is x; rounding is then relative to the
 !> penetration beyond the first contact, not to the profile's absolute height.
 module pavefric_balance
-   use pavefric_kinds, only: wp
+   use pavefric_kinds, only: wp, lanes
    use pavefric_film, only: film_model, film_step_type
    use pavefric_lapack, only: dlasrt
    implicit none
    private
 
    public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field, lanes, lane_count
-
-   !> Speeds advanced together (lanes): a fixed width, so that the element
-   !> loops over the lanes compile to whole vectors (one AVX2 vector, two
-   !> SSE2 ones) and the lanes' work arrays live on the stack.
-   integer, parameter :: lanes = 8
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24

@@ -4,7 +4,7 @@ module pavefric_kinds
    implicit none
    private
 
-   public :: wp, i8, pi, kmh_to_ms, pavefric_version
+   public :: wp, i8, pi, kmh_to_ms, pavefric_version, lanes
 
    !> Working precision: IEEE double.
    integer, parameter :: wp = selected_real_kind(15)
@@ -14,6 +14,10 @@ module pavefric_kinds
    real(wp), parameter :: pi = 3.14159265358979323846264338327950288_wp
    !> Conversion factor from km/h to m/s.
    real(wp), parameter :: kmh_to_ms = 1.0_wp / 3.6_wp
+   !> Speeds advanced together (lanes): a fixed width, so that the element
+   !> loops over the lanes compile to whole vectors (two AVX2 vectors, four
+   !> SSE2 ones) and the lanes' work arrays live on the stack.
+   integer, parameter :: lanes = 8
    !> Version of the code, written into every output file.
    character(len=*), parameter :: pavefric_version = "0.1.0"
 

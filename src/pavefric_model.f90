@@ -15,6 +15,7 @@ module pavefric_model
    use pavefric_format, only: to_str, to_lower
    use pavefric_numbers, only: parse_real, parse_integer
    use pavefric_namelist, only: nml_group_type, nml_item_type, nml_token_type, parse_namelist, at
+   use pavefric_maxwell, only: wlf_check, max_log10_shift
    implicit none
    private
 
@@ -41,16 +42,20 @@ module pavefric_model
       & p_resample_dx = 17, p_lowpass_wavelength = 18, &
       & p_length = 19, p_width = 20, p_thickness = 21, p_load = 22, p_shape = 23, &
       & p_radius = 24, &
-      & p_stiffness = 25, p_viscosity = 26, &
-      & p_wet_model = 27, p_depth = 28, p_water_viscosity = 29, p_alpha = 30, p_beta = 31, &
-      & p_speeds_kmh = 32, &
-      & p_theta_max_deg = 33, p_substeps = 34, p_elements_per_sample = 35, &
-      & p_position_stride = 36, p_wet_tolerance = 37, p_tolerance = 38, &
-      & p_output_file = 39, p_series = 40, &
-      & p_batch_profiles = 41, p_batch_profile_list = 42, p_batch_depths = 43, &
-      & p_batch_restart = 44, p_batch_progress_every = 45
-   integer, parameter :: n_parameters = 45
+      & p_rubber_model = 25, p_stiffness = 26, p_viscosity = 27, p_prony_stiffness = 28, &
+      & p_prony_times = 29, p_temperature = 30, p_reference_temperature = 31, p_wlf_c1 = 32, &
+      & p_wlf_c2 = 33, &
+      & p_wet_model = 34, p_depth = 35, p_water_viscosity = 36, p_alpha = 37, p_beta = 38, &
+      & p_speeds_kmh = 39, &
+      & p_theta_max_deg = 40, p_substeps = 41, p_elements_per_sample = 42, &
+      & p_position_stride = 43, p_wet_tolerance = 44, p_tolerance = 45, &
+      & p_output_file = 46, p_series = 47, &
+      & p_batch_profiles = 48, p_batch_profile_list = 49, p_batch_depths = 50, &
+      & p_batch_restart = 51, p_batch_progress_every = 52
+   integer, parameter :: n_parameters = 52
    integer, parameter :: n_groups = 9
+   !> Most arms of a generalised Maxwell element.
+   integer, parameter, public :: max_arms = 100
 
    !> A namelist group and what it is for (docs/inputs.md sections).
    type :: group_spec_type
@@ -113,7 +118,14 @@ module pavefric_model
       real(wp) :: length = 0.0_wp, width = 0.0_wp, thickness = 0.0_wp, load = 0.0_wp
       character(len=:), allocatable :: shape
       real(wp) :: radius = 0.0_wp
+      !> &rubber: 'kelvin_voigt' or 'maxwell'; K (K_inf of a Maxwell element), C;
+      !> the Prony arms K_k (N m-3) and tau_k (s, at the reference temperature);
+      !> the temperatures (degC) and WLF constants C1 (1), C2 (K).
+      character(len=:), allocatable :: rubber_model
       real(wp) :: stiffness = 0.0_wp, viscosity = 0.0_wp
+      real(wp), allocatable :: prony_stiffness(:), prony_times(:)
+      real(wp) :: temperature = 20.0_wp, reference_temperature = 20.0_wp
+      real(wp) :: wlf_c1 = 0.0_wp, wlf_c2 = 1.0_wp
       character(len=:), allocatable :: wet_model
       real(wp) :: depth = 0.0_wp, water_viscosity = 0.0_wp, alpha = 0.0_wp, beta = 0.0_wp
       real(wp) :: theta_max_deg = 0.0_wp
@@ -132,8 +144,11 @@ contains
          & "ISO 13473-1's steps, each optional; docs/profiles.md says what each does.")
       g(3) = group_spec_type("pad", "the DFT rubber slider", &
          & "The pad of N = nint(length / dx) independent elements.")
-      g(4) = group_spec_type("rubber", "Kelvin–Voigt elements", &
-         & "The rubber of each element, per unit length of pad (paper, Table 1).")
+      g(4) = group_spec_type("rubber", "the rubber elements and their temperature", &
+         & "The rubber of each element, per unit length of pad: the paper's " // &
+         & "Kelvin–Voigt element (Table 1) or a generalised Maxwell element, its " // &
+         & "relaxation times shifted to the temperature by the WLF equation " // &
+         & "(docs/rubber.md).")
       g(5) = group_spec_type("water", "water on the road", &
          & "The water film and its model. depth = 0 is a dry road: no film is simulated.")
       g(6) = group_spec_type("operation", "the speeds", "The sliding speeds of the run.")
@@ -245,13 +260,55 @@ contains
          & lower_strict=.true., upper=1.0e12_wp)
 
       ! &rubber
+      s(p_rubber_model) = text("rubber", "model", "kelvin_voigt", "", "model", &
+         & "the element's law: 'kelvin_voigt', the paper's spring K and dashpot C in " // &
+         & "parallel (Eq. 3); 'maxwell', a generalised Maxwell (Prony) element: the " // &
+         & "equilibrium spring stiffness in parallel with the arms prony_stiffness, " // &
+         & "prony_times (docs/rubber.md)", choices="kelvin_voigt maxwell")
+      s(p_rubber_model)%keyword = "rubber_model"
       s(p_stiffness) = real_param("rubber", "stiffness", "1.4e8", "N m-3", "model", &
-         & "spring modulus per unit length K (paper, Table 1)", lower=0.0_wp, &
+         & "spring modulus per unit length K (paper, Table 1); with model = 'maxwell' the " // &
+         & "equilibrium (long-time) spring K_inf. A layer of thickness h and Young's " // &
+         & "modulus E gives about E / h.", lower=0.0_wp, &
          & lower_strict=.true., upper=1.0e15_wp, plausible_lower=1.0e5_wp, &
          & plausible_upper=1.0e11_wp, plausible_note="tread rubber gives about 1e7 to 1e9")
       s(p_viscosity) = real_param("rubber", "viscosity", "1.0e2", "N s m-3", "model", &
-         & "dashpot viscosity per unit length C (paper: fitted on GSSB at 20 km/h); 0 = " // &
-         & "elastic rubber: no viscous memory is kept", lower=0.0_wp, upper=1.0e12_wp)
+         & "dashpot viscosity per unit length C (paper: fitted on GSSB at 20 km/h), at " // &
+         & "the reference temperature; 0 = elastic rubber: no viscous memory is kept. " // &
+         & "model = 'kelvin_voigt' only.", lower=0.0_wp, upper=1.0e12_wp)
+      s(p_prony_stiffness) = list_param("rubber", "prony_stiffness", "", "N m-3", "model", &
+         & "spring K_k of each Maxwell arm, per unit length like stiffness (model = " // &
+         & "'maxwell'; one per relaxation time; python -m pavefric prony fits them to " // &
+         & "dynamic mechanical data)", lower=0.0_wp, upper=1.0e15_wp, max_values=max_arms, &
+         & plausible_lower=0.0_wp, plausible_upper=1.0e13_wp, &
+         & plausible_note="glassy tread rubber is about 1e3 times stiffer than rubbery")
+      s(p_prony_times) = list_param("rubber", "prony_times", "", "s", "model", &
+         & "relaxation time tau_k of each Maxwell arm at the reference temperature " // &
+         & "(model = 'maxwell')", lower=0.0_wp, upper=1.0e30_wp, max_values=max_arms, &
+         & plausible_lower=1.0e-15_wp, plausible_upper=1.0e10_wp, &
+         & plausible_note="master curves of elastomers span about 1e-14 to 1e8 s")
+      s(p_prony_times)%lower_strict = .true.
+      s(p_temperature) = real_param("rubber", "temperature", "20", "degC", "model", &
+         & "rubber temperature T: every relaxation time (and the Kelvin-Voigt C) is " // &
+         & "multiplied by the WLF shift a_T, log10 a_T = -C1 (T - Tref) / (C2 + T - Tref)", &
+         & lower=-273.15_wp, lower_strict=.true., upper=1000.0_wp, plausible_lower=-40.0_wp, &
+         & plausible_upper=100.0_wp, plausible_note="road and tyre temperatures lie " // &
+         & "between -40 and 100 C")
+      s(p_reference_temperature) = real_param("rubber", "reference_temperature", "20", &
+         & "degC", "model", "reference temperature Tref of the relaxation times, the " // &
+         & "viscosity and the WLF constants", lower=-273.15_wp, lower_strict=.true., &
+         & upper=1000.0_wp)
+      s(p_wlf_c1) = real_param("rubber", "wlf_c1", "8.86", "1", "model", &
+         & "WLF constant C1 at the reference temperature (default: Williams, Landel & " // &
+         & "Ferry 1955 for Tref about 50 K above the glass transition)", lower=0.0_wp, &
+         & upper=1000.0_wp, plausible_lower=1.0_wp, plausible_upper=50.0_wp, &
+         & plausible_note="WLF fits of elastomers give C1 of about 3 to 30")
+      s(p_wlf_c2) = real_param("rubber", "wlf_c2", "101.6", "K", "model", &
+         & "WLF constant C2 at the reference temperature (default: Williams, Landel & " // &
+         & "Ferry 1955); temperatures at or below Tref - C2 are refused", lower=0.0_wp, &
+         & lower_strict=.true., upper=1.0e4_wp, plausible_lower=10.0_wp, &
+         & plausible_upper=1000.0_wp, plausible_note="WLF fits of elastomers give C2 of " // &
+         & "about 30 to 300 K")
 
       ! &water
       s(p_wet_model) = text("water", "wet_model", "kane2017", "", "model", &
@@ -912,8 +969,15 @@ contains
       m%load = set%v(p_load)%r
       m%shape = set%v(p_shape)%t
       m%radius = set%v(p_radius)%r
+      m%rubber_model = set%v(p_rubber_model)%t
       m%stiffness = set%v(p_stiffness)%r
       m%viscosity = set%v(p_viscosity)%r
+      m%prony_stiffness = list_or_empty(set%v(p_prony_stiffness))
+      m%prony_times = list_or_empty(set%v(p_prony_times))
+      m%temperature = set%v(p_temperature)%r
+      m%reference_temperature = set%v(p_reference_temperature)%r
+      m%wlf_c1 = set%v(p_wlf_c1)%r
+      m%wlf_c2 = set%v(p_wlf_c2)%r
       m%wet_model = set%v(p_wet_model)%t
       m%depth = set%v(p_depth)%r
       m%water_viscosity = set%v(p_water_viscosity)%r
@@ -926,6 +990,17 @@ contains
       m%wet_tolerance = set%v(p_wet_tolerance)%r
       m%tolerance = set%v(p_tolerance)%r
    end function model_from_parameters
+
+   !> A list's values (none when it has no value).
+   pure function list_or_empty(value) result(list)
+      type(param_value_type), intent(in) :: value
+      real(wp), allocatable :: list(:)
+      if (allocated(value%list)) then
+         list = value%list
+      else
+         allocate(list(0))
+      end if
+   end function list_or_empty
 
    !> Integer code of a pad shape name; -1 when unknown.
    pure function shape_code(name) result(code)
@@ -962,7 +1037,59 @@ contains
             return
          end if
       end if
+      call validate_rubber(m, error)
    end subroutine validate_model
+
+   !> The rubber's cross-checks: Prony arms in pairs, at least one for a
+   !> Maxwell element, and a temperature where the WLF equation holds.
+   pure subroutine validate_rubber(m, error)
+      type(model_type), intent(in) :: m
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: why
+      real(wp) :: dt
+      integer :: n_k, n_t
+      if (.not. allocated(m%rubber_model) .or. .not. allocated(m%prony_stiffness) .or. &
+            & .not. allocated(m%prony_times)) then
+         call fatal_error(error, "internal: a model_type not made by model_from_parameters")
+         return
+      end if
+      n_k = size(m%prony_stiffness)
+      n_t = size(m%prony_times)
+      select case (m%rubber_model)
+      case ("kelvin_voigt", "maxwell")
+      case default
+         call fatal_error(error, "&rubber model = '" // m%rubber_model // "': unknown " // &
+            & "(expected 'kelvin_voigt' or 'maxwell')")
+         return
+      end select
+      if (n_k /= n_t) then
+         call fatal_error(error, "&rubber prony_stiffness has " // to_str(n_k) // &
+            & " values and prony_times " // to_str(n_t) // ": give one relaxation time " // &
+            & "per arm stiffness")
+         return
+      end if
+      if (m%rubber_model == "maxwell" .and. n_k < 1) then
+         call fatal_error(error, "&rubber model = 'maxwell': prony_stiffness and " // &
+            & "prony_times are empty; give at least one arm (python -m pavefric prony " // &
+            & "fits them to dynamic mechanical data)")
+         return
+      end if
+      why = wlf_check(m%temperature, m%reference_temperature, m%wlf_c1, m%wlf_c2)
+      dt = m%temperature - m%reference_temperature
+      if (why == "diverges") then
+         call fatal_error(error, "&rubber temperature = " // to_str(m%temperature) // &
+            & ": T - reference_temperature = " // to_str(dt) // " K must be > -wlf_c2 = " // &
+            & to_str(-m%wlf_c2) // " K (the WLF equation diverges at T = Tref - C2; it " // &
+            & "holds above the glass transition)")
+      else if (why == "too far") then
+         call fatal_error(error, "&rubber temperature = " // to_str(m%temperature) // &
+            & ": the WLF shift at T - reference_temperature = " // to_str(dt) // " K " // &
+            & "(wlf_c1 = " // to_str(m%wlf_c1) // ", wlf_c2 = " // to_str(m%wlf_c2) // &
+            & ") is log10 a_T = " // to_str(-m%wlf_c1 * dt / (m%wlf_c2 + dt)) // &
+            & ", beyond +-" // to_str(nint(max_log10_shift)) // " decades: no WLF fit " // &
+            & "holds that far from its reference temperature")
+      end if
+   end subroutine validate_rubber
 
    ! --- echo and plausibility -------------------------------------------------
 
@@ -1052,6 +1179,18 @@ contains
             end do
          end select
       end do
+      ! variables given that the chosen rubber does not use
+      if (set%v(p_rubber_model)%t == "maxwell" .and. set%v(p_viscosity)%set) &
+         & call add_warning(warnings, "&rubber viscosity = " // to_str(set%v(p_viscosity)%r) // &
+         & " is not used with &rubber model = 'maxwell' (the Prony arms carry the damping)")
+      if (set%v(p_rubber_model)%t == "kelvin_voigt") then
+         do k = p_prony_stiffness, p_prony_times
+            if (.not. set%v(k)%set) cycle
+            if (size(set%v(k)%list) > 0) call add_warning(warnings, "&rubber " // &
+               & specs(k)%name // " is not used with &rubber model = 'kelvin_voigt' " // &
+               & "(set model = 'maxwell' for the Prony arms)")
+         end do
+      end if
    end subroutine plausibility_warnings
 
    pure logical function plausible(spec, r)

@@ -12,6 +12,7 @@ module pavefric_simulate
    use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded
    use pavefric_heights, only: refine_profile, check_heights
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
+   use pavefric_maxwell, only: maxwell_rubber, wlf_shift
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
@@ -165,7 +166,20 @@ contains
       type(model_type), intent(in) :: m
       class(rubber_model), allocatable, intent(out) :: rubber
       class(film_model), allocatable, intent(out) :: film
-      allocate(rubber, source=kelvin_voigt_rubber(stiffness=m%stiffness, viscosity=m%viscosity))
+      real(wp) :: a_t
+      character(len=:), allocatable :: law
+      law = "kelvin_voigt"
+      if (allocated(m%rubber_model)) law = m%rubber_model
+      ! the WLF shift of every relaxation time (exactly 1 at the reference temperature)
+      a_t = wlf_shift(m%temperature, m%reference_temperature, m%wlf_c1, m%wlf_c2)
+      select case (law)
+      case ("maxwell")
+         allocate(rubber, source=maxwell_rubber(stiffness=m%stiffness, &
+            & arm_stiffness=m%prony_stiffness, arm_times=a_t * m%prony_times))
+      case default
+         allocate(rubber, source=kelvin_voigt_rubber(stiffness=m%stiffness, &
+            & viscosity=a_t * m%viscosity))
+      end select
       if (.not. m%depth > 0.0_wp) return
       select case (m%wet_model)
       case ("squeeze")
@@ -332,7 +346,7 @@ contains
       friction_film = .false.
       if (allocated(film)) friction_film = film%changes_friction()
       call check_memory(m, size(z), dx, closed, size(speeds_kmh), want_series, friction_film, &
-         & error)
+         & rubber%state_size(), error)
       if (allocated(error)) return
       call build_geometry(m, z, dx, closed, friction_film, geo, error)
       if (allocated(error)) return
@@ -481,9 +495,11 @@ contains
    !> Estimate the memory a run needs and refuse it, before allocating, when
    !> it exceeds what the machine has (a clear error instead of the process
    !> being killed).
-   subroutine check_memory(m, np, dx, closed, ns, want_series, friction_film, error)
+   subroutine check_memory(m, np, dx, closed, ns, want_series, friction_film, n_state, &
+      & error)
       type(model_type), intent(in) :: m
-      integer, intent(in) :: np, ns
+      !> n_state: the rubber's state values per element and speed
+      integer, intent(in) :: np, ns, n_state
       real(wp), intent(in) :: dx
       logical, intent(in) :: closed, want_series, friction_film
       type(error_type), allocatable, intent(out) :: error
@@ -495,7 +511,8 @@ contains
       bytes = n_ext * (8.0_wp + 8.0_wp + 4.0_wp) * 2.0_wp
       if (friction_film) bytes = bytes + n_ext * 16.0_wp * real(min(ns, 64), wp)
       ! per speed (one per thread at most, counted for all): element arrays
-      bytes = bytes + n_el * 8.0_wp * 10.0_wp * real(ns, wp)
+      ! and the rubber's state
+      bytes = bytes + n_el * 8.0_wp * real(10 + n_state, wp) * real(ns, wp)
       n_avg = real(averaged_positions(m, np, dx, closed), wp)
       if (want_series) bytes = bytes + n_avg * real(ns, wp) * 8.0_wp * 6.0_wp
       limit = real(c_physical_memory(), wp)
@@ -845,6 +862,14 @@ contains
             end do
             lead_prev = lead
          end if
+         if (t >= 0 .and. series .and. present(film_thickness)) then
+            ! speeds where the film is off (no motion): no film, the full mu_loc
+            do j = 1, nl
+               if (friction_film(j)) cycle
+               film_thickness(t+1, j) = 0.0_wp
+               local_friction(t+1, j) = merge(m%mu_loc, 0.0_wp, sum_f(j) > 0.0_wp)
+            end do
+         end if
          if (any_memory) call rubber%update(rstep, state, u_free, push)
          delta_prev = cmin + x
          if (t < 0) cycle                                    ! spin-up
@@ -881,9 +906,12 @@ contains
          out(j)%viscous_memory_ran = rstep%memory(j)
          out(j)%bearing_ran = load_film(j)
          out(j)%friction_film_ran = friction_film(j)
-         if (friction_film(j) .and. force_sum(j) > 0.0_wp) &
-            & out(j)%mean_local_friction = local_sum(j) / force_sum(j)
-         if (friction_film(j)) out(j)%mean_film_thickness = film_mean_sum(j) / real(geo%n_avg, wp)
+         if (friction_film(j)) then
+            if (force_sum(j) > 0.0_wp) out(j)%mean_local_friction = local_sum(j) / force_sum(j)
+            out(j)%mean_film_thickness = film_mean_sum(j) / real(geo%n_avg, wp)
+         else
+            out(j)%mean_local_friction = m%mu_loc            ! no film: the full mu_loc
+         end if
       end do
    contains
       !> The road sample an extended index stands for.

@@ -37,6 +37,8 @@ def test_program_and_python_agree_on_every_variable(tmp_path, scene):
         keys = [f"param_{p.group}_{p.name}" for p in pavefric.parameters()
                 if p.scope == "model"] + ["param_operation_speeds_kmh", "param_surface_closed"]
         for k in keys:
+            if k not in f.attrs and k not in ds.attrs:
+                continue          # a list without a value (&rubber prony_*): echoed by neither
             np.testing.assert_array_equal(np.asarray(f.attrs[k]), np.asarray(ds.attrs[k]),
                                           err_msg=k)
 

@@ -144,3 +144,34 @@ def test_program_runs_the_squeeze_scene(tmp_path):
         assert ds.attrs["param_water_wet_model"] == "squeeze"
         mu = ds["mu"].values
         assert np.all(np.diff(mu) <= 0) and mu[-1] < mu[0]
+
+
+def test_a_speed_without_film_reports_no_film_and_the_full_mu_loc(tmp_path):
+    """At 0 km/h the drainage film is off (no motion): its series and means
+    say so (film 0, local friction mu_loc where in contact), identically in
+    the program and Python (they were uninitialised memory)."""
+    from conftest import run_program, write_scene
+    from test_boundaries import assert_same_bits
+    import xarray as xr
+
+    scene = write_scene(tmp_path, groups={"water": "depth = 1e-3, wet_model = 'squeeze'",
+                                          "operation": "speeds_kmh = 0, 20, 0",
+                                          "output": "series = .true."})
+    out = tmp_path / "o.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    ds = pavefric.load_scene(scene).simulate()
+    with xr.open_dataset(out) as f:
+        assert_same_bits(f.load(), ds, "squeeze at 0 km/h")
+    for j in (0, 2):
+        still = ds.isel(speed_kmh=j)
+        assert int(still["squeeze_film_ran"]) == 0
+        assert np.all(still["film_thickness"].values == 0.0)
+        contact = still["contact_elements"].values > 0
+        assert contact.any()
+        np.testing.assert_array_equal(still["local_friction"].values[contact], 0.5)
+        assert float(still["mean_local_friction"]) == 0.5
+        assert float(still["mean_film_thickness"]) == 0.0
+    moving = ds.isel(speed_kmh=1)
+    assert int(moving["squeeze_film_ran"]) == 1
+    assert float(moving["mean_film_thickness"]) > 0.0

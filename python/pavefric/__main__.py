@@ -12,6 +12,9 @@ Commands:
   profile FILE [--dropouts interpolate ...] read, preprocess, report, plot a profile
   docs --inputs docs/inputs.md              regenerate the namelist reference from the core
   speed-gradient [--report docs/speed_gradient.md]  wet models against the PIARC speed gradient
+  prony DATA.csv [-o compound.nml] [--thickness H] ...  Prony series from DMA data (&rubber)
+  rubber-report [--report docs/rubber.md]  Maxwell rubber: friction against speed and
+                                           temperature, cost against Kelvin-Voigt
 """
 from __future__ import annotations
 
@@ -124,6 +127,40 @@ def main(argv: list[str] | None = None) -> int:
     p_sg.add_argument("--report", default="docs/speed_gradient.md")
     p_sg.add_argument("--quick", action="store_true", help="three MPD levels only")
 
+    p_prony = sub.add_parser("prony", help="fit a Prony series to dynamic mechanical data and "
+                             "write the &rubber group", description="Fit a generalised "
+                             "Maxwell (Prony) series to DMA data (CSV with a header: "
+                             "temperature_c (optional), frequency_hz or omega_rad_s, storage_pa "
+                             "or storage_mpa, loss_pa or loss_mpa; '#' comments), shifted to a "
+                             "master curve by "
+                             "the WLF equation, by non-negative least squares; write the "
+                             "&rubber group (moduli divided by the rubber thickness). See "
+                             "docs/rubber.md.")
+    p_prony.add_argument("data", nargs="?", help="DMA CSV file")
+    p_prony.add_argument("-o", "--output", default=None,
+                         help="namelist fragment to write (default: print it)")
+    p_prony.add_argument("--reference-temperature", type=float, default=20.0,
+                         help="Tref of the master curve, degC (default 20)")
+    p_prony.add_argument("--c1", type=float, default=8.86, help="WLF C1 (default 8.86)")
+    p_prony.add_argument("--c2", type=float, default=101.6, help="WLF C2, K (default 101.6)")
+    p_prony.add_argument("--fit-wlf", action="store_true",
+                         help="also fit C1 and C2 (data at several temperatures)")
+    p_prony.add_argument("--thickness", type=float, default=0.006,
+                         help="rubber thickness h (m): K = E / h (default 0.006, the DFT pad)")
+    p_prony.add_argument("--modulus", choices=["tensile", "shear"], default="tensile",
+                         help="the data's moduli: Young's (E', E'') or shear (G', G''; E = 3G)")
+    p_prony.add_argument("--per-decade", type=float, default=1.0,
+                         help="relaxation times per decade of the candidate set (default 1)")
+    p_prony.add_argument("--plot", default=None, help="PNG of the master curve and the fit")
+    p_prony.add_argument("--write-representative", default=None, metavar="CSV",
+                         help="write the representative tread compound's data set here")
+
+    p_rr = sub.add_parser("rubber-report", help="the Maxwell rubber's friction against speed "
+                          "and temperature, and its cost (docs/rubber.md)")
+    p_rr.add_argument("--report", default="docs/rubber.md")
+    p_rr.add_argument("--compound", default="inputs/rubber/tread_compound.nml")
+    p_rr.add_argument("--quick", action="store_true", help="fewer speeds and temperatures")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
 
@@ -168,6 +205,18 @@ def main(argv: list[str] | None = None) -> int:
             from .speed_gradient import run_study
 
             run_study(args.report, quick=args.quick)
+        elif args.command == "prony":
+            from .rubber import main_prony
+
+            try:
+                return main_prony(args)
+            except ValueError as exc:
+                print(f"pavefric: error: {exc}", file=sys.stderr)
+                return 1
+        elif args.command == "rubber-report":
+            from .rubber_report import run_report
+
+            run_report(args.report, compound=args.compound, quick=args.quick)
         elif args.command == "docs":
             from .docs import write_inputs
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import bench_mpi
+from . import bench_mpi, rubber_report
 
 DX = 0.87e-3
 
@@ -256,6 +256,7 @@ def run(report: str | None = None, largest: int = 10_000_000) -> dict:
         "mpi": mpi_batch(log),
         "reading": bench_io.reading(log, largest),   # profile input (bench_io.py)
         "batch": bench_mpi.run(log),
+        "rubber": rubber_report.cost(log),           # Maxwell vs Kelvin-Voigt (rubber_report.py)
     }
     if report:
         from .reports import performance_report

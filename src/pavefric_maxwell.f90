@@ -1,0 +1,307 @@
+!> The generalised Maxwell (Prony) rubber element and the WLF temperature
+!> shift (MODEL.md section 9; docs/rubber.md derives every line).
+!>
+!> Per unit length, like K: an equilibrium spring K_inf in parallel with arms
+!> k = 1..n, each a spring K_k in series with a dashpot of relaxation time
+!> tau_k. With v_k the dashpot's displacement (the arm's relaxed compression),
+!>     p = K_inf u + sum_k K_k (u - v_k),   dv_k/dt = (u - v_k) / tau_k.
+!> Over a step of length dt in which u goes linearly from u0 to u1 the arm
+!> equation integrates exactly (r = dt/tau, E = exp(-r), G = (1 - E)/r):
+!>     v_k(1) = (1 - G) u1 + (G - E) u0 + E v_k(0),
+!> a convex combination (all three weights >= 0, sum 1), so v_k stays
+!> between the compressions seen. The pressure at the step's end is then
+!>     p = k_eff (u1 - u_free),  k_eff = K_inf + sum_k K_k G_k,
+!>     u_free = sum_k K_k [(G_k - E_k) u0 + E_k v_k(0)] / k_eff >= 0,
+!> the form of every rubber component (pavefric_rubber): the element touches
+!> iff its geometric compression g > u_free, else it recovers to u_free.
+!>
+!> Numerics: r = dt/tau = advance / (V tau) spans any range (tau from 1e-300
+!> to 1e30 s), so the weights are computed without cancellation: below r = 1
+!> from the series of 1 - G = sum_{n>=1} (-1)^(n+1) r^n / (n+1)!, above it
+!> from G = (1 - E)/r directly; r beyond 1e300 (or V = 0) is the fully
+!> relaxed limit E = G = 0 and r = 0 the glassy limit E = G = 1, with no
+!> division by zero or overflow on the way.
+module pavefric_maxwell
+   use pavefric_kinds, only: wp, width => lanes
+   use pavefric_rubber, only: rubber_model, rubber_step_type
+   implicit none
+   private
+
+   public :: maxwell_rubber, arm_weights, wlf_log10_shift, wlf_shift, wlf_check
+   public :: max_log10_shift
+
+   !> Largest |log10 a_T| accepted: no WLF fit holds this far, and the
+   !> shifted times stay far from overflow.
+   real(wp), parameter :: max_log10_shift = 100.0_wp
+
+   !> Terms of the series of 1 - G below r = 1 (1/19! = 8e-18).
+   integer, parameter :: n_series = 18
+
+   !> The generalised Maxwell element, its relaxation times already at the
+   !> scene's temperature (tau_k(T) = a_T tau_k(Tref)).
+   type, extends(rubber_model) :: maxwell_rubber
+      !> Equilibrium spring K_inf (N m-3), per unit length.
+      real(wp) :: stiffness = 0.0_wp
+      !> Arm springs K_k (N m-3) and relaxation times tau_k (s).
+      real(wp), allocatable :: arm_stiffness(:), arm_times(:)
+   contains
+      procedure :: state_size => mx_state_size
+      procedure :: prepare => mx_prepare
+      procedure :: free_compression => mx_free
+      procedure :: update => mx_update
+      procedure :: memory_effect => mx_memory_effect
+   end type maxwell_rubber
+
+contains
+
+   !> The compression u and each arm's relaxed compression v_k.
+   pure integer function mx_state_size(self)
+      class(maxwell_rubber), intent(in) :: self
+      mx_state_size = 1 + size(self%arm_stiffness)
+   end function mx_state_size
+
+   !> Step coefficients per lane. coef(:, 1) = sum_k K_k (G_k - E_k) / k_eff
+   !> and coef(:, 1+k) = K_k E_k / k_eff give u_free; coef(:, 1+n+k) = 1 - G_k,
+   !> coef(:, 1+2n+k) = G_k - E_k and coef(:, 1+3n+k) = E_k update v_k.
+   !> V = 0 is the static limit: every arm relaxed, k_eff = K_inf, no memory.
+   pure subroutine mx_prepare(self, speeds, advance, step)
+      class(maxwell_rubber), intent(in) :: self
+      real(wp), intent(in) :: speeds(:), advance
+      type(rubber_step_type), intent(out) :: step
+      real(wp) :: e, g, one_g, g_e, k_eff, a
+      real(wp), allocatable :: ke(:)
+      integer :: j, k, n
+      n = size(self%arm_stiffness)
+      allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
+         & step%coef(size(speeds), 1 + 4 * n), ke(n))
+      do j = 1, size(speeds)
+         step%memory(j) = speeds(j) > 0.0_wp
+         k_eff = self%stiffness
+         do k = 1, n
+            call arm_weights(speeds(j) * self%arm_times(k), advance, e, g, one_g, g_e)
+            k_eff = k_eff + self%arm_stiffness(k) * g
+            ke(k) = e
+            step%coef(j, 1 + n + k) = one_g
+            step%coef(j, 1 + 2 * n + k) = g_e
+            step%coef(j, 1 + 3 * n + k) = e
+         end do
+         a = 0.0_wp
+         do k = 1, n
+            a = a + self%arm_stiffness(k) * step%coef(j, 1 + 2 * n + k)
+            step%coef(j, 1 + k) = self%arm_stiffness(k) * ke(k) / k_eff
+         end do
+         step%coef(j, 1) = a / k_eff
+         step%k_eff(j) = k_eff
+      end do
+   end subroutine mx_prepare
+
+   !> u_free = sum_k K_k [(G_k - E_k) u + E_k v_k] / k_eff: where the element
+   !> would carry no pressure at the step's end.
+   pure subroutine mx_free(self, step, state, u_free)
+      class(maxwell_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      real(wp), intent(out), contiguous :: u_free(:, :)
+      if (size(u_free, 1) == width) then
+         call free_kernel_w(size(state, 2), size(u_free, 2), size(self%arm_stiffness), &
+            & step%coef, state, u_free)
+      else
+         call free_kernel(size(u_free, 1), size(state, 2), size(u_free, 2), &
+            & size(self%arm_stiffness), step%coef, state, u_free)
+      end if
+   end subroutine mx_free
+
+   !> u1 = u_free + push; v_k <- (1 - G_k) u1 + (G_k - E_k) u0 + E_k v_k.
+   pure subroutine mx_update(self, step, state, u_free, push)
+      class(maxwell_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(inout), contiguous :: state(:, :, :)
+      real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
+      if (size(u_free, 1) == width) then
+         call update_kernel_w(size(state, 2), size(u_free, 2), size(self%arm_stiffness), &
+            & step%coef, state, u_free, push)
+      else
+         call update_kernel(size(u_free, 1), size(state, 2), size(u_free, 2), &
+            & size(self%arm_stiffness), step%coef, state, u_free, push)
+      end if
+   end subroutine mx_update
+
+   !> mx_free's loops on explicit shapes (nl lanes, ns state values, n
+   !> elements, na arms), so that the lane loops compile to vectors.
+   pure subroutine free_kernel(nl, ns, n, na, coef, state, u_free)
+      integer, intent(in) :: nl, ns, n, na
+      real(wp), intent(in) :: coef(nl, 1 + 4 * na), state(nl, ns, n)
+      real(wp), intent(out) :: u_free(nl, n)
+      integer :: i, j, k
+      do i = 1, n
+         do j = 1, nl
+            u_free(j, i) = coef(j, 1) * state(j, 1, i)
+         end do
+         do k = 1, na
+            do j = 1, nl
+               u_free(j, i) = u_free(j, i) + coef(j, 1 + k) * state(j, 1 + k, i)
+            end do
+         end do
+      end do
+   end subroutine free_kernel
+
+   !> free_kernel for the driver's width: whole vectors.
+   pure subroutine free_kernel_w(ns, n, na, coef, state, u_free)
+      integer, intent(in) :: ns, n, na
+      real(wp), intent(in) :: coef(width, 1 + 4 * na), state(width, ns, n)
+      real(wp), intent(out) :: u_free(width, n)
+      real(wp) :: acc(width)
+      integer :: i, k
+      do i = 1, n
+         acc = coef(:, 1) * state(:, 1, i)
+         do k = 1, na
+            acc = acc + coef(:, 1 + k) * state(:, 1 + k, i)
+         end do
+         u_free(:, i) = acc
+      end do
+   end subroutine free_kernel_w
+
+   !> update_kernel for the driver's width.
+   pure subroutine update_kernel_w(ns, n, na, coef, state, u_free, push)
+      integer, intent(in) :: ns, n, na
+      real(wp), intent(in) :: coef(width, 1 + 4 * na), u_free(width, n), push(width, n)
+      real(wp), intent(inout) :: state(width, ns, n)
+      real(wp) :: u0(width), u1(width)
+      integer :: i, k
+      do i = 1, n
+         u0 = state(:, 1, i)
+         u1 = u_free(:, i) + push(:, i)
+         do k = 1, na
+            state(:, 1 + k, i) = coef(:, 1 + na + k) * u1 + coef(:, 1 + 2 * na + k) * u0 &
+               & + coef(:, 1 + 3 * na + k) * state(:, 1 + k, i)
+         end do
+         state(:, 1, i) = u1
+      end do
+   end subroutine update_kernel_w
+
+   !> mx_update's loops on explicit shapes.
+   pure subroutine update_kernel(nl, ns, n, na, coef, state, u_free, push)
+      integer, intent(in) :: nl, ns, n, na
+      real(wp), intent(in) :: coef(nl, 1 + 4 * na), u_free(nl, n), push(nl, n)
+      real(wp), intent(inout) :: state(nl, ns, n)
+      real(wp) :: u1(nl)
+      integer :: i, j, k
+      do i = 1, n
+         do j = 1, nl
+            u1(j) = u_free(j, i) + push(j, i)
+         end do
+         do k = 1, na
+            do j = 1, nl
+               state(j, 1 + k, i) = coef(j, 1 + na + k) * u1(j) &
+                  & + coef(j, 1 + 2 * na + k) * state(j, 1, i) &
+                  & + coef(j, 1 + 3 * na + k) * state(j, 1 + k, i)
+            end do
+         end do
+         do j = 1, nl
+            state(j, 1, i) = u1(j)
+         end do
+      end do
+   end subroutine update_kernel
+
+   pure function mx_memory_effect(self) result(name)
+      class(maxwell_rubber), intent(in) :: self
+      character(len=:), allocatable :: name
+      name = "viscous_memory"
+   end function mx_memory_effect
+
+   !> The exact weights of one arm over a step of length dt = advance / V,
+   !> given vt = V tau: r = dt/tau, e = exp(-r), g = (1 - e)/r, one_g = 1 - g,
+   !> g_e = g - e, each to a few ulps for every r >= 0 (see the module's
+   !> comment). vt <= 0 (V = 0) is r = infinity.
+   pure elemental subroutine arm_weights(vt, advance, e, g, one_g, g_e)
+      real(wp), intent(in) :: vt, advance
+      real(wp), intent(out) :: e, g, one_g, g_e
+      real(wp) :: r, s
+      integer :: n
+      if (.not. (vt > advance * 1.0e-300_wp)) then
+         ! r > 1e300: the arm relaxes completely within the step
+         e = 0.0_wp
+         g = 0.0_wp
+         one_g = 1.0_wp
+         g_e = 0.0_wp
+         return
+      end if
+      r = advance / vt
+      if (r < 1.0_wp) then
+         ! 1 - G = r/2! - r^2/3! + r^3/4! - ... (Horner), no cancellation
+         s = 1.0_wp / real(factorial(n_series + 1), wp)
+         do n = n_series - 1, 1, -1
+            s = 1.0_wp / real(factorial(n + 1), wp) - r * s
+         end do
+         one_g = r * s
+         g = 1.0_wp - one_g
+         e = exp(-r)
+         ! G - E = (1 - E) - (1 - G), 1 - E = r G
+         g_e = r * g - one_g
+      else
+         if (r < 745.0_wp) then
+            e = exp(-r)
+         else
+            e = 0.0_wp                       ! below the smallest double
+         end if
+         g = (1.0_wp - e) / r
+         one_g = 1.0_wp - g
+         g_e = g - e
+      end if
+   end subroutine arm_weights
+
+   !> n! as a real (n <= 20).
+   pure elemental function factorial(n) result(f)
+      integer, intent(in) :: n
+      real(wp) :: f
+      integer :: k
+      f = 1.0_wp
+      do k = 2, n
+         f = f * real(k, wp)
+      end do
+   end function factorial
+
+   !> log10 a_T = -C1 (T - Tref) / (C2 + T - Tref) (Williams, Landel & Ferry
+   !> 1955); exactly 0 at T = Tref. Call wlf_check first: outside its domain
+   !> the value is clamped to +-max_log10_shift.
+   pure function wlf_log10_shift(temperature, reference, c1, c2) result(log_at)
+      real(wp), intent(in) :: temperature, reference, c1, c2
+      real(wp) :: log_at, dt
+      log_at = 0.0_wp
+      if (temperature == reference) return
+      dt = temperature - reference
+      if (.not. (c2 + dt > 0.0_wp)) then
+         log_at = max_log10_shift
+         return
+      end if
+      log_at = max(-max_log10_shift, min(max_log10_shift, -c1 * dt / (c2 + dt)))
+   end function wlf_log10_shift
+
+   !> The WLF shift factor a_T = 10**log10 a_T (exactly 1 at T = Tref).
+   pure function wlf_shift(temperature, reference, c1, c2) result(a_t)
+      real(wp), intent(in) :: temperature, reference, c1, c2
+      real(wp) :: a_t
+      a_t = 1.0_wp
+      if (temperature == reference) return
+      a_t = 10.0_wp ** wlf_log10_shift(temperature, reference, c1, c2)
+   end function wlf_shift
+
+   !> Why the WLF shift cannot be used at these values ('' when it can): the
+   !> equation diverges at T - Tref = -C2, and no fit holds beyond
+   !> max_log10_shift decades.
+   pure function wlf_check(temperature, reference, c1, c2) result(why)
+      real(wp), intent(in) :: temperature, reference, c1, c2
+      character(len=:), allocatable :: why
+      real(wp) :: dt, log_at
+      why = ""
+      if (temperature == reference) return
+      dt = temperature - reference
+      if (.not. (c2 + dt > 0.0_wp)) then
+         why = "diverges"
+         return
+      end if
+      log_at = -c1 * dt / (c2 + dt)
+      if (.not. (abs(log_at) <= max_log10_shift)) why = "too far"
+   end function wlf_check
+
+end module pavefric_maxwell
