@@ -12,7 +12,7 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field, lanes, lane_count
+   public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -77,34 +77,26 @@ contains
    !> same order, and a lane that has stopped is left as it is, so each x is
    !> dry_root's to the bit.
    pure subroutine dry_roots(nl, n, d, s, x0, x, work, dl)
-      !> Lanes (lanes of them, given at run time: the lane loops then compile
+      !> Lanes (at most `lanes`, given at run time: the lane loops then compile
       !> to vector loops, a constant count to unrolled scalar code) and elements.
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n)
-      real(wp), intent(in) :: s(lanes), x0(lanes)
-      real(wp), intent(out) :: x(lanes)
+      real(wp), intent(in) :: s(nl), x0(nl)
+      real(wp), intent(out) :: x(nl)
       !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
       real(wp), dimension(lanes) :: sum_active, x_new, count
       integer, dimension(lanes) :: m, m_prev
       logical, dimension(lanes) :: running
-      integer :: i, j, it
+      integer :: j, it
       x = s
       where (x0 > 0.0_wp .and. x0 < s) x = x0
       m_prev = -1
       running = .true.
       do it = 1, max_newton_dry
-         sum_active = 0.0_wp
-         count = 0.0_wp
-         do i = 1, n
-            ! the count in a real (exact below 2**53): one type in the loop
-            do j = 1, nl
-               sum_active(j) = sum_active(j) + merge(d(j, i), 0.0_wp, d(j, i) < x(j))
-               count(j) = count(j) + merge(1.0_wp, 0.0_wp, d(j, i) < x(j))
-            end do
-         end do
-         m = nint(count)
-         do j = 1, lanes
+         call active_sums(nl, n, d, x, sum_active, count)
+         m(1:nl) = nint(count(1:nl))
+         do j = 1, nl
             if (.not. running(j)) cycle
             if (m(j) == m_prev(j)) then             ! active set repeats: x is the root
                running(j) = .false.
@@ -119,21 +111,34 @@ contains
             m_prev(j) = m(j)
             x(j) = x_new(j)
          end do
-         if (.not. any(running)) return
+         if (.not. any(running(1:nl))) return
       end do
-      do j = 1, lanes
+      do j = 1, nl
          if (.not. running(j)) cycle
          dl = d(j, :)
          call sorted_root(dl, s(j), x(j), work)
       end do
    end subroutine dry_roots
 
-   !> `lanes` as a value the compiler of another module cannot fold: lane
-   !> loops bounded by it compile to vector loops (a constant bound is
-   !> unrolled into scalar code).
-   integer function lane_count()
-      lane_count = lanes
-   end function lane_count
+   !> Per lane, the sum and the count of the d below x: the loop over the
+   !> lanes innermost, every shape explicit and given at run time, so that it
+   !> compiles to a vector loop with the comparison as a blend (measured:
+   !> constant-size lane arrays compile to branches or per-lane scalar
+   !> sums). The count in a real (exact below 2**53): one type in the loop.
+   pure subroutine active_sums(nl, n, d, x, sum_active, count)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), x(nl)
+      real(wp), intent(out) :: sum_active(nl), count(nl)
+      integer :: i, j
+      sum_active = 0.0_wp
+      count = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            sum_active(j) = sum_active(j) + merge(d(j, i), 0.0_wp, d(j, i) < x(j))
+            count(j) = count(j) + merge(1.0_wp, 0.0_wp, d(j, i) < x(j))
+         end do
+      end do
+   end subroutine active_sums
 
    !> The same root by sorting d and scanning the pieces.
    pure subroutine sorted_root(d, s, x, work)

@@ -16,7 +16,8 @@ module pavefric_simulate
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, wet_root, wet_state_type, gap_field, lanes, lane_count
+   use pavefric_balance, only: dry_roots, wet_root, wet_state_type, gap_field, lanes
+   !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
 
@@ -114,6 +115,8 @@ module pavefric_simulate
       !> Facet slopes tan(alpha), for films that change the local friction.
       real(wp), allocatable :: slope(:)
       logical, allocatable :: clamped(:)
+      !> clamped as 1 or 0, for the vector loops.
+      real(wp), allocatable :: clamped_at(:)
       integer :: n_el = 0, spacing = 1, stride = 1, n_avg = 0, n_spin = 0, npf = 0
       logical :: closed = .true.
       !> Element width (m) and pad advance per step (m).
@@ -333,7 +336,7 @@ contains
       type(speed_summary_type), allocatable :: summaries(:)
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
-      integer :: j, ns, stat, c, j0, j1, n_chunks
+      integer :: j, ns, stat, c, j0, j1, n_chunks, width
       logical :: friction_film
 
       res%warnings = ""
@@ -377,15 +380,20 @@ contains
          return
       end if
 
-      ! Speeds advance together in chunks of lanes (the element loops run over
-      ! the lanes innermost and vectorise); each speed's arithmetic is the
-      ! scalar one whatever chunk it is in, so neither the chunking nor the
-      ! thread count can change a bit of the result.
+      ! Speeds advance together in chunks of at most `lanes` (the element
+      ! loops run over the lanes innermost and vectorise), as many chunks as
+      ! threads when there are speeds enough, of equal width (no idle lane);
+      ! each speed's arithmetic is the scalar one whatever chunk it is in, so
+      ! neither the chunking nor the thread count can change a bit of the
+      ! result.
       n_chunks = (ns + lanes - 1) / lanes
+      !$ n_chunks = max(n_chunks, min(ns, omp_get_max_threads()))
+      width = (ns + n_chunks - 1) / n_chunks
+      n_chunks = (ns + width - 1) / width
       !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries)
       do c = 1, n_chunks
-         j0 = (c - 1) * lanes + 1
-         j1 = min(ns, c * lanes)
+         j0 = (c - 1) * width + 1
+         j1 = min(ns, c * width)
          allocate(summaries(lanes))
          if (want_series) then
             if (friction_film) then
@@ -635,6 +643,13 @@ contains
          call move_alloc(cf, geo%clamped)
          if (with_slopes) call move_alloc(sf, geo%slope)
       end if
+      allocate(geo%clamped_at(size(geo%clamped)), stat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, "not enough memory for a profile of " // &
+            & to_str(size(geo%clamped)) // " refined points", stat_memory)
+         return
+      end if
+      geo%clamped_at = merge(1.0_wp, 0.0_wp, geo%clamped)
 
       ! Undeformed pad bottom h_i above the reference plane.
       allocate(geo%h(geo%n_el))
@@ -682,23 +697,25 @@ contains
       integer, allocatable :: samples(:)
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
-      real(wp), dimension(lanes) :: force_sum, film_mean_sum
+      real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
       integer(i8), dimension(lanes) :: n_clamped, n_eval
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film
-      real(wp) :: x_dry, mu_j, resid, tan_max, mu_eff, film_sum, p, tk, zk, hi
-      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, nlanes
-      logical :: series, clamped, any_memory, any_load, any_friction, ck
+      real(wp) :: x_dry, mu_j, resid, tan_max, mu_eff, film_sum
+      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
+      logical :: series, clamped, any_memory, any_load, any_friction
 
       n = geo%n_el
       nl = size(speeds)
-      ! the lanes beyond the chunk's speeds repeat its last speed (discarded)
+      ! the lanes' arrays are sized for `lanes`; those beyond the chunk's
+      ! speeds repeat its last speed and are never used
       v(1:nl) = speeds
       v(nl+1:) = speeds(nl)
       series = present(mu_inst)
-      call rubber%prepare(v, geo%advance, rstep)
+      call rubber%prepare(v(1:nl), geo%advance, rstep)
       ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
-      kel = m%width * geo%dx_el * rstep%k_eff
+      kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
+      kel(nl+1:) = kel(nl)
       s_load = m%load / kel
       any_memory = any(rstep%memory)
       ! Simulate only the effects the scene calls for: a film needs water and
@@ -719,10 +736,9 @@ contains
       ns_state = rubber%state_size()
       ! the lane count as a run-time value: the lane loops then compile to
       ! vector loops (a constant count is unrolled into scalar code)
-      allocate(c(lanes, n), d(lanes, n), push(lanes, n), u_free(lanes, n), work(n), &
+      allocate(c(nl, n), d(nl, n), push(nl, n), u_free(nl, n), work(n), &
          & dl(n), gap(n), stat=stat)
-      nlanes = lanes
-      if (stat == 0 .and. any_memory) allocate(state(lanes, ns_state, n), stat=stat)
+      if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
       if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
          & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
       if (stat /= 0) then
@@ -760,22 +776,10 @@ contains
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
          if (any_memory) call rubber%free_compression(rstep, state, u_free)
-         cmin = huge(1.0_wp)
-         do i = 1, n
-            zk = geo%z(k1 + (i-1) * geo%spacing)
-            hi = geo%h(i)
-            do j = 1, nlanes
-               c(j, i) = hi - zk + u_free(j, i)
-               cmin(j) = min(cmin(j), c(j, i))
-            end do
-         end do
-         do i = 1, n
-            do j = 1, nlanes
-               d(j, i) = c(j, i) - cmin(j)
-            end do
-         end do
+         call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
+            & u_free, c, cmin, d)
          ! warm start from the previous position's penetration
-         call dry_roots(lane_count(), n, d, s_load, delta_prev - cmin, x, work, dl)
+         call dry_roots(nl, n, d, s_load, delta_prev - cmin, x, work, dl)
          wh = 0.0_wp
          if (any_load) then
             do j = 1, nl
@@ -793,23 +797,12 @@ contains
          end if
 
          sum_f = 0.0_wp
-         sum_ft = 0.0_wp
-         n_contact = 0
-         n_clamp_j = 0
-         do i = 1, n
-            k = k1 + (i-1) * geo%spacing
-            tk = geo%tan_theta(k)
-            ck = geo%clamped(k)
-            do j = 1, nlanes
-               p = max(0.0_wp, x(j) - d(j, i))
-               push(j, i) = p
-               sum_f(j) = sum_f(j) + p
-               n_contact(j) = n_contact(j) + merge(1, 0, p > 0.0_wp)
-               sum_ft(j) = sum_ft(j) + p * tk                         ! Eq. 10
-               n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, p > 0.0_wp .and. ck)
-               u_max(j) = max(u_max(j), u_free(j, i) + p)             ! max(g_i, u_free_i)
-            end do
-         end do
+         call lane_contacts(nl, n, x, d, u_free, &
+            & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+            & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), push, sum_f, &
+            & contacts, sum_ft, clamps, u_max)
+         n_contact = nint(contacts)
+         n_clamp_j = nint(clamps)
 
          if (any_friction) then
             ! the film on the road samples entering under the leading edge
@@ -943,5 +936,59 @@ contains
       character(len=:), allocatable :: text
       text = res%effects
    end function effects_text
+
+   !> Per lane and element: c = h - z + u_free, the penetration at which the
+   !> element starts to push (Eqs. 4, 8), its minimum over the pad, and d = c -
+   !> cmin. The lane loops innermost on explicit run-time shapes compile to
+   !> vector loops (measured: inside the driver they did not).
+   pure subroutine lane_gaps(nl, n, z, h, u_free, c, cmin, d)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: z(n), h(n), u_free(nl, n)
+      real(wp), intent(out) :: c(nl, n), cmin(nl), d(nl, n)
+      integer :: i, j
+      cmin = huge(1.0_wp)
+      do i = 1, n
+         do j = 1, nl
+            c(j, i) = h(i) - z(i) + u_free(j, i)
+            cmin(j) = min(cmin(j), c(j, i))
+         end do
+      end do
+      do i = 1, n
+         do j = 1, nl
+            d(j, i) = c(j, i) - cmin(j)
+         end do
+      end do
+   end subroutine lane_gaps
+
+   !> Per lane at penetration x: each element's push max(0, x - d) (its
+   !> compression beyond u_free), their sum, the contacts, the sum weighted
+   !> by the facet tangents (Eq. 10), the contacts on clamped facets and the
+   !> largest compression max(g_i, u_free_i). Counts in reals (exact): one
+   !> type in the vector loop.
+   pure subroutine lane_contacts(nl, n, x, d, u_free, tan_t, clamped, push, sum_f, contacts, &
+      & sum_ft, clamps, u_max)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n)
+      real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl)
+      real(wp), intent(inout) :: u_max(nl)
+      real(wp) :: p, in_contact
+      integer :: i, j
+      sum_f = 0.0_wp
+      contacts = 0.0_wp
+      sum_ft = 0.0_wp
+      clamps = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            p = max(0.0_wp, x(j) - d(j, i))
+            push(j, i) = p
+            in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
+            sum_f(j) = sum_f(j) + p
+            contacts(j) = contacts(j) + in_contact
+            sum_ft(j) = sum_ft(j) + p * tan_t(i)
+            clamps(j) = clamps(j) + in_contact * clamped(i)
+            u_max(j) = max(u_max(j), u_free(j, i) + p)
+         end do
+      end do
+   end subroutine lane_contacts
 
 end module pavefric_simulate

@@ -72,3 +72,40 @@ def test_thread_count_changes_no_bit(tmp_path, profile_m, threads):
         env_out[n] = xr.open_dataset(out).load()
     for var in ("mu", "mu_inst", "penetration", "hydro_load", "max_balance_residual"):
         assert np.array_equal(env_out["1"][var].values, env_out[threads][var].values)
+
+
+@pytest.mark.parametrize("speeds", ["20", "10, 30, 50", "5, 10, 20, 30, 40, 60, 80",
+                                    "1, 5, 10, 15, 20, 25, 30, 40, 50, 60, 70, 80, 90"])
+def test_chunking_of_the_speeds_changes_no_bit(tmp_path, profile_m, speeds):
+    """Speeds advance in chunks whose width depends on the speed and thread
+    counts; each speed's result is the same alone and in any chunk, dry and
+    wet, with 1, 2 or 3 threads."""
+    import os
+    import subprocess
+
+    from conftest import program
+
+    listed = [float(v) for v in speeds.split(",")]
+    for depth in ("0.0", "1e-3"):
+        scene = write_scene(tmp_path, profile=profile_m,
+                            groups={"water": f"depth = {depth}",
+                                    "operation": f"speeds_kmh = {speeds}",
+                                    "output": "series = .true."})
+        results = []
+        for n in ("1", "2", "3"):
+            out = tmp_path / f"c{n}.nc"
+            r = subprocess.run([program(), str(scene), "-o", str(out)], capture_output=True,
+                               text=True, env={**os.environ, "OMP_NUM_THREADS": n})
+            assert r.returncode == 0, r.stderr
+            results.append(xr.open_dataset(out).load())
+        single = write_scene(tmp_path, name="single", profile=profile_m,
+                             groups={"water": f"depth = {depth}",
+                                     "operation": f"speeds_kmh = {listed[-1]}",
+                                     "output": "series = .true."})
+        alone = pavefric.load_scene(single).simulate()
+        for ds in results[1:]:
+            for var in ("mu", "mu_inst", "penetration", "hydro_load", "contact_elements"):
+                assert np.array_equal(results[0][var].values, ds[var].values), (var, depth)
+        last = results[0].isel(speed_kmh=-1)
+        assert last["mu"].values == alone["mu"].values[0]
+        assert np.array_equal(last["mu_inst"].values, alone["mu_inst"].isel(speed_kmh=0).values)
