@@ -6,13 +6,13 @@
 !> kel = l dx_el K_eff. The unknown is x; rounding is then relative to the
 !> penetration beyond the first contact, not to the profile's absolute height.
 module pavefric_balance
-   use pavefric_kinds, only: wp, lanes
+   use pavefric_kinds, only: wp, i8, lanes
    use pavefric_film, only: film_model, film_step_type
    use pavefric_lapack, only: dlasrt
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_root, wet_state_type, gap_field, lanes
+   public :: dry_root, dry_roots, wet_root, wet_roots, wet_state_type, gap_field, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -159,6 +159,152 @@ contains
       end do
    end subroutine sorted_root
 
+   !> wet_root for the lanes where `wet`, together: each lane makes exactly
+   !> wet_root's decisions and evaluations (so its x, load and count are
+   !> wet_root's to the bit); the evaluations of all lanes still iterating
+   !> run as one pass over the lanes (their sums interleave). x holds the
+   !> dry roots on entry and, for the wet lanes, the wet ones on exit; wh the
+   !> film's load and evaluations the count added, per lane.
+   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x, wh, evaluations, &
+      & gaps)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), kel(nl), load, tol
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fsteps(nl)
+      logical, intent(in) :: wet(nl)
+      real(wp), intent(inout) :: x(nl)
+      real(wp), intent(out) :: wh(nl)
+      integer(i8), intent(inout) :: evaluations(nl)
+      !> Workspace (nl, n): the gap fields of the last evaluation.
+      real(wp), intent(inout) :: gaps(nl, n)
+      ! fixed-size locals (run-time sizes would be heap allocations)
+      real(wp), dimension(lanes) :: lo, hi, f, df, f_old
+      real(wp) :: x_new
+      logical :: running(lanes), use_newton
+      integer :: it, j
+      wh = 0.0_wp
+      running = .false.
+      running(1:nl) = wet
+      if (.not. any(running)) return
+      do j = 1, nl
+         if (.not. wet(j)) cycle
+         lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
+         hi(j) = x(j)
+      end do
+      call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
+         & gaps)
+      f_old = huge(1.0_wp)
+      do it = 1, max_iter_wet
+         do j = 1, nl
+            if (.not. running(j)) cycle
+            if (abs(f(j)) <= tol * load) then
+               running(j) = .false.
+               cycle
+            end if
+            if (f(j) > 0.0_wp) then
+               hi(j) = x(j)
+            else
+               lo(j) = x(j)
+            end if
+            if (hi(j) - lo(j) <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo(j)), abs(hi(j)))) then
+               running(j) = .false.
+               cycle
+            end if
+            use_newton = df(j) > 0.0_wp .and. df(j) < huge(1.0_wp) .and. &
+               & abs(f(j)) <= 0.5_wp * f_old(j)
+            if (use_newton) then
+               x_new = x(j) - f(j) / df(j)
+               use_newton = x_new > lo(j) .and. x_new < hi(j)
+            end if
+            if (.not. use_newton) x_new = 0.5_wp * (lo(j) + hi(j))
+            f_old(j) = abs(f(j))
+            x(j) = x_new
+         end do
+         if (.not. any(running)) exit
+         call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
+         & gaps)
+      end do
+      do j = 1, nl
+         if (.not. wet(j)) cycle
+         if (abs(f(j)) > tol * load) then
+            ! as wet_root: the bracket closed on adjacent doubles (the film
+            ! closing); the upper end, the film carrying what the rubber
+            ! does not
+            if (f(j) < 0.0_wp) then
+               x(j) = hi(j)
+               call evaluate_wet(nl, n, d, kel, load, film, fsteps, lane_mask(j), x, f, df, &
+                  & wh, evaluations, gaps)
+            end if
+            wh(j) = max(0.0_wp, load - kel(j) * pushed_at(d(j, :), x(j)))
+         end if
+      end do
+   contains
+      pure function lane_mask(jj) result(mask)
+         integer, intent(in) :: jj
+         logical :: mask(nl)
+         mask = .false.
+         mask(jj) = .true.
+      end function lane_mask
+
+      pure function pushed_at(dd, xx) result(total)
+         real(wp), intent(in) :: dd(:), xx
+         real(wp) :: total
+         integer :: i
+         total = 0.0_wp
+         do i = 1, size(dd)
+            total = total + max(0.0_wp, xx - dd(i))
+         end do
+      end function pushed_at
+
+   end subroutine wet_roots
+
+   !> f, df and the film's load of the lanes in `mask` at their x (the other
+   !> lanes' values are left as they are); one more evaluation each.
+   pure subroutine evaluate_wet(nl, n, d, kel, load, film, fsteps, mask, x, f, df, wh, &
+      & evaluations, gaps)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), kel(nl), load, x(nl)
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fsteps(nl)
+      logical, intent(in) :: mask(nl)
+      real(wp), intent(inout) :: f(nl), df(nl), wh(nl)
+      integer(i8), intent(inout) :: evaluations(nl)
+      real(wp), intent(inout) :: gaps(nl, n)
+      real(wp), dimension(lanes) :: xe, pushed, contacts, dwh
+      integer :: j
+      ! the lanes not evaluated sit at a harmless penetration
+      do j = 1, nl
+         xe(j) = merge(x(j), 0.0_wp, mask(j))
+      end do
+      call contact_sums(nl, n, d, xe, pushed, contacts, gaps)
+      call film%loads(nl, n, fsteps, gaps, mask, wh, dwh)
+      do j = 1, nl
+         if (.not. mask(j)) cycle
+         f(j) = kel(j) * pushed(j) + wh(j) - load
+         df(j) = kel(j) * contacts(j) + dwh(j)
+         evaluations(j) = evaluations(j) + 1
+      end do
+   end subroutine evaluate_wet
+
+   !> Per lane at penetration x: the pad's push sum max(0, x - d) in element
+   !> order (adding +0 out of contact, without branches), the contacts, and
+   !> the gap field max(0, d - x).
+   pure subroutine contact_sums(nl, n, d, x, pushed, contacts, gaps)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), x(nl)
+      real(wp), intent(out) :: pushed(nl), contacts(nl), gaps(nl, n)
+      integer :: i, j
+      pushed = 0.0_wp
+      contacts = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            pushed(j) = pushed(j) + merge(x(j) - d(j, i), 0.0_wp, d(j, i) < x(j))
+            contacts(j) = contacts(j) + merge(1.0_wp, 0.0_wp, d(j, i) < x(j))
+            gaps(j, i) = max(0.0_wp, d(j, i) - x(j))
+         end do
+      end do
+   end subroutine contact_sums
+
    !> The gap under each element at penetration x: max(0, d_i - x); the film
    !> components see this whole field.
    pure subroutine gap_field(d, x, gap)
@@ -245,20 +391,20 @@ contains
          real(wp), intent(in) :: xe
          real(wp), intent(out) :: fe, dfe, whe
          real(wp), intent(inout) :: g(:)
-         real(wp) :: pushed, dwh_dx
-         integer :: i, n_contact
+         real(wp) :: pushed, dwh_dx, n_contact
+         integer :: i
+         ! without branches (contact is unpredictable): adding +0 for an
+         ! element out of contact leaves the sum's bits as they were
          pushed = 0.0_wp
-         n_contact = 0
+         n_contact = 0.0_wp
          do i = 1, size(d)
-            if (d(i) < xe) then
-               pushed = pushed + (xe - d(i))
-               n_contact = n_contact + 1
-            end if
+            pushed = pushed + merge(xe - d(i), 0.0_wp, d(i) < xe)
+            n_contact = n_contact + merge(1.0_wp, 0.0_wp, d(i) < xe)
             g(i) = max(0.0_wp, d(i) - xe)
          end do
          call film%load(fstep, g, whe, dwh_dx)
          fe = kel * pushed + whe - load
-         dfe = kel * real(n_contact, wp) + dwh_dx
+         dfe = kel * n_contact + dwh_dx
       end subroutine evaluate
    end subroutine wet_root
 

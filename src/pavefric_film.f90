@@ -7,7 +7,7 @@
 !> a state per road sample (the water on the road), advanced with the pad.
 !> The driver and the load balance see only this interface (`film_model`).
 module pavefric_film
-   use pavefric_kinds, only: wp
+   use pavefric_kinds, only: wp, lanes
    use pavefric_bearing, only: bearing_prefactor, hydro_load
    implicit none
    private
@@ -42,6 +42,11 @@ module pavefric_film
       !> Load (N) on the pad for a gap field, and its derivative with
       !> respect to the pad's penetration (gap_i = max(0, d_i - x)).
       procedure :: load => film_no_load
+      !> `load` for several lanes (speeds) at once: gap(lane, element), the
+      !> lanes where `active`; each lane's numbers are `load`'s to the bit.
+      !> The default calls `load` lane by lane; a film may run the lanes
+      !> together (their sums interleave).
+      procedure :: loads => film_loads_by_lane
       !> Penetration below which the film carries nothing and no element
       !> touches, given the shifted clearances d (min d = 0): the wet
       !> balance's lower bracket is min(0, this).
@@ -92,6 +97,7 @@ module pavefric_film
       procedure :: effect => bearing_effect
       procedure :: engages => bearing_engages
       procedure :: load => bearing_load
+      procedure :: loads => bearing_loads
       procedure :: lower_bound => bearing_lower_bound
    end type pseudo_bearing_film
 
@@ -126,6 +132,22 @@ contains
       wh = 0.0_wp
       dwh_dx = 0.0_wp
    end subroutine film_no_load
+
+   pure subroutine film_loads_by_lane(self, nl, n, steps, gap, active, wh, dwh_dx)
+      class(film_model), intent(in) :: self
+      integer, intent(in) :: nl, n
+      type(film_step_type), intent(in) :: steps(nl)
+      real(wp), intent(in) :: gap(nl, n)
+      logical, intent(in) :: active(nl)
+      real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
+      real(wp) :: row(n)
+      integer :: j
+      do j = 1, nl
+         if (.not. active(j)) cycle
+         row = gap(j, :)
+         call self%load(steps(j), row, wh(j), dwh_dx(j))
+      end do
+   end subroutine film_loads_by_lane
 
    pure real(wp) function film_lower_zero(self, step, d)
       class(film_model), intent(in) :: self
@@ -208,15 +230,56 @@ contains
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
       real(wp), intent(out) :: wh, dwh_dx
-      real(wp) :: dwh
-      integer :: i, n_gap
-      call hydro_load(step%coef(1), self%depth, mean(gap), wh, dwh)
-      n_gap = 0
+      real(wp) :: dwh, total, n_gap
+      integer :: i
+      ! one pass: the sum in element order (the mean's bits), the open gaps
+      ! counted in a real (exact)
+      total = 0.0_wp
+      n_gap = 0.0_wp
       do i = 1, size(gap)
-         n_gap = n_gap + merge(1, 0, gap(i) > 0.0_wp)
+         total = total + gap(i)
+         n_gap = n_gap + merge(1.0_wp, 0.0_wp, gap(i) > 0.0_wp)
       end do
-      dwh_dx = -(dwh * real(n_gap, wp) / real(size(gap), wp))
+      call hydro_load(step%coef(1), self%depth, total / real(size(gap), wp), wh, dwh)
+      dwh_dx = -(dwh * n_gap / real(size(gap), wp))
    end subroutine bearing_load
+
+   !> bearing_load for the lanes together: the sums of the lanes interleave
+   !> (each in element order, so each lane's bits are bearing_load's).
+   pure subroutine bearing_loads(self, nl, n, steps, gap, active, wh, dwh_dx)
+      class(pseudo_bearing_film), intent(in) :: self
+      integer, intent(in) :: nl, n
+      type(film_step_type), intent(in) :: steps(nl)
+      real(wp), intent(in) :: gap(nl, n)
+      logical, intent(in) :: active(nl)
+      real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
+      real(wp) :: total(lanes), n_gap(lanes), dwh
+      integer :: j
+      call gap_sums(nl, n, gap, total, n_gap)
+      do j = 1, nl
+         if (.not. active(j)) cycle
+         call hydro_load(steps(j)%coef(1), self%depth, total(j) / real(n, wp), wh(j), dwh)
+         dwh_dx(j) = -(dwh * n_gap(j) / real(n, wp))
+      end do
+   end subroutine bearing_loads
+
+   !> Per lane, the sum of the gaps in element order and the open gaps
+   !> (counted in a real): lanes innermost on explicit run-time shapes, a
+   !> vector loop.
+   pure subroutine gap_sums(nl, n, gap, total, n_gap)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: gap(nl, n)
+      real(wp), intent(out) :: total(nl), n_gap(nl)
+      integer :: i, j
+      total = 0.0_wp
+      n_gap = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            total(j) = total(j) + gap(j, i)
+            n_gap(j) = n_gap(j) + merge(1.0_wp, 0.0_wp, gap(j, i) > 0.0_wp)
+         end do
+      end do
+   end subroutine gap_sums
 
    !> Below mean(d) - H_in the mean gap exceeds H_in (no wedge, no load).
    pure real(wp) function bearing_lower_bound(self, step, d)

@@ -16,7 +16,7 @@ module pavefric_simulate
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, wet_root, wet_state_type, gap_field, lanes
+   use pavefric_balance, only: dry_roots, wet_roots, gap_field, lanes
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
@@ -690,18 +690,17 @@ contains
 
       type(rubber_step_type) :: rstep
       type(film_step_type), allocatable :: fstep(:)
-      type(wet_state_type) :: wet
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
-      real(wp), allocatable :: tan_el(:), pl(:)
+      real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:)
       integer, allocatable :: samples(:)
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
       integer(i8), dimension(lanes) :: n_clamped, n_eval
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
-      logical, dimension(lanes) :: load_film, friction_film
-      real(wp) :: x_dry, mu_j, resid, tan_max, mu_eff, film_sum
+      logical, dimension(lanes) :: load_film, friction_film, wet_lane
+      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum
       integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
       logical :: series, clamped, any_memory, any_load, any_friction
 
@@ -739,6 +738,7 @@ contains
       allocate(c(nl, n), d(nl, n), push(nl, n), u_free(nl, n), work(n), &
          & dl(n), gap(n), stat=stat)
       if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
+      if (stat == 0 .and. any_load) allocate(gaps(nl, n), stat=stat)
       if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
          & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
       if (stat /= 0) then
@@ -782,18 +782,17 @@ contains
          call dry_roots(nl, n, d, s_load, delta_prev - cmin, x, work, dl)
          wh = 0.0_wp
          if (any_load) then
+            ! the lanes whose film engages at the dry balance, then their wet
+            ! balances together
             do j = 1, nl
-               if (.not. load_film(j)) cycle
+               wet_lane(j) = load_film(j)
+               if (.not. wet_lane(j)) cycle
                dl = d(j, :)
-               x_dry = x(j)
-               call gap_field(dl, x_dry, gap)
-               if (film%engages(fstep(j), gap)) then
-                  call wet_root(dl, kel(j), m%load, film, fstep(j), x_dry, m%wet_tolerance, &
-                     & x(j), wet, gap)
-                  wh(j) = wet%hydro_load
-                  n_eval(j) = n_eval(j) + wet%evaluations
-               end if
+               call gap_field(dl, x(j), gap)
+               wet_lane(j) = film%engages(fstep(j), gap)
             end do
+            call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, x, &
+               & wh, n_eval, gaps)
          end if
 
          sum_f = 0.0_wp
