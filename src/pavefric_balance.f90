@@ -12,22 +12,13 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_root, wet_roots, wet_state_type, gap_field, lanes
+   public :: dry_root, dry_roots, wet_roots, gap_field, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
    !> Safeguarded-Newton iterations of the wet root (bisection bounds it to
    !> about 60 on a double bracket; this is a last resort).
    integer, parameter :: max_iter_wet = 200
-
-   !> The wet root's extra outputs.
-   type :: wet_state_type
-      !> Load carried by the bearing at the root (N).
-      real(wp) :: hydro_load = 0.0_wp
-      !> Bearing evaluations spent.
-      integer :: evaluations = 0
-   end type wet_state_type
-
 
 contains
 
@@ -159,16 +150,26 @@ contains
       end do
    end subroutine sorted_root
 
-   !> wet_root for the lanes where `wet`, together: each lane makes exactly
-   !> wet_root's decisions and evaluations (so its x, load and count are
-   !> wet_root's to the bit); the evaluations of all lanes still iterating
-   !> run as one pass over the lanes (their sums interleave). x holds the
-   !> dry roots on entry and, for the wet lanes, the wet ones on exit; wh the
-   !> film's load and evaluations the count added, per lane.
-   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x, wh, evaluations, &
-      & gaps)
+   !> The wet balance of the lanes where `wet`: per lane, the root of
+   !> f(x) = kel sum max(0, x - d_i) + Wh(gap(x)) - W on [lo, x_dry], where Wh
+   !> is the film's load for the gap field gap_i = max(0, d_i - x), f(lo) = -W
+   !> (no contact, no film load: lo from the film) and f(x_dry) = Wh >= 0.
+   !> Both terms are non-decreasing in x, so the root is unique. Newton with
+   !> the analytic derivative from x0 (the previous position's root) when it
+   !> lies in the bracket, else from x_dry, safeguarded by bisection whenever
+   !> a step leaves the bracket or does not halve |f|; it stops when |f| <=
+   !> tol W. Each lane's decisions are its own (its numbers do not depend on
+   !> the other lanes); the evaluations of all lanes still iterating run as
+   !> one pass over the lanes (their sums interleave). x holds the dry roots
+   !> on entry and, for the wet lanes, the wet ones on exit; wh the film's
+   !> load and evaluations the count added, per lane.
+   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
+      & evaluations, gaps)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol
+      !> A first guess per lane (the previous position's root), used when it
+      !> lies inside the bracket.
+      real(wp), intent(in) :: x0(nl)
       class(film_model), intent(in) :: film
       type(film_step_type), intent(in) :: fsteps(nl)
       logical, intent(in) :: wet(nl)
@@ -190,6 +191,7 @@ contains
          if (.not. wet(j)) cycle
          lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
          hi(j) = x(j)
+         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
       end do
       call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
          & gaps)
@@ -227,9 +229,14 @@ contains
       do j = 1, nl
          if (.not. wet(j)) cycle
          if (abs(f(j)) > tol * load) then
-            ! as wet_root: the bracket closed on adjacent doubles (the film
-            ! closing); the upper end, the film carrying what the rubber
-            ! does not
+            ! The bracket closed on adjacent doubles without |f| reaching
+            ! the tolerance. This happens only as the film closes: Eq. 15
+            ! grows like ln(1/Hout), so f is continuous but so steep (slope
+            ! ~ 1/Hout) that the root falls between two doubles, or lies at
+            ! a film thinner than any double (then f jumps to the largest
+            ! real at Hout = 0). Take the upper end and let the film carry
+            ! what the rubber does not: the intermediate value of Wh between
+            ! the two ends, balanced exactly.
             if (f(j) < 0.0_wp) then
                x(j) = hi(j)
                call evaluate_wet(nl, n, d, kel, load, film, fsteps, lane_mask(j), x, f, df, &
@@ -315,97 +322,5 @@ contains
          gap(i) = max(0.0_wp, d(i) - x)
       end do
    end subroutine gap_field
-
-   !> Root of f(x) = kel sum max(0, x - d_i) + Wh(gap(x)) - W on [lo, x_dry],
-   !> where Wh is the film's load for the gap field gap_i = max(0, d_i - x),
-   !> f(lo) = -W (no contact, no film load: lo from the film) and f(x_dry) =
-   !> Wh >= 0. Both terms are non-decreasing in x, so the root is unique.
-   !> Newton with the analytic derivative, safeguarded by bisection whenever
-   !> a step leaves the bracket or does not halve |f|.
-   pure subroutine wet_root(d, kel, load, film, fstep, x_dry, tol, x, state, gap)
-      real(wp), intent(in) :: d(:), kel, load, x_dry, tol
-      class(film_model), intent(in) :: film
-      type(film_step_type), intent(in) :: fstep
-      real(wp), intent(out) :: x
-      type(wet_state_type), intent(out) :: state
-      !> Workspace of size(d): the gap field of the last evaluation.
-      real(wp), intent(inout) :: gap(:)
-      real(wp) :: lo, hi, f, df, f_old, x_new, wh
-      logical :: use_newton
-      integer :: it
-      lo = min(0.0_wp, film%lower_bound(fstep, d))
-      hi = x_dry
-      x = hi
-      call evaluate(x, f, df, wh, gap)
-      state%evaluations = state%evaluations + 1
-      f_old = huge(1.0_wp)
-      do it = 1, max_iter_wet
-         if (abs(f) <= tol * load) exit
-         if (f > 0.0_wp) then
-            hi = x
-         else
-            lo = x
-         end if
-         if (hi - lo <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo), abs(hi))) exit
-         ! Newton if its step stays inside the bracket and the last one at
-         ! least halved |f|; bisection otherwise.
-         use_newton = df > 0.0_wp .and. df < huge(1.0_wp) .and. abs(f) <= 0.5_wp * f_old
-         if (use_newton) then
-            x_new = x - f / df
-            use_newton = x_new > lo .and. x_new < hi
-         end if
-         if (.not. use_newton) x_new = 0.5_wp * (lo + hi)
-         f_old = abs(f)
-         x = x_new
-         call evaluate(x, f, df, wh, gap)
-         state%evaluations = state%evaluations + 1
-      end do
-      if (abs(f) > tol * load) then
-         ! The bracket closed on adjacent doubles without |f| reaching the
-         ! tolerance. This happens only as the film closes: Eq. 15 grows like
-         ! ln(1/Hout), so f is continuous but so steep (slope ~ 1/Hout) that
-         ! the root falls between two doubles, or lies at a film thinner than
-         ! any double (then f jumps to the largest real at Hout = 0). Take the
-         ! upper end and let the film carry what the rubber does not: the
-         ! intermediate value of Wh between the two ends, balanced exactly.
-         if (f < 0.0_wp) then
-            x = hi
-            call evaluate(x, f, df, wh, gap)
-            state%evaluations = state%evaluations + 1
-         end if
-         wh = max(0.0_wp, load - kel * pushed_at(x))
-      end if
-      state%hydro_load = wh
-   contains
-      pure function pushed_at(xe) result(pushed)
-         real(wp), intent(in) :: xe
-         real(wp) :: pushed
-         integer :: i
-         pushed = 0.0_wp
-         do i = 1, size(d)
-            pushed = pushed + max(0.0_wp, xe - d(i))
-         end do
-      end function pushed_at
-
-      pure subroutine evaluate(xe, fe, dfe, whe, g)
-         real(wp), intent(in) :: xe
-         real(wp), intent(out) :: fe, dfe, whe
-         real(wp), intent(inout) :: g(:)
-         real(wp) :: pushed, dwh_dx, n_contact
-         integer :: i
-         ! without branches (contact is unpredictable): adding +0 for an
-         ! element out of contact leaves the sum's bits as they were
-         pushed = 0.0_wp
-         n_contact = 0.0_wp
-         do i = 1, size(d)
-            pushed = pushed + merge(xe - d(i), 0.0_wp, d(i) < xe)
-            n_contact = n_contact + merge(1.0_wp, 0.0_wp, d(i) < xe)
-            g(i) = max(0.0_wp, d(i) - xe)
-         end do
-         call film%load(fstep, g, whe, dwh_dx)
-         fe = kel * pushed + whe - load
-         dfe = kel * n_contact + dwh_dx
-      end subroutine evaluate
-   end subroutine wet_root
 
 end module pavefric_balance

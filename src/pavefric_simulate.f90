@@ -791,8 +791,8 @@ contains
                call gap_field(dl, x(j), gap)
                wet_lane(j) = film%engages(fstep(j), gap)
             end do
-            call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, x, &
-               & wh, n_eval, gaps)
+            call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
+               & delta_prev - cmin, x, wh, n_eval, gaps)
          end if
 
          sum_f = 0.0_wp

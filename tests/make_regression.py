@@ -1,14 +1,20 @@
-"""Record every number pavefric 0.1.0 gives on its own scenes and on a set of
+"""Record every number pavefric gives on its own scenes and on a set of
 synthetic cases, bit for bit, so later changes can be checked against them
 (tests/test_regression.py).
 
-    python tests/make_regression.py tests/data/regression_0.1.0.json
+    python tests/make_regression.py tests/data/regression_record.json
 
-Recorded once, on the code before the components/parameters refactor
-(issue 11) and the wet models (issue 12); not to be regenerated casually:
-a changed number is a changed model. Values are stored as float.hex() (exact);
-large arrays as the SHA-256 of their little-endian float64 bytes plus a few
-values for diagnosis.
+Two records:
+- tests/data/regression_0.1.0.json: pavefric 0.1.0, recorded once on the code
+  before the components/parameters refactor (issue 11) and the wet models
+  (issue 12). Dry results still equal it bit for bit; wet ones to rounding
+  (the wet balance now starts from the previous position's root: fewer
+  bearing evaluations, the same root to its tolerance).
+- tests/data/regression_record.json: this code, on every scene in inputs/
+  (the new models' too), bit for bit.
+Not to be regenerated casually: a changed number is a changed model. Values
+are stored as float.hex() (exact); large arrays as the SHA-256 of their
+little-endian float64 bytes plus a few values for diagnosis.
 """
 from __future__ import annotations
 
@@ -28,7 +34,10 @@ SCENE_VARS = ["speed", "speed_kmh", "mu", "n_clamped", "hydroplaning_fraction", 
               "max_balance_residual", "mean_hydro_load", "max_compression",
               "bearing_evaluations", "memory_updates", "viscous_memory_ran", "bearing_ran",
               "mpd", "rms_height", "rms_slope", "position", "mu_inst", "hydro_load",
-              "penetration", "contact_elements"]
+              "penetration", "contact_elements",
+              # written since 0.1.0
+              "squeeze_film_ran", "mean_local_friction", "mean_film_thickness",
+              "film_thickness", "local_friction", "mu_error_estimate", "substeps_used"]
 BATCH_VARS = ["depth", "speed", "speed_kmh", "mu", "wet_fraction", "hydroplaning_fraction",
               "max_balance_residual", "n_clamped", "mpd", "rms_height", "rms_slope", "status"]
 NUMERIC_ATTRS = ["pad_elements", "averaged_positions", "spinup_positions", "profile_points",
@@ -82,6 +91,13 @@ def synthetic_cases():
         ("rounded", z, dx, [30.0], dict(shape="rounded", radius=0.03, depth=1e-3)),
         ("loose_tolerance", z, dx, [60.0], dict(depth=1e-3, wet_tolerance=1e-6)),
         ("steep", z * 8, dx, [20.0, 60.0], dict(theta_max_deg=60.0, depth=2e-3)),
+        # since 0.1.0 (regression_record.json only)
+        ("squeeze_series", z, dx, [0.0, 20.0, 80.0],
+         dict(depth=1e-3, wet_model="squeeze", series=True)),
+        ("maxwell_wet", z, dx, [5.0, 40.0, 80.0],
+         dict(rubber_model="maxwell", prony_stiffness=[1e8, 5e7], prony_times=[1e-4, 1e-2],
+              temperature=10.0, depth=1e-3)),
+        ("tolerance", z, dx, [20.0, 60.0], dict(tolerance=1e-3, depth=1e-3)),
     ]
 
 
@@ -95,6 +111,8 @@ def main(path: str) -> None:
     scenes = sorted((ROOT / "inputs").glob("*.nml")) + sorted((ROOT / "inputs").glob("*/*.nml"))
     with tempfile.TemporaryDirectory() as tmp:
         for scene in scenes:
+            if scene.parent.name == "rubber":
+                continue                  # &rubber groups to include, not scenes
             rel = str(scene.relative_to(ROOT))
             out = Path(tmp) / (scene.stem + ".nc")
             r = subprocess.run([str(exe), str(scene), "-o", str(out)], capture_output=True,
@@ -103,6 +121,8 @@ def main(path: str) -> None:
                 raise SystemExit(f"{rel}: {r.stderr}")
             with xr.open_dataset(out) as ds:
                 batch = "profile" in ds.dims
+                if "water_depth" in ds.variables:     # recorded under 0.1.0's name
+                    ds = ds.rename({"water_depth": "depth"})
                 record["scenes"][rel] = record_dataset(ds, BATCH_VARS if batch else SCENE_VARS)
             print("recorded", rel)
     for name, z, dx, speeds, kw in synthetic_cases():
@@ -119,4 +139,5 @@ def main(path: str) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else str(ROOT / "tests" / "data" / "regression_0.1.0.json"))
+    main(sys.argv[1] if len(sys.argv) > 1 else
+         str(ROOT / "tests" / "data" / "regression_record.json"))

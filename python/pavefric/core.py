@@ -362,6 +362,10 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
          lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
                                                         n_series, ntext)
         _check(status, message)
+        if series and int(counts[1]) != npos:
+            # a tolerance run chose finer steps: more positions (run again)
+            npos = int(counts[1])
+            continue
         if int(lengths.sum()) <= ntext:
             break
         ntext = int(lengths.sum())

@@ -324,7 +324,8 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "temperature. `&rubber model = 'maxwell'` replaces it by a generalised Maxwell (Prony) "
         "element whose relaxation times follow the temperature through the WLF equation. The "
         "default (`model = 'kelvin_voigt'`, `temperature = reference_temperature`) gives the "
-        "paper's model bit for bit (tests/test_regression.py).",
+        "paper's model as 0.1.0 computed it: dry bit for bit, wet to rounding "
+        "(tests/test_regression.py).",
         "",
         "## The element",
         "",

@@ -151,9 +151,11 @@ end subroutine pf_layout
 !> program's (pavefric_run's run_profile). Results come through the output
 !> table: per-speed values(ns, n_outputs) and, for the series variables
 !> this run produced in the table's order, series(npos, ns, nser) (nser from
-!> pf_layout); present(k) /= 0 for the variables this run produced. Texts (effects, warnings, parameters used) come
-!> in `texts` with their lengths; when they do not fit, text_lengths says
-!> how much room to give and status is 0 (call again).
+!> pf_layout); present(k) /= 0 for the variables this run produced. Texts
+!> (effects, warnings, parameters used) come in `texts` with their lengths;
+!> when they do not fit, text_lengths says how much room to give and status
+!> is 0 (call again); when the series have more positions than npos (a
+!> tolerance run refined the step), counts(2) says how many, status 0.
 subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
       & series, present, position, counts, texture, texts, text_lengths, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
@@ -200,8 +202,10 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    n_pos = 0
    if (scene%series) n_pos = res%n_positions
    if (scene%series .and. npos /= n_pos) then
-      status = stat_internal
-      message = "internal: pf_simulate series sized for a different number of positions"
+      ! sized from pf_layout at the scene's substeps; with &numerics
+      ! tolerance the run chose finer steps (more positions): say how many,
+      ! status 0, and the caller calls again with room for them
+      counts(2) = n_pos
       return
    end if
    speed = res%speed
