@@ -236,6 +236,176 @@ def mpi_batch(log, root: Path | None = None) -> dict:
             "profiles": n}
 
 
+def _checkout_file(rel: str) -> Path:
+    here = Path.cwd() / rel
+    if not here.exists():
+        here = Path(__file__).resolve().parents[2] / rel
+    if not here.exists():
+        raise FileNotFoundError(f"{rel} not found: run the benchmark from a checkout")
+    return here
+
+
+class PlainLoop:
+    """The plain loop (tests/plain_loop.f90): MODEL.md written the obvious way
+    in Fortran, compiled here with the core's optimisation; its compute time
+    (the reading excluded, timed inside it) is the yardstick."""
+
+    def __init__(self, directory: Path):
+        import shutil
+
+        fc = shutil.which("gfortran")
+        if fc is None:
+            raise RuntimeError("gfortran not found: the plain loop cannot be built")
+        self.exe = directory / "plain_loop"
+        r = subprocess.run([fc, "-O3", "-funroll-loops", "-o", str(self.exe),
+                            str(_checkout_file("tests/plain_loop.f90")), "-llapack"],
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(r.stderr)
+        self.directory = directory
+
+    def run(self, z: np.ndarray, dx: float, speeds, closed: bool, depth: float = 0.0,
+            repeats: int = 3) -> dict:
+        path = self.directory / "heights.bin"
+        np.ascontiguousarray(z, dtype="<f8").tofile(path)
+        best = None
+        for _ in range(repeats):
+            r = subprocess.run([str(self.exe), str(path), repr(dx), "1" if closed else "0",
+                                repr(depth)] + [repr(float(v)) for v in speeds],
+                               capture_output=True, text=True, timeout=3600)
+            if r.returncode != 0:
+                raise RuntimeError(r.stderr + r.stdout)
+            res = json.loads(r.stdout)
+            if best is None or res["seconds"] < best["seconds"]:
+                best = res
+        return best
+
+
+SWEEP_CHILD = """
+import json, sys, time, warnings, numpy as np, pavefric
+warnings.simplefilter("ignore")
+z = np.load(sys.argv[1]); speeds = json.loads(sys.argv[2]); kw = json.loads(sys.argv[3])
+pavefric.simulate(z[:4096], 0.87e-3, speeds, **kw)
+best = 1e9
+for _ in range(int(sys.argv[4])):
+    t0 = time.perf_counter()
+    ds = pavefric.simulate(z, 0.87e-3, speeds, **kw)
+    best = min(best, time.perf_counter() - t0)
+steps = ds.attrs["pad_elements"] * (ds.attrs["averaged_positions"]
+                                    + ds.attrs["spinup_positions"]) * len(speeds)
+print(json.dumps({"seconds": best, "steps": int(steps), "mu": ds["mu"].values.tolist(),
+                  "evaluations": ds["bearing_evaluations"].values.tolist()}))
+"""
+
+
+def sweep(ref, plain: PlainLoop, log, repeats: int = 5) -> list:
+    """Issue 13's kernel figures: N = 23 on a 6-speed sweep (10-80 km/h), one
+    thread, dry and wet (the paper's bearing and the drainage film), the core
+    beside the plain loop and the NumPy reference on the same profiles."""
+    import tempfile
+
+    speeds = [10.0, 20.0, 30.0, 40.0, 60.0, 80.0]
+    log("\n== N = 23, a 6-speed sweep (10-80 km/h), one thread (targets: dry >= 300, "
+        "wet >= 60 M element-steps/s) ==")
+    log(f"{'surface':22s} {'scene':14s} {'core M/s':>9s} {'plain M/s':>10s} {'core/plain':>11s} "
+        f"{'numpy M/s':>10s} {'core/numpy':>11s} {'|mu - plain|':>13s}")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, z0 in surfaces().items():
+            z = np.tile(z0, 64)                              # 65,536 points, closed
+            zpath = Path(tmp) / "z.npy"
+            np.save(zpath, z)
+            for scene, kw, depth in (("dry", {}, 0.0), ("wet", {"depth": 1e-3}, 1e-3),
+                                     ("wet, squeeze", {"depth": 1e-3, "wet_model": "squeeze"},
+                                      None)):
+                core = _child_args(SWEEP_CHILD, [str(zpath), json.dumps(speeds), json.dumps(kw),
+                                                 str(repeats)], env={"OMP_NUM_THREADS": "1"})
+                core_rate = core["steps"] / core["seconds"]
+                row = dict(surface=name, scene=scene, core=core_rate)
+                if depth is not None:
+                    pl = plain.run(z, DX, speeds, True, depth)
+                    row["plain"] = pl["element_steps"] / pl["seconds"]
+                    row["mu_diff"] = float(np.max(np.abs(np.array(pl["mu"]) - core["mu"])))
+                nref = 256 if depth == 0.0 else 64
+                if depth is not None:
+                    numpy_rate, _ = _rate_reference(ref, z0[:nref], DX, speeds=speeds,
+                                                    **({"depth": depth, "alpha": 11.8}
+                                                       if depth else {}))
+                    row["numpy"] = numpy_rate
+                rows.append(row)
+                plain_s = f"{row['plain'] / 1e6:10.1f} {core_rate / row['plain']:10.2f}x" \
+                    if "plain" in row else f"{'-':>10s} {'-':>11s}"
+                numpy_s = f"{row['numpy'] / 1e6:10.3f} {core_rate / row['numpy']:10.0f}x" \
+                    if "numpy" in row else f"{'-':>10s} {'-':>11s}"
+                diff = f"{row['mu_diff']:13.1e}" if "mu_diff" in row else f"{'-':>13s}"
+                log(f"{name:22s} {scene:14s} {core_rate / 1e6:9.1f} {plain_s} {numpy_s} {diff}")
+    sq = [r["core"] for r in rows if r["scene"] == "wet, squeeze"]
+    kane = [r["core"] for r in rows if r["scene"] == "wet"]
+    ratio = max(k / q for k, q in zip(kane, sq))
+    log(f"the drainage film's cost per element-step against the paper's wet model: at most "
+        f"{ratio:.2f}x (target <= 2x)")
+    return rows
+
+
+def _child_args(code: str, args: list[str], env=None) -> dict:
+    r = subprocess.run([sys.executable, "-c", code] + args, capture_output=True, text=True,
+                       env={**os.environ, **(env or {})}, timeout=3600)
+    if r.returncode != 0:
+        raise RuntimeError(r.stderr)
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3) -> dict:
+    """Issue 13's whole-program figure: the program on a 400,000-point dry
+    text profile at 10 speeds (reading, preprocessing checks, the run, the
+    NetCDF file), wall time, against the plain loop's compute alone on the
+    same heights and speeds; one thread and two."""
+    import tempfile
+
+    from .surfaces import spectral_profile, write_profile
+
+    exe = Path(sys.executable).parent / "pavefric"
+    speeds = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0, 100.0]
+    out: dict = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        z = spectral_profile(points, DX, rms=0.5e-3, skew=-0.3, seed=41)
+        write_profile(str(tmp / "long.txt"), z)
+        # the heights as the program reads them (the file's decimal digits)
+        from .profiles import read_profile
+
+        zr = read_profile(tmp / "long.txt").heights
+        scene = tmp / "long.nml"
+        scene.write_text(f"&surface profile_file = 'long.txt', dx = {DX!r}, closed = .false. /\n"
+                         "&operation speeds_kmh = " + ", ".join(f"{v:g}" for v in speeds)
+                         + " /\n")
+        pl = plain.run(zr, DX, speeds, False, 0.0)
+        for threads in ("1", "2"):
+            best = np.inf
+            for _ in range(repeats):
+                t0 = time.perf_counter()
+                r = subprocess.run([str(exe), str(scene), "-o", str(tmp / "long.nc")],
+                                   capture_output=True, text=True,
+                                   env={**os.environ, "OMP_NUM_THREADS": threads})
+                best = min(best, time.perf_counter() - t0)
+                if r.returncode != 0:
+                    raise RuntimeError(r.stderr)
+            out[threads] = best
+        import xarray as xr
+
+        with xr.open_dataset(tmp / "long.nc") as ds:
+            diff = float(np.max(np.abs(ds["mu"].values - np.array(pl["mu"]))))
+    out.update(plain=pl["seconds"], steps=pl["element_steps"], mu_diff=diff, points=points)
+    log(f"\n== Whole program: a {points:,}-point dry text profile, 10 speeds (target: at least "
+        "1.5x the plain loop's compute) ==")
+    log(f"  plain loop, compute only (reading excluded): {pl['seconds']:.3f} s")
+    for threads in ("1", "2"):
+        log(f"  pavefric long.nml (read, run, write NetCDF), {threads} thread(s): "
+            f"{out[threads]:.3f} s: {pl['seconds'] / out[threads]:.2f}x the plain loop")
+    log(f"  largest |mu(program) - mu(plain loop)|: {diff:.1e}")
+    return out
+
+
 def run(report: str | None = None, largest: int = 10_000_000) -> dict:
     from . import bench_io
     from .reports import machine_description
@@ -248,7 +418,15 @@ def run(report: str | None = None, largest: int = 10_000_000) -> dict:
 
     log(f"pavefric benchmark on {machine_description()}")
     ref = _reference()
-    results = {
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        plain = PlainLoop(Path(tmp))
+        results = {
+            "sweep": sweep(ref, plain, log),
+            "program": whole_program(plain, log),
+        }
+    results |= {
         "throughput": throughput(ref, log),
         "elements": scaling_elements(ref, log),
         "length": scaling_length(log, largest),
