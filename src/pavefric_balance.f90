@@ -121,6 +121,20 @@ contains
       real(wp), intent(in) :: d(nl, n), x(nl)
       real(wp), intent(out) :: sum_active(nl), count(nl)
       integer :: i, j
+      real(wp) :: total, counted
+      if (nl == 1) then
+         ! one lane: plain loops (a lane loop of one trip costs more than
+         ! the work), the same operations in the same order
+         total = 0.0_wp
+         counted = 0.0_wp
+         do i = 1, n
+            total = total + merge(d(1, i), 0.0_wp, d(1, i) < x(1))
+            counted = counted + merge(1.0_wp, 0.0_wp, d(1, i) < x(1))
+         end do
+         sum_active(1) = total
+         count(1) = counted
+         return
+      end if
       sum_active = 0.0_wp
       count = 0.0_wp
       do i = 1, n
@@ -301,6 +315,19 @@ contains
       real(wp), intent(in) :: d(nl, n), x(nl)
       real(wp), intent(out) :: pushed(nl), contacts(nl), gaps(nl, n)
       integer :: i, j
+      real(wp) :: total, counted
+      if (nl == 1) then
+         total = 0.0_wp                          ! one lane: a plain loop
+         counted = 0.0_wp
+         do i = 1, n
+            total = total + merge(x(1) - d(1, i), 0.0_wp, d(1, i) < x(1))
+            counted = counted + merge(1.0_wp, 0.0_wp, d(1, i) < x(1))
+            gaps(1, i) = max(0.0_wp, d(1, i) - x(1))
+         end do
+         pushed(1) = total
+         contacts(1) = counted
+         return
+      end if
       pushed = 0.0_wp
       contacts = 0.0_wp
       do i = 1, n

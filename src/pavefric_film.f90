@@ -271,6 +271,18 @@ contains
       real(wp), intent(in) :: gap(nl, n)
       real(wp), intent(out) :: total(nl), n_gap(nl)
       integer :: i, j
+      real(wp) :: t1, c1
+      if (nl == 1) then
+         t1 = 0.0_wp                             ! one lane: a plain loop
+         c1 = 0.0_wp
+         do i = 1, n
+            t1 = t1 + gap(1, i)
+            c1 = c1 + merge(1.0_wp, 0.0_wp, gap(1, i) > 0.0_wp)
+         end do
+         total(1) = t1
+         n_gap(1) = c1
+         return
+      end if
       total = 0.0_wp
       n_gap = 0.0_wp
       do i = 1, n

@@ -22,7 +22,7 @@
 !> relaxed limit E = G = 0 and r = 0 the glassy limit E = G = 1, with no
 !> division by zero or overflow on the way.
 module pavefric_maxwell
-   use pavefric_kinds, only: wp, width => lanes
+   use pavefric_kinds, only: wp
    use pavefric_rubber, only: rubber_model, rubber_step_type
    implicit none
    private
@@ -64,13 +64,14 @@ contains
    !> and coef(:, 1+k) = K_k E_k / k_eff give u_free; coef(:, 1+n+k) = 1 - G_k,
    !> coef(:, 1+2n+k) = G_k - E_k and coef(:, 1+3n+k) = E_k update v_k.
    !> V = 0 is the static limit: every arm relaxed, k_eff = K_inf, no memory.
-   pure subroutine mx_prepare(self, speeds, advance, step)
+   pure subroutine mx_prepare(self, speeds, advance, elements, step)
       class(maxwell_rubber), intent(in) :: self
       real(wp), intent(in) :: speeds(:), advance
+      integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
       real(wp) :: e, g, one_g, g_e, k_eff, a
       real(wp), allocatable :: ke(:)
-      integer :: j, k, n
+      integer :: j, k, n, i, nl
       n = size(self%arm_stiffness)
       allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
          & step%coef(size(speeds), 1 + 4 * n), ke(n))
@@ -93,22 +94,26 @@ contains
          step%coef(j, 1) = a / k_eff
          step%k_eff(j) = k_eff
       end do
+      ! every lane's coefficients repeated for each element: the kernels then
+      ! run over lanes and elements as one contiguous loop
+      nl = size(speeds)
+      allocate(step%per_element(nl * elements, 1 + 4 * n))
+      do k = 1, 1 + 4 * n
+         do i = 1, elements
+            step%per_element((i - 1) * nl + 1 : i * nl, k) = step%coef(:, k)
+         end do
+      end do
    end subroutine mx_prepare
 
    !> u_free = sum_k K_k [(G_k - E_k) u + E_k v_k] / k_eff: where the element
-   !> would carry no pressure at the step's end.
+   !> would carry no pressure at the step's end. The state is laid out
+   !> (lanes x elements, 1 + arms): u, then each arm's v_k.
    pure subroutine mx_free(self, step, state, u_free)
       class(maxwell_rubber), intent(in) :: self
       type(rubber_step_type), intent(in) :: step
       real(wp), intent(in), contiguous :: state(:, :, :)
       real(wp), intent(out), contiguous :: u_free(:, :)
-      if (size(u_free, 1) == width) then
-         call free_kernel_w(size(state, 2), size(u_free, 2), size(self%arm_stiffness), &
-            & step%coef, state, u_free)
-      else
-         call free_kernel(size(u_free, 1), size(state, 2), size(u_free, 2), &
-            & size(self%arm_stiffness), step%coef, state, u_free)
-      end if
+      call free_kernel(size(u_free), size(self%arm_stiffness), step%per_element, state, u_free)
    end subroutine mx_free
 
    !> u1 = u_free + push; v_k <- (1 - G_k) u1 + (G_k - E_k) u0 + E_k v_k.
@@ -117,89 +122,43 @@ contains
       type(rubber_step_type), intent(in) :: step
       real(wp), intent(inout), contiguous :: state(:, :, :)
       real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
-      if (size(u_free, 1) == width) then
-         call update_kernel_w(size(state, 2), size(u_free, 2), size(self%arm_stiffness), &
-            & step%coef, state, u_free, push)
-      else
-         call update_kernel(size(u_free, 1), size(state, 2), size(u_free, 2), &
-            & size(self%arm_stiffness), step%coef, state, u_free, push)
-      end if
+      call update_kernel(size(u_free), size(self%arm_stiffness), step%per_element, state, &
+         & u_free, push)
    end subroutine mx_update
 
-   !> mx_free's loops on explicit shapes (nl lanes, ns state values, n
-   !> elements, na arms), so that the lane loops compile to vectors.
-   pure subroutine free_kernel(nl, ns, n, na, coef, state, u_free)
-      integer, intent(in) :: nl, ns, n, na
-      real(wp), intent(in) :: coef(nl, 1 + 4 * na), state(nl, ns, n)
-      real(wp), intent(out) :: u_free(nl, n)
-      integer :: i, j, k
-      do i = 1, n
-         do j = 1, nl
-            u_free(j, i) = coef(j, 1) * state(j, 1, i)
-         end do
-         do k = 1, na
-            do j = 1, nl
-               u_free(j, i) = u_free(j, i) + coef(j, 1 + k) * state(j, 1 + k, i)
-            end do
+   !> mx_free over m = lanes x elements values as one loop per arm (long,
+   !> contiguous vector loops); each value's sum in the arms' order.
+   pure subroutine free_kernel(m, na, coef, state, u_free)
+      integer, intent(in) :: m, na
+      real(wp), intent(in) :: coef(m, 1 + 4 * na), state(m, 1 + na)
+      real(wp), intent(out) :: u_free(m)
+      integer :: p, k
+      do p = 1, m
+         u_free(p) = coef(p, 1) * state(p, 1)
+      end do
+      do k = 1, na
+         do p = 1, m
+            u_free(p) = u_free(p) + coef(p, 1 + k) * state(p, 1 + k)
          end do
       end do
    end subroutine free_kernel
 
-   !> free_kernel for the driver's width: whole vectors.
-   pure subroutine free_kernel_w(ns, n, na, coef, state, u_free)
-      integer, intent(in) :: ns, n, na
-      real(wp), intent(in) :: coef(width, 1 + 4 * na), state(width, ns, n)
-      real(wp), intent(out) :: u_free(width, n)
-      real(wp) :: acc(width)
-      integer :: i, k
-      do i = 1, n
-         acc = coef(:, 1) * state(:, 1, i)
-         do k = 1, na
-            acc = acc + coef(:, 1 + k) * state(:, 1 + k, i)
+   !> mx_update over m = lanes x elements values (u1 = u_free + push formed
+   !> again for each arm: the same value).
+   pure subroutine update_kernel(m, na, coef, state, u_free, push)
+      integer, intent(in) :: m, na
+      real(wp), intent(in) :: coef(m, 1 + 4 * na), u_free(m), push(m)
+      real(wp), intent(inout) :: state(m, 1 + na)
+      integer :: p, k
+      do k = 1, na
+         do p = 1, m
+            state(p, 1 + k) = coef(p, 1 + na + k) * (u_free(p) + push(p)) &
+               & + coef(p, 1 + 2 * na + k) * state(p, 1) &
+               & + coef(p, 1 + 3 * na + k) * state(p, 1 + k)
          end do
-         u_free(:, i) = acc
       end do
-   end subroutine free_kernel_w
-
-   !> update_kernel for the driver's width.
-   pure subroutine update_kernel_w(ns, n, na, coef, state, u_free, push)
-      integer, intent(in) :: ns, n, na
-      real(wp), intent(in) :: coef(width, 1 + 4 * na), u_free(width, n), push(width, n)
-      real(wp), intent(inout) :: state(width, ns, n)
-      real(wp) :: u0(width), u1(width)
-      integer :: i, k
-      do i = 1, n
-         u0 = state(:, 1, i)
-         u1 = u_free(:, i) + push(:, i)
-         do k = 1, na
-            state(:, 1 + k, i) = coef(:, 1 + na + k) * u1 + coef(:, 1 + 2 * na + k) * u0 &
-               & + coef(:, 1 + 3 * na + k) * state(:, 1 + k, i)
-         end do
-         state(:, 1, i) = u1
-      end do
-   end subroutine update_kernel_w
-
-   !> mx_update's loops on explicit shapes.
-   pure subroutine update_kernel(nl, ns, n, na, coef, state, u_free, push)
-      integer, intent(in) :: nl, ns, n, na
-      real(wp), intent(in) :: coef(nl, 1 + 4 * na), u_free(nl, n), push(nl, n)
-      real(wp), intent(inout) :: state(nl, ns, n)
-      real(wp) :: u1(nl)
-      integer :: i, j, k
-      do i = 1, n
-         do j = 1, nl
-            u1(j) = u_free(j, i) + push(j, i)
-         end do
-         do k = 1, na
-            do j = 1, nl
-               state(j, 1 + k, i) = coef(j, 1 + na + k) * u1(j) &
-                  & + coef(j, 1 + 2 * na + k) * state(j, 1, i) &
-                  & + coef(j, 1 + 3 * na + k) * state(j, 1 + k, i)
-            end do
-         end do
-         do j = 1, nl
-            state(j, 1, i) = u1(j)
-         end do
+      do p = 1, m
+         state(p, 1) = u_free(p) + push(p)
       end do
    end subroutine update_kernel
 

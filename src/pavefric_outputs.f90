@@ -18,6 +18,7 @@ module pavefric_outputs
    public :: output_var_type, output_table, output_present, output_values, n_outputs
    public :: output_metadata_type, series_count
    public :: out_double, out_int64, out_int, out_flag, dim_speed, dim_position_speed
+   public :: output_condition
 
    !> Storage types (NetCDF: double, int64, int, byte 0/1 with flag meanings).
    integer, parameter :: out_double = 1, out_int64 = 2, out_int = 3, out_flag = 4
@@ -88,8 +89,9 @@ contains
          & "microtexture piercing the film, force-weighted over contacts and positions")
       t(14) = var("mean_film_thickness", "m", "water film left under the pad, averaged " // &
          & "over elements and positions")
-      t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step: its " // &
-         & "change from the previous (twice coarser) step (&numerics tolerance)")
+      t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step: " // &
+         & "twice the larger of its last two changes as the step was halved (&numerics " // &
+         & "tolerance)")
       t(22) = var("substeps_used", "1", "time steps per element spacing the tolerance " // &
          & "reached (&numerics tolerance)", out_int64)
       t(15) = var("mu_inst", "1", "instantaneous friction coefficient (Kane et al. 2017, " // &
@@ -117,6 +119,24 @@ contains
          if (present(dims)) v%dims = dims
       end function var
    end function output_table
+
+   !> When variable k is written (docs/outputs.md), as output_present decides.
+   pure function output_condition(k) result(text)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: text
+      select case (k)
+      case (12:14)
+         text = "when the drainage film (&water wet_model = 'squeeze') ran at any speed"
+      case (15:18)
+         text = "with &output series = .true."
+      case (19:20)
+         text = "with &output series = .true. and the drainage film"
+      case (21:22)
+         text = "with &numerics tolerance > 0"
+      case default
+         text = "always"
+      end select
+   end function output_condition
 
    !> Whether variable k is part of this run's results: series variables
    !> only with series, the squeeze film's only when it ran.

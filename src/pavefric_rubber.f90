@@ -28,6 +28,10 @@ module pavefric_rubber
       logical, allocatable :: memory(:)
       !> Coefficients of the model's state update (lanes, model's count).
       real(wp), allocatable :: coef(:, :)
+      !> The same repeated for every element, (lanes x elements, model's
+      !> count), for models whose loops run over lanes and elements as one
+      !> (not allocated by models that do not need it).
+      real(wp), allocatable :: per_element(:, :)
    end type rubber_step_type
 
    !> A rubber element model.
@@ -35,7 +39,8 @@ module pavefric_rubber
    contains
       !> Internal state values per element (>= 1; the first is the compression).
       procedure(state_size_interface), deferred :: state_size
-      !> Step coefficients at speeds V(:) when the pad advances `advance` per step.
+      !> Step coefficients at speeds V(:) when the pad of `elements` advances
+      !> `advance` per step.
       procedure(prepare_interface), deferred :: prepare
       !> u_free(lane, element) of every element from its state.
       procedure(free_interface), deferred :: free_compression
@@ -51,10 +56,11 @@ module pavefric_rubber
          class(rubber_model), intent(in) :: self
       end function state_size_interface
 
-      pure subroutine prepare_interface(self, speeds, advance, step)
+      pure subroutine prepare_interface(self, speeds, advance, elements, step)
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
          real(wp), intent(in) :: speeds(:), advance
+         integer, intent(in) :: elements
          type(rubber_step_type), intent(out) :: step
       end subroutine prepare_interface
 
@@ -62,7 +68,8 @@ module pavefric_rubber
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
          type(rubber_step_type), intent(in) :: step
-         !> (lanes, state_size, elements)
+         !> The elements' state: lanes x state_size x elements values, laid
+         !> out as the model chooses (the driver only zeroes it)
          real(wp), intent(in), contiguous :: state(:, :, :)
          !> (lanes, elements)
          real(wp), intent(out), contiguous :: u_free(:, :)
@@ -108,14 +115,17 @@ contains
    !> k_eff = K + C/dt, and with p = 0 (Eq. 8) u_free = u_prev / (1 + K dt/C)
    !> = u_prev C V / (C V + K advance), 0 for C = 0 or V = 0 (no division by
    !> zero in either limit). coef(:, 1) is that relaxation factor.
-   pure subroutine kv_prepare(self, speeds, advance, step)
+   pure subroutine kv_prepare(self, speeds, advance, elements, step)
       class(kelvin_voigt_rubber), intent(in) :: self
       real(wp), intent(in) :: speeds(:), advance
+      integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
       real(wp) :: cv
-      integer :: j
-      allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), step%coef(size(speeds), 1))
-      do j = 1, size(speeds)
+      integer :: i, j, nl
+      nl = size(speeds)
+      allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
+         & step%per_element(nl * elements, 1))
+      do j = 1, nl
          cv = self%viscosity * speeds(j)
          step%k_eff(j) = self%stiffness + cv / advance            ! K + C/dt
          step%memory(j) = cv > 0.0_wp
@@ -125,6 +135,9 @@ contains
             step%coef(j, 1) = 0.0_wp
          end if
       end do
+      do i = 1, elements
+         step%per_element((i - 1) * nl + 1 : i * nl, 1) = step%coef(:, 1)
+      end do
    end subroutine kv_prepare
 
    pure subroutine kv_free(self, step, state, u_free)
@@ -132,12 +145,7 @@ contains
       type(rubber_step_type), intent(in) :: step
       real(wp), intent(in), contiguous :: state(:, :, :)
       real(wp), intent(out), contiguous :: u_free(:, :)
-      integer :: i, j
-      do i = 1, size(u_free, 2)
-         do j = 1, size(u_free, 1)
-            u_free(j, i) = step%coef(j, 1) * state(j, 1, i)
-         end do
-      end do
+      call kv_free_kernel(size(u_free), step%per_element, state, u_free)
    end subroutine kv_free
 
    !> The compression is the whole state: u = max(g, u_free) = u_free + push.
@@ -146,13 +154,29 @@ contains
       type(rubber_step_type), intent(in) :: step
       real(wp), intent(inout), contiguous :: state(:, :, :)
       real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
-      integer :: i, j
-      do i = 1, size(u_free, 2)
-         do j = 1, size(u_free, 1)
-            state(j, 1, i) = u_free(j, i) + push(j, i)
-         end do
-      end do
+      call kv_update_kernel(size(u_free), state, u_free, push)
    end subroutine kv_update
+
+   !> Over m = lanes x elements values as one contiguous loop.
+   pure subroutine kv_free_kernel(m, relax, state, u_free)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: relax(m), state(m)
+      real(wp), intent(out) :: u_free(m)
+      integer :: p
+      do p = 1, m
+         u_free(p) = relax(p) * state(p)
+      end do
+   end subroutine kv_free_kernel
+
+   pure subroutine kv_update_kernel(m, state, u_free, push)
+      integer, intent(in) :: m
+      real(wp), intent(inout) :: state(m)
+      real(wp), intent(in) :: u_free(m), push(m)
+      integer :: p
+      do p = 1, m
+         state(p) = u_free(p) + push(p)
+      end do
+   end subroutine kv_update_kernel
 
    pure function kv_memory_effect(self) result(name)
       class(kelvin_voigt_rubber), intent(in) :: self

@@ -518,9 +518,10 @@ contains
       ! geometry: z, tan_theta, clamped (+ slopes), and the refinement's copies
       bytes = n_ext * (8.0_wp + 8.0_wp + 4.0_wp) * 2.0_wp
       if (friction_film) bytes = bytes + n_ext * 16.0_wp * real(min(ns, 64), wp)
-      ! per speed (one per thread at most, counted for all): element arrays
-      ! and the rubber's state
-      bytes = bytes + n_el * 8.0_wp * real(10 + n_state, wp) * real(ns, wp)
+      ! per speed (one per thread at most, counted for all): element arrays,
+      ! the rubber's state and its coefficients per element (a Maxwell
+      ! rubber: 1 + 4 arms for 1 + arms state values)
+      bytes = bytes + n_el * 8.0_wp * real(10 + 5 * n_state, wp) * real(ns, wp)
       n_avg = real(averaged_positions(m, np, dx, closed), wp)
       if (want_series) bytes = bytes + n_avg * real(ns, wp) * 8.0_wp * 6.0_wp
       limit = real(c_physical_memory(), wp)
@@ -711,7 +712,7 @@ contains
       v(1:nl) = speeds
       v(nl+1:) = speeds(nl)
       series = present(mu_inst)
-      call rubber%prepare(v(1:nl), geo%advance, rstep)
+      call rubber%prepare(v(1:nl), geo%advance, n, rstep)
       ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
       kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
       kel(nl+1:) = kel(nl)
@@ -945,6 +946,20 @@ contains
       real(wp), intent(in) :: z(n), h(n), u_free(nl, n)
       real(wp), intent(out) :: c(nl, n), cmin(nl), d(nl, n)
       integer :: i, j
+      real(wp) :: low
+      if (nl == 1) then
+         ! one lane: plain loops (a lane loop of one trip costs more than the work)
+         low = huge(1.0_wp)
+         do i = 1, n
+            c(1, i) = h(i) - z(i) + u_free(1, i)
+            low = min(low, c(1, i))
+         end do
+         cmin(1) = low
+         do i = 1, n
+            d(1, i) = c(1, i) - low
+         end do
+         return
+      end if
       cmin = huge(1.0_wp)
       do i = 1, n
          do j = 1, nl
@@ -970,8 +985,32 @@ contains
       real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n)
       real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl)
       real(wp), intent(inout) :: u_max(nl)
-      real(wp) :: p, in_contact
+      real(wp) :: p, in_contact, sf, sft, nc, ncl, um
       integer :: i, j
+      if (nl == 1) then
+         ! one lane: plain loops, the same operations in the same order
+         sf = 0.0_wp
+         sft = 0.0_wp
+         nc = 0.0_wp
+         ncl = 0.0_wp
+         um = u_max(1)
+         do i = 1, n
+            p = max(0.0_wp, x(1) - d(1, i))
+            push(1, i) = p
+            in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
+            sf = sf + p
+            nc = nc + in_contact
+            sft = sft + p * tan_t(i)
+            ncl = ncl + in_contact * clamped(i)
+            um = max(um, u_free(1, i) + p)
+         end do
+         sum_f(1) = sf
+         contacts(1) = nc
+         sum_ft(1) = sft
+         clamps(1) = ncl
+         u_max(1) = um
+         return
+      end if
       sum_f = 0.0_wp
       contacts = 0.0_wp
       sum_ft = 0.0_wp

@@ -1,7 +1,8 @@
-"""docs/inputs.md is generated from the core's declarations and kept fresh."""
+"""docs/inputs.md and docs/outputs.md are generated from the core's declarations
+and kept fresh."""
 import pavefric
 from conftest import ROOT
-from pavefric.docs import inputs_markdown
+from pavefric.docs import inputs_markdown, outputs_markdown
 
 
 def test_inputs_reference_is_fresh():
@@ -25,3 +26,22 @@ def test_python_keywords_and_defaults_come_from_the_declarations():
     assert pavefric.defaults() == {k: p.default for k, p in model.items()}
     assert pavefric.defaults()["stiffness"] == 1.4e8
     assert PARAMETERS["water_viscosity"] == ("water", "viscosity")
+
+
+def test_outputs_reference_is_fresh():
+    committed = (ROOT / "docs" / "outputs.md").read_text(encoding="utf-8")
+    assert committed == outputs_markdown(), (
+        "docs/outputs.md is stale: run `python -m pavefric docs --outputs docs/outputs.md`")
+
+
+def test_every_written_variable_is_documented(tmp_path):
+    """Every variable of a run with every optional output (series, the
+    drainage film, a tolerance) is in docs/outputs.md."""
+    import numpy as np
+
+    text = outputs_markdown()
+    z = np.sin(np.arange(512) * 0.3) * 0.5e-3
+    ds = pavefric.simulate(z, 0.87e-3, [20.0], depth=1e-3, wet_model="squeeze", series=True,
+                           tolerance=3e-2)
+    for name in ds.variables:
+        assert f"`{name}`" in text, name

@@ -10,7 +10,7 @@ Commands:
   surfaces [--outdir inputs/surfaces]       regenerate the six reference surfaces
   validate [--report docs/validation.md]    calibrate at 20 km/h, compare, report
   profile FILE [--dropouts interpolate ...] read, preprocess, report, plot a profile
-  docs --inputs docs/inputs.md              regenerate the namelist reference from the core
+  docs [--inputs docs/inputs.md] [--outputs docs/outputs.md]  regenerate the references
   speed-gradient [--report docs/speed_gradient.md]  wet models against the PIARC speed gradient
   prony DATA.csv [-o compound.nml] [--thickness H] ...  Prony series from DMA data (&rubber)
   rubber-report [--report docs/rubber.md]  Maxwell rubber: friction against speed and
@@ -121,6 +121,8 @@ def main(argv: list[str] | None = None) -> int:
                             "declarations")
     p_docs.add_argument("--inputs", default="docs/inputs.md",
                         help="where to write the namelist reference")
+    p_docs.add_argument("--outputs", default="docs/outputs.md",
+                        help="where to write the NetCDF output reference")
 
     p_sg = sub.add_parser("speed-gradient", help="the wet models' speed gradient against PIARC "
                           "(docs/speed_gradient.md)")
@@ -218,9 +220,10 @@ def main(argv: list[str] | None = None) -> int:
 
             run_report(args.report, compound=args.compound, quick=args.quick)
         elif args.command == "docs":
-            from .docs import write_inputs
+            from .docs import write_inputs, write_outputs
 
             print(f"wrote {write_inputs(args.inputs)}")
+            print(f"wrote {write_outputs(args.outputs)}")
         elif args.command == "profile":
             from .profiles import read_profile
             from .plot import plot_profile
