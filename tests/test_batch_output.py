@@ -209,6 +209,21 @@ def test_python_run_warns_naming_the_failed_profiles(tmp_path):
         pavefric.run(scene, tmp_path / "good.nc", progress=False)
 
 
+def test_python_m_pavefric_run_exits_4_as_the_program_does(tmp_path):
+    import sys
+
+    scene = make_batch(tmp_path, n=6, broken=True)
+    r = subprocess.run([sys.executable, "-m", "pavefric", "run", str(scene), "-o",
+                        str(tmp_path / "o.nc")], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 4, r.stdout + r.stderr
+    assert "1 of 6 profiles failed" in r.stderr and "seg_0005" in r.stderr
+    assert (tmp_path / "o.nc").exists()
+    good = make_batch(tmp_path / "good", n=3)
+    r = subprocess.run([sys.executable, "-m", "pavefric", "run", str(good), "-o",
+                        str(tmp_path / "good.nc")], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+
+
 def test_help_documents_exit_codes():
     r = subprocess.run([program(), "--help"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0

@@ -168,13 +168,25 @@ def main(argv: list[str] | None = None) -> int:
 
     try:
         if args.command == "run":
-            from .core import run
+            import warnings
+
+            from .core import ProfilesFailedWarning, run
             from .plot import plot_mu_speed
 
-            out = run(args.scene, args.output)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", ProfilesFailedWarning)
+                out = run(args.scene, args.output)
+            failed = [w for w in caught if issubclass(w.category, ProfilesFailedWarning)]
+            for w in caught:
+                if w not in failed:
+                    warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
             print(f"wrote {out}")
             if args.plot:
                 print(f"wrote {plot_mu_speed([out], args.plot)}")
+            if failed:
+                # as the program: the batch finished, some profiles failed
+                print(f"pavefric: {failed[0].message}", file=sys.stderr)
+                return 4
         elif args.command == "plot":
             from .plot import plot_mu_speed
 
