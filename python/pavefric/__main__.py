@@ -64,6 +64,8 @@ def main(argv: list[str] | None = None) -> int:
 
     p_bench = sub.add_parser("bench", help="benchmark the core against the NumPy reference")
     p_bench.add_argument("--report", default=None, help="write docs/performance.md here")
+    p_bench.add_argument("--quick", action="store_true",
+                         help="small sizes, one repeat: check that it runs (not a measurement)")
     p_bench.add_argument("--largest", type=int, default=10_000_000,
                          help="largest profile of the length scaling (points)")
 
@@ -199,7 +201,7 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "bench":
             from .bench import run as bench_run
 
-            bench_run(args.report, args.largest)
+            bench_run(args.report, args.largest, quick=args.quick)
         elif args.command == "calibrate":
             from .calibrate import main_calibrate
 

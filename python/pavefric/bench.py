@@ -83,12 +83,12 @@ def _child(code: str, env=None) -> dict:
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
-def throughput(ref, log):
+def throughput(ref, log, tile: int = 64):
     rows = []
     log("\n== Throughput per core, N = 23 (0.87 mm, 20 mm pad), 60 km/h ==")
     log(f"{'surface':22s} {'scene':5s} {'core Msteps/s':>14s} {'numpy Msteps/s':>15s} {'ratio':>8s}")
     for name, z in surfaces().items():
-        big = np.tile(z, 64)                        # 65,536 points: a measurable time
+        big = np.tile(z, tile)                      # 65,536 points: a measurable time
         for scene, kw, nref in (("dry", {}, 1024), ("wet", {"depth": 1e-3}, 128)):
             core, _, _ = _rate_core(big, DX, **kw)
             numpy_rate, _ = _rate_reference(ref, z[:nref], DX, **kw)
@@ -99,20 +99,20 @@ def throughput(ref, log):
     return rows
 
 
-def scaling_elements(ref, log):
+def scaling_elements(ref, log, points: int = 8192):
     from .surfaces import spectral_profile
 
-    log("\n== Scaling in pad elements N (finer profiles, 20 mm pad, 8192 points, 60 km/h) ==")
+    log(f"\n== Scaling in pad elements N (finer profiles, 20 mm pad, {points} points, 60 km/h) ==")
     log(f"{'N':>6s} {'dx mm':>8s} {'dry Msteps/s':>13s} {'wet Msteps/s':>13s} "
         f"{'numpy dry':>10s} {'ratio dry':>10s}")
     rows = []
     for r in (1, 2, 4, 8, 16, 32, 87):
         dx = DX / r
-        z = spectral_profile(8192, dx, rms=0.5e-3, wavelength_min=max(2e-3, 4 * dx),
-                             wavelength_max=min(50e-3, 8192 * dx / 4), seed=5)
+        z = spectral_profile(points, dx, rms=0.5e-3, wavelength_min=max(2e-3, 4 * dx),
+                             wavelength_max=min(50e-3, points * dx / 4), seed=5)
         dry, _, ds = _rate_core(z, dx, repeats=2)
         wet, _, _ = _rate_core(z, dx, repeats=2, depth=1e-3)
-        nref = min(8192, max(64, 40000 // (23 * r)))
+        nref = min(points, max(64, 40000 // (23 * r)))
         numpy_rate, _ = _rate_reference(ref, z[:max(nref, 23 * r + 40)], dx)
         n = ds.attrs["pad_elements"]
         rows.append(dict(N=n, dx=dx, dry=dry, wet=wet, numpy=numpy_rate))
@@ -164,7 +164,7 @@ def scaling_length(log, largest=10_000_000):
 THREADS_CHILD = """
 import json, time, numpy as np, pavefric
 from pavefric.surfaces import spectral_profile
-z = np.tile(spectral_profile(1024, 0.87e-3, rms=0.5e-3, seed=22), 64)
+z = np.tile(spectral_profile(1024, 0.87e-3, rms=0.5e-3, seed=22), TILE)
 speeds = [10.0, 20.0, 30.0, 40.0, 60.0, 80.0]
 pavefric.simulate(z[:200], 0.87e-3, speeds)
 best = 1e9
@@ -176,12 +176,13 @@ print(json.dumps({"seconds": best, "mu": ds["mu"].values.tolist()}))
 """
 
 
-def threads(log):
-    log("\n== OpenMP over the speeds of a sweep (6 speeds, 65,536 points) ==")
+def threads(log, tile: int = 64):
+    log(f"\n== OpenMP over the speeds of a sweep (6 speeds, {1024 * tile:,} points) ==")
     rows = []
     for scene, depth in (("dry", "0.0"), ("wet", "1e-3")):
-        one = _child(THREADS_CHILD.replace("DEPTH", depth), env={"OMP_NUM_THREADS": "1"})
-        two = _child(THREADS_CHILD.replace("DEPTH", depth), env={"OMP_NUM_THREADS": "2"})
+        code = THREADS_CHILD.replace("DEPTH", depth).replace("TILE", str(tile))
+        one = _child(code, env={"OMP_NUM_THREADS": "1"})
+        two = _child(code, env={"OMP_NUM_THREADS": "2"})
         same = one["mu"] == two["mu"]
         rows.append(dict(scene=scene, one=one["seconds"], two=two["seconds"], same=same))
         log(f"{scene}: 1 thread {one['seconds']:.3f} s, 2 threads {two['seconds']:.3f} s, "
@@ -298,7 +299,7 @@ print(json.dumps({"seconds": best, "steps": int(steps), "mu": ds["mu"].values.to
 """
 
 
-def sweep(ref, plain: PlainLoop, log, repeats: int = 5) -> list:
+def sweep(ref, plain: PlainLoop, log, repeats: int = 5, tile: int = 64) -> list:
     """Issue 13's kernel figures: N = 23 on a 6-speed sweep (10-80 km/h), one
     thread, dry and wet (the paper's bearing and the drainage film), the core
     beside the plain loop and the NumPy reference on the same profiles."""
@@ -312,7 +313,7 @@ def sweep(ref, plain: PlainLoop, log, repeats: int = 5) -> list:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for name, z0 in surfaces().items():
-            z = np.tile(z0, 64)                              # 65,536 points, closed
+            z = np.tile(z0, tile)                            # 65,536 points, closed
             zpath = Path(tmp) / "z.npy"
             np.save(zpath, z)
             for scene, kw, depth in (("dry", {}, 0.0), ("wet", {"depth": 1e-3}, 1e-3),
@@ -406,7 +407,10 @@ def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3
     return out
 
 
-def run(report: str | None = None, largest: int = 10_000_000) -> dict:
+def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False) -> dict:
+    """Every figure, printed as measured; with ``report``, docs/performance.md.
+    ``quick``: small sizes and one repeat (minutes to seconds), to check that
+    the benchmark runs, not to measure."""
     from . import bench_io
     from .reports import machine_description
 
@@ -423,18 +427,22 @@ def run(report: str | None = None, largest: int = 10_000_000) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         plain = PlainLoop(Path(tmp))
         results = {
-            "sweep": sweep(ref, plain, log),
-            "program": whole_program(plain, log),
+            "sweep": sweep(ref, plain, log, repeats=1 if quick else 5, tile=4 if quick else 64),
+            "program": whole_program(plain, log, points=40_000 if quick else 400_000,
+                                     repeats=1 if quick else 3),
         }
+    if quick:
+        largest = min(largest, 100_000)
+    tile = 4 if quick else 64
     results |= {
-        "throughput": throughput(ref, log),
-        "elements": scaling_elements(ref, log),
+        "throughput": throughput(ref, log, tile=tile),
+        "elements": scaling_elements(ref, log, points=4096 if quick else 8192),
         "length": scaling_length(log, largest),
-        "threads": threads(log),
+        "threads": threads(log, tile=tile),
         "mpi": mpi_batch(log),
-        "reading": bench_io.reading(log, largest),   # profile input (bench_io.py)
-        "batch": bench_mpi.run(log),
-        "rubber": rubber_report.cost(log),           # Maxwell vs Kelvin-Voigt (rubber_report.py)
+        "reading": bench_io.reading(log, largest, small=min(largest, 1_000_000)),
+        "batch": bench_mpi.run(log, quick=quick),
+        "rubber": rubber_report.cost(log, repeats=1 if quick else 7),
     }
     if report:
         from .reports import performance_report

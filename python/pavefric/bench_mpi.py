@@ -50,20 +50,21 @@ def uneven_batch(directory: Path, n_short: int = 240, n_long: int = 6,
     return scene
 
 
-def mpi_uneven(log=print, repeats: int = 3) -> dict:
+def mpi_uneven(log=print, repeats: int = 3, n_short: int = 240,
+               long_points: int = 100_000) -> dict:
     """Wall time (including mpirun's start-up) of 1 and 2 MPI ranks on the
     uneven batch; the two outputs must be equal bit for bit."""
     import xarray as xr
 
-    log("\n== MPI batch, uneven: 6 long profiles (100,000 points) among 240 short ones "
-        "(2048), placed where round-robin would give all to rank 0 ==")
+    log(f"\n== MPI batch, uneven: 6 long profiles ({long_points:,} points) among {n_short} "
+        "short ones (2048), placed where round-robin would give all to rank 0 ==")
     mpirun, exe = shutil.which("mpirun"), _program()
     if mpirun is None or exe is None:
         log("not run: needs mpirun and the pavefric program")
         return {}
     cmd0 = [mpirun, "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
     with tempfile.TemporaryDirectory() as tmp:
-        scene = uneven_batch(Path(tmp))
+        scene = uneven_batch(Path(tmp), n_short=n_short, long_points=long_points)
         times = {1: np.inf, 2: np.inf}
         cpu = []
         for rep in range(repeats):             # interleaved: a load change hits both
@@ -174,8 +175,13 @@ def journal_resume(log=print, n: int = 2000, points: int = 4096) -> dict:
     return {"profiles": n, "compute": compute, "resume": best}
 
 
-def run(log=print) -> dict:
-    """Every batch figure: uneven MPI batch, long list, journal resume."""
+def run(log=print, quick: bool = False) -> dict:
+    """Every batch figure: uneven MPI batch, long list, journal resume
+    (``quick``: small sizes, one repeat, to check the code runs)."""
+    if quick:
+        return {"mpi_uneven": mpi_uneven(log, repeats=1, n_short=24, long_points=10_000),
+                "list": profile_list_reading(log, n=2000),
+                "resume": journal_resume(log, n=100, points=1024)}
     return {"mpi_uneven": mpi_uneven(log), "list": profile_list_reading(log),
             "resume": journal_resume(log)}
 
