@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 /* ---- file identity ------------------------------------------------------ */
@@ -178,5 +179,13 @@ int pavefric_install_cleanup(void)
 void pavefric_test_pause(const char *point)
 {
     const char *v = getenv("PAVEFRIC_TEST_PAUSE");
-    if (v != NULL && strcmp(v, point) == 0) raise(SIGSTOP);
+    if (v != NULL && strcmp(v, point) == 0) {
+        raise(SIGSTOP);
+        /* A signal sent while stopped may be taken by another thread (glibc's
+         * raise blocks every signal in this one until it returns), whose
+         * handler passes it on to this thread. Give it time to arrive, so the
+         * test sees the signal act at this point, not a moment later. */
+        struct timespec pause = { 0, 300000000L };
+        while (nanosleep(&pause, &pause) != 0 && errno == EINTR) { }
+    }
 }
