@@ -169,21 +169,17 @@ contains
    !> is the film's load for the gap field gap_i = max(0, d_i - x), f(lo) = -W
    !> (no contact, no film load: lo from the film) and f(x_dry) = Wh >= 0.
    !> Both terms are non-decreasing in x, so the root is unique. Newton with
-   !> the analytic derivative from x0 (the previous position's root) when it
-   !> lies in the bracket, else from x_dry, safeguarded by bisection whenever
+   !> the analytic derivative from x_dry, safeguarded by bisection whenever
    !> a step leaves the bracket or does not halve |f|; it stops when |f| <=
    !> tol W. Each lane's decisions are its own (its numbers do not depend on
    !> the other lanes); the evaluations of all lanes still iterating run as
    !> one pass over the lanes (their sums interleave). x holds the dry roots
    !> on entry and, for the wet lanes, the wet ones on exit; wh the film's
    !> load and evaluations the count added, per lane.
-   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
+   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x, wh, &
       & evaluations, gaps)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol
-      !> A first guess per lane (the previous position's root), used when it
-      !> lies inside the bracket.
-      real(wp), intent(in) :: x0(nl)
       class(film_model), intent(in) :: film
       type(film_step_type), intent(in) :: fsteps(nl)
       logical, intent(in) :: wet(nl)
@@ -205,7 +201,6 @@ contains
          if (.not. wet(j)) cycle
          lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
          hi(j) = x(j)
-         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
       end do
       call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
          & gaps)

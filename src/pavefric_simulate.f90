@@ -793,7 +793,7 @@ contains
                wet_lane(j) = film%engages(fstep(j), gap)
             end do
             call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
-               & delta_prev - cmin, x, wh, n_eval, gaps)
+               & x, wh, n_eval, gaps)
          end if
 
          sum_f = 0.0_wp

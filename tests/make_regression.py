@@ -7,9 +7,7 @@ synthetic cases, bit for bit, so later changes can be checked against them
 Two records:
 - tests/data/regression_0.1.0.json: pavefric 0.1.0, recorded once on the code
   before the components/parameters refactor (issue 11) and the wet models
-  (issue 12). Dry results still equal it bit for bit; wet ones to rounding
-  (the wet balance now starts from the previous position's root: fewer
-  bearing evaluations, the same root to its tolerance).
+  (issue 12). Every output still equals it bit for bit, dry and wet.
 - tests/data/regression_record.json: this code, on every scene in inputs/
   (the new models' too), bit for bit.
 Not to be regenerated casually: a changed number is a changed model. Values

@@ -17,12 +17,10 @@ def test_dry_scene_never_evaluates_the_bearing(profile_m):
     assert not dry["bearing_ran"].values.any()
     assert "hydrodynamic_bearing" not in dry.attrs["effects"]
     # the same scene with the bearing running at its neutral value (alpha = 0
-    # makes Eq. 15 carry nothing): the same numbers, but real work done. The
-    # wet balance accepts any penetration within wet_tolerance x W of the
-    # root, and started from the previous position's root it lands in that
-    # band rather than on the dry root's own bits: equal to rounding.
+    # makes Eq. 15 carry nothing): the same numbers, bit for bit, but real
+    # work done (the wet balance starts from the dry root, where f = 0).
     neutral = pavefric.simulate(profile_m, DX, SPEEDS, depth=1e-3, alpha=0.0)
-    np.testing.assert_allclose(neutral["mu"].values, dry["mu"].values, rtol=1e-13, atol=0)
+    np.testing.assert_array_equal(neutral["mu"].values, dry["mu"].values)
     assert np.all(neutral["mean_hydro_load"].values == 0.0)
     assert np.all(neutral["bearing_evaluations"].values[1:] > 0)
     assert "hydrodynamic_bearing" in neutral.attrs["effects"]

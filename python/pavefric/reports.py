@@ -383,8 +383,8 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "root in 2–4 passes over the elements (no sort; LAPACK `dlasrt` only as "
         "a fallback).",
         "- Wet balance: safeguarded Newton with the analytic derivative of Eq. 15, "
-        "from the previous position's root, the evaluations of all the lanes still "
-        "iterating in one pass; `bearing_evaluations` counts them.",
+        "from the dry root, the evaluations of all the lanes still iterating in one "
+        "pass; `bearing_evaluations` counts them.",
         "- Facet tangents computed once per profile sample, not per position; a "
         "closed profile is unrolled once so no element index needs a modulo; no "
         "allocation inside the position loop.",
@@ -402,7 +402,9 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "vectors, with sums in another order: results would then differ from 0.1.0's "
         "in the last bits, which the regression record forbids for dry scenes. The "
         "wet balance needs 5–8 bearing evaluations a position (each a logarithm per "
-        "speed); the warm start took out about a fifth of them.",
+        "speed). Starting each position from the previous root saved about a fifth "
+        "of them, but moved the wet results off 0.1.0's bits, which issues 11 and 12 "
+        "require; it was taken out.",
         "",
         "## Why the NumPy ratio is lower when dry",
         "",
