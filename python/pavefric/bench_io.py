@@ -141,10 +141,14 @@ def reading(log=print, largest: int = 10_000_000, small: int = 1_000_000,
         scene = tmp / "big.nml"
         scene.write_text(f"&surface\n  profile_file = '{big}', closed = .false., "
                          "mu_loc = 0.5\n/\n&operation\n  speeds_kmh = 60\n/\n")
-        run = _program_run(scene)
+        # best of 3 wall times, as the other figures (the first run also
+        # competes with the write-back of the 95 MB just written)
+        runs = [_program_run(scene) for _ in range(3)]
+        run = dict(seconds=min(r["seconds"] for r in runs),
+                   maxrss_kb=max(r["maxrss_kb"] for r in runs))
         per_point = run["maxrss_kb"] * 1024 / largest
         log(f"\n== A {largest:,}-point text profile ({big.stat().st_size / 1e6:.0f} MB; "
-            "targets: read and run < 3 s, <= 150 bytes per point) ==")
+            "targets: read and run < 3 s, <= 150 bytes per point; best of 3) ==")
         log(f"  read (core reader):          {seconds:6.2f} s   "
             f"(before: {OLD_FIGURES['read_10m_s']:.2f} s)")
         log(f"  program, read and run dry at 60 km/h: {run['seconds']:6.2f} s, "
