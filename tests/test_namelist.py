@@ -246,6 +246,9 @@ BAD_CALLS = [
     lambda z: pavefric.simulate(z, DX, [20.0], closed="False"),
     lambda z: pavefric.simulate(z, DX, [20.0], series="yes"),
     lambda z: pavefric.simulate(None, DX, [20.0]),
+    lambda z: pavefric.simulate(z + 1e-4j, DX, [20.0]),                  # complex heights
+    lambda z: pavefric.simulate([str(v) for v in z], DX, [20.0]),        # strings
+    lambda z: pavefric.simulate(z > 0, DX, [20.0]),                      # booleans
     lambda z: pavefric.simulate("abc", DX, [20.0]),
     lambda z: pavefric.simulate(z, "0.87e-3", [20.0]),
     lambda z: pavefric.simulate(z, None, [20.0]),

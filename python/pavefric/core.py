@@ -278,8 +278,13 @@ def _heights(heights_m) -> np.ndarray:
     if np.ma.isMaskedArray(heights_m) and np.ma.getmaskarray(heights_m).any():
         raise PavefricError("heights: a masked array with masked values (fill or remove them: "
                             "pavefric does not guess a height)")
+    raw = np.asarray(heights_m)
+    if raw.dtype.kind not in "iuf":
+        # complex parts would be dropped, strings parsed, booleans taken as 0/1
+        raise PavefricError(f"heights: an array of real numbers is expected, got dtype "
+                            f"{raw.dtype} (convert it yourself if that is what you mean)")
     try:
-        z = np.asarray(heights_m, dtype=np.float64)
+        z = np.asarray(raw, dtype=np.float64)
     except (TypeError, ValueError) as exc:
         raise PavefricError(f"heights: not an array of numbers ({exc})") from None
     if z.ndim != 1:
