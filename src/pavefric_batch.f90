@@ -27,7 +27,7 @@ module pavefric_batch
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_texture, only: texture_type, texture_metrics
    use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
-   use pavefric_fsys, only: output_guard_type, check_output_path
+   use pavefric_fsys, only: output_guard_type, check_output_path, os_message
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
       & block_unpack, block_values, block_allocate, status_computed, status_failed, printable_utf8
@@ -65,13 +65,6 @@ module pavefric_batch
          integer(c_int), value :: fd
          integer(c_int) :: err
       end function c_journal_close
-      !> strerror into `buf` (src/pavefric_ncmem.c); the length written.
-      function c_strerror(err, buf, n) bind(C, name="pavefric_strerror") result(written)
-         import :: c_int, c_char
-         integer(c_int), value :: err, n
-         character(kind=c_char), intent(out) :: buf(*)
-         integer(c_int) :: written
-      end function c_strerror
    end interface
 
    character(len=*), parameter :: journal_magic = "pavefric-journal"
@@ -548,17 +541,6 @@ contains
       if (err /= 0) call journal_error(batch, os_message(err), error)
       batch%journal_cut = .false.
    end subroutine journal_start
-
-   !> The C library's text for an errno value.
-   function os_message(err) result(text)
-      integer(c_int), intent(in) :: err
-      character(len=:), allocatable :: text
-      character(len=256) :: buf
-      integer(c_int) :: n
-      buf = ""
-      n = c_strerror(err, buf, int(len(buf), c_int))
-      text = buf(1:n)
-   end function os_message
 
    subroutine journal_error(batch, msg, error)
       type(batch_type), intent(in) :: batch

@@ -12,7 +12,7 @@ module pavefric_fsys
 
    public :: rename_file, remove_file, make_directory, process_id, dir_name, base_name, &
       & join_path, is_absolute
-   public :: output_guard_type, check_output_path, canonical_path
+   public :: output_guard_type, check_output_path, canonical_path, os_message
    public :: register_temporary, release_temporary, install_signal_cleanup, test_pause
 
    !> Kinds of file (pavefric_file_id in pavefric_posix.c).
@@ -59,6 +59,13 @@ module pavefric_fsys
          integer(c_int), intent(out) :: kind
          integer(c_int) :: stat
       end function c_file_id
+      !> strerror into `buf` (src/pavefric_ncmem.c); the length written.
+      function c_strerror(err, buf, n) bind(C, name="pavefric_strerror") result(written)
+         import :: c_int, c_char
+         integer(c_int), value :: err, n
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_int) :: written
+      end function c_strerror
       function c_realpath(path, out, outlen) bind(C, name="pavefric_realpath") result(need)
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -160,6 +167,17 @@ contains
       end if
    end function join_path
 
+   !> The C library's text for an errno value.
+   function os_message(err) result(text)
+      integer(c_int), intent(in) :: err
+      character(len=:), allocatable :: text
+      character(len=256) :: buf
+      integer(c_int) :: n
+      buf = ""
+      n = c_strerror(err, buf, int(len(buf), c_int))
+      text = buf(1:max(0, min(int(n), len(buf))))
+   end function os_message
+
    !> Refuse an output `path` that exists and is not a regular file (a
    !> directory, device, FIFO or socket: the temp-file-and-rename write would
    !> replace it); on success `guard` remembers the file's identity so that
@@ -174,8 +192,8 @@ contains
       guard%what = what
       stat = c_file_id(path // c_null_char, guard%dev, guard%ino, kind)
       if (stat /= 0) then
-         call fatal_error(error, setting(what, path) // ": cannot inspect it (error " // &
-            & to_str(int(stat)) // " from stat)", stat_input)
+         call fatal_error(error, setting(what, path) // ": cannot inspect it (" // &
+            & os_message(stat) // ")", stat_input)
          return
       end if
       guard%exists = kind /= kind_missing
