@@ -53,6 +53,14 @@ def test_output_is_the_profile(scene):
     assert_intact(before)
 
 
+def test_an_output_path_that_cannot_be_inspected_says_why(scene):
+    out = "a" * 300 + "/out.nc"                  # a component longer than NAME_MAX
+    r = run_program(scene, "-o", out, cwd=scene.parent)
+    assert r.returncode == 1
+    assert "cannot inspect it (File name too long)" in r.stderr, r.stderr
+    assert not list(scene.parent.glob("*.tmp*"))
+
+
 @pytest.mark.parametrize("trick", ["dotdot", "dot", "absolute", "symlink", "hardlink"])
 def test_output_resolving_to_an_input(scene, trick):
     d = scene.parent
