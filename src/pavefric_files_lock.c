@@ -18,3 +18,22 @@ void pavefric_unlock_files(void)
 {
     pthread_mutex_unlock(&files_lock);
 }
+
+/* One lock around every call of the C/Fortran API on a scene handle
+ * (pavefric_api): handles used from several threads at once were measured
+ * (tests/test_api.py, gfortran 12) to corrupt the namelist text a
+ * concurrent call was building, now and then, while a run went on in
+ * another thread; the cause inside the Fortran runtime was not found. So
+ * API calls run one at a time; a run's own parallelism (OpenMP over the
+ * speeds) is unchanged. */
+static pthread_mutex_t api_lock = PTHREAD_MUTEX_INITIALIZER;
+
+void pavefric_api_lock(void)
+{
+    pthread_mutex_lock(&api_lock);
+}
+
+void pavefric_api_unlock(void)
+{
+    pthread_mutex_unlock(&api_lock);
+}
