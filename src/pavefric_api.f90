@@ -390,8 +390,10 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
       if (.not. get_text(name, "pavefric_get_result_size: the name", fname, error)) return
+      call api_lock()
       n = clamp(session_result_size(scene%ptr, fname))
       if (n < 0) call session_get_result(scene%ptr, fname, none, error%ptr)
+      call api_unlock()
    end function get_result_size_api
 
    !> Values of result `name` of the last run into values[size] (size at
@@ -410,6 +412,7 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
       if (.not. get_text(name, "pavefric_get_result: the name", fname, error)) return
+      call api_lock()
       n = session_result_size(scene%ptr, fname)
       if (n <= 0) then
          ! the session names what is wrong
@@ -417,8 +420,9 @@ contains
             real(wp) :: none(0)
             call session_get_result(scene%ptr, fname, none, error%ptr)
          end block
-         return
       end if
+      call api_unlock()
+      if (n <= 0) return
       if (.not. room(values, size_, n, "result '" // fname // "'", error)) return
       call c_f_pointer(values, out, [n])
       call api_lock()
@@ -440,7 +444,9 @@ contains
       length = 0
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
+      call api_lock()
       text = session_warnings(scene%ptr)
+      call api_unlock()
       call put_text(text, buffer, buffer_size)
       length = clamp(len(text))
    end function get_warnings_api
