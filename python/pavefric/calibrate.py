@@ -475,6 +475,19 @@ def _bounds(targets, bounds: dict | None) -> dict:
     return out
 
 
+def null_direction(v: np.ndarray) -> np.ndarray:
+    """A null-space direction scaled to its largest component, +1.
+
+    An SVD's singular vectors are defined up to sign (LAPACK returns either,
+    by machine and library): reporting the direction with its largest
+    component positive (the first of equal ones) makes the report the same
+    everywhere.
+    """
+    v = np.asarray(v, dtype=float)
+    k = int(np.argmax(np.abs(v) > (1 - 1e-9) * np.max(np.abs(v))))
+    return v / v[k]
+
+
 def fit(rows: Sequence[dict], scenes_dir: str | os.PathLike, names: Sequence[str],
         start: dict | None = None, overrides: dict | None = None,
         bounds: dict | None = None, level: float = LEVEL, profile: Sequence[str] = (),
@@ -557,9 +570,8 @@ def fit(rows: Sequence[dict], scenes_dir: str | os.PathLike, names: Sequence[str
     if rank < p:
         # the null space of J says which combination the data cannot fix
         _, _, vt = np.linalg.svd(jac)
-        null = vt[-1]
-        combo = ", ".join(f"{c:+.2f} log {nm}" for c, nm in zip(null / np.max(np.abs(null)),
-                                                                  names) if abs(c) > 0.05)
+        null = null_direction(vt[-1])
+        combo = ", ".join(f"{c:+.2f} log {nm}" for c, nm in zip(null, names) if abs(c) > 0.05)
         warnings.append(f"not identifiable: the Jacobian has rank {rank} < {p} parameters "
                         f"(singular values {', '.join(f'{v:.3g}' for v in sv)}); no residual "
                         f"changes along the direction ({combo}): the data do not determine "
