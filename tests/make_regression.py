@@ -25,9 +25,11 @@ Two records:
 How close is close enough (what the tests apply, `tolerance_of`):
 - floating-point outputs: relative 1e-9 of each value plus 1e-12 of the
   largest magnitude in the same variable (values that cross zero); the same
-  algorithm on another CPU or compiler differs by rounding only (1e-15 to
-  1e-13 after a few thousand steps), a change of the model by far more
-  (the dashpot term scaled by 1.001 moves mu by ~4e-8 and fails 51 records);
+  algorithm on another CPU or C library differs by rounding only (even the
+  independent NumPy reference, another algorithm, agrees with the core to
+  about 1e-15 on mean friction: tests/test_reference.py), a change of the
+  model by far more (the dashpot term scaled by 1.001 moves mu by ~4e-8 and
+  fails 51 records; docs/numerics.md);
 - diagnostics of the numerics, which rounding may move by more than their
   size: `max_balance_residual` (a rounding-level residual of the balance,
   |sum F + Wh - W| / W) must not exceed twice the recorded one or 1e-13;
