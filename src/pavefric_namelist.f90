@@ -58,6 +58,12 @@ module pavefric_namelist
    character(len=*), parameter :: letters = &
       & "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
    character(len=*), parameter :: name_chars = letters // "0123456789_"
+   !> The longest value a namelist item may hold (characters): far beyond
+   !> any path, title or number, and small enough that the text handled for
+   !> it never strains the stack (a 10 MB value used to end the process).
+   integer, parameter, public :: max_value_length = 65536
+   !> The longest name a Fortran namelist item can have.
+   integer, parameter :: max_name_length = 63
 
    !> The parser's position in the text.
    type :: cursor_type
@@ -220,6 +226,13 @@ contains
             error%message = error%message // " (&" // group // " " // item%name // ")"
             return
          end if
+         if (len(tok) > max_value_length) then
+            call fatal_error(error, at(path, save%line) // "&" // group // " " // &
+               & item%name // ": a value of " // to_str(len(tok)) // " characters, more " // &
+               & "than the " // to_str(max_value_length) // " allowed; check that its " // &
+               & "quotes are closed where they should be")
+            return
+         end if
          if (item%n_values == size(item%values)) call grow_tokens(item%values)
          item%n_values = item%n_values + 1
          item%values(item%n_values)%text = tok
@@ -249,7 +262,7 @@ contains
       is_item = .false.
       sub = 0
       call read_name(text, c, name)
-      if (len(name) == 0) return
+      if (len(name) == 0 .or. len(name) > max_name_length) return
       call skip_blanks(text, c)
       if (c%pos <= len(text)) then
          if (text(c%pos:c%pos) == "(") then
@@ -513,9 +526,10 @@ contains
    pure function squeeze_blanks(s) result(t)
       character(len=*), intent(in) :: s
       character(len=:), allocatable :: t
-      character(len=len(s)) :: buf
+      character(len=:), allocatable :: buf    ! on the heap: s may be long
       integer :: k, n
       logical :: prev_blank
+      allocate(character(len=len(s)) :: buf)
       n = 0
       prev_blank = .true.
       do k = 1, len(s)

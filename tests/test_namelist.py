@@ -285,3 +285,59 @@ def test_integral_keywords_accept_numpy_integers(profile_m):
     a = pavefric.simulate(profile_m, DX, [40.0], substeps=2)
     b = pavefric.simulate(profile_m, DX, [40.0], substeps=np.int64(2))
     np.testing.assert_array_equal(a["mu"].values, b["mu"].values)
+
+
+# Issue 19: a 10 MB namelist value ended the program (and a Python or C host)
+# with a segmentation fault: a stack buffer as long as the value.
+HUGE = 10_000_000
+
+
+HUGE_BODIES = {
+    "title": ("output", lambda: f"title = '{'x' * HUGE}'",
+              "&output title: a value of 10000000 characters"),
+    "path": ("surface", lambda: f"profile_file = '{'p' * HUGE}'",
+             "&surface profile_file: a value of 10000000 characters"),
+    "number": ("surface", lambda: f"profile_file = 'scene_profile.txt', mu_loc = 0.{'6' * HUGE}",
+               "&surface mu_loc: a value of 10000002 characters"),
+}
+
+
+@pytest.mark.parametrize("which", sorted(HUGE_BODIES))
+def test_a_ten_megabyte_value_is_a_clear_error(tmp_path, which):
+    group, body, needle = HUGE_BODIES[which]
+    scene = write_scene(tmp_path, groups={group: body()})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1, r.stderr[-300:]
+    assert needle in r.stderr and "more than the 65536 allowed" in r.stderr, r.stderr[-300:]
+    assert not (tmp_path / "o.nc").exists()
+
+
+def test_a_ten_megabyte_name_is_a_clear_error(tmp_path):
+    scene = write_scene(tmp_path, groups={"operation": "speeds_kmh = 20, " + "a" * HUGE + " = 1"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&operation speeds_kmh: a value of 10000000 characters" \
+        in r.stderr, r.stderr[-300:]
+
+
+def test_a_ten_megabyte_value_through_python_raises(tmp_path):
+    """The library too: a PavefricError, and the Python process lives on
+    (run in a child so an old library's crash fails this test, not pytest)."""
+    import subprocess
+    import sys
+
+    scene = write_scene(tmp_path, groups={"output": f"title = '{'x' * HUGE}'"})
+    code = ("import pavefric\n"
+            "try:\n"
+            f"    pavefric.run({str(scene)!r}, {str(tmp_path / 'o.nc')!r})\n"
+            "except pavefric.PavefricError as e:\n"
+            "    print('raised:', str(e)[:200])\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-500:]
+    assert "raised:" in r.stdout and "a value of 10000000 characters" in r.stdout
+
+
+def test_two_million_values_end_in_a_clear_error(tmp_path):
+    scene = write_scene(tmp_path, groups={"operation": "speeds_kmh = " +
+                                          ", ".join(["20"] * 2_000_000)})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1 and "&operation speeds_kmh: more than 100000 values" in r.stderr
