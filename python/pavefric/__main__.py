@@ -15,6 +15,7 @@ Commands:
   prony DATA.csv [-o compound.nml] [--thickness H] ...  Prony series from DMA data (&rubber)
   rubber-report [--report docs/rubber.md]  Maxwell rubber: friction against speed and
                                            temperature, cost against Kelvin-Voigt
+  merge PART.nc [PART.nc ...] -o SURVEY.nc  join batch outputs of one survey run in parts
 """
 from __future__ import annotations
 
@@ -165,8 +166,19 @@ def main(argv: list[str] | None = None) -> int:
     p_rr.add_argument("--compound", default="inputs/rubber/tread_compound.nml")
     p_rr.add_argument("--quick", action="store_true", help="fewer speeds and temperatures")
 
+    p_merge = sub.add_parser(
+        "merge", help="join batch outputs of one survey run in parts (job arrays)",
+        description="Join the batch outputs of one survey run in parts (each part a batch "
+        "over its own profiles, with the same physics, depths and speeds) into one file, "
+        "along 'profile', in the order given. Refuses parts that ran other physics, depths "
+        "or speeds, or that share a profile. docs/cluster.md.",
+        epilog="example: python -m pavefric merge part_*.nc -o survey_results.nc")
+    p_merge.add_argument("parts", nargs="+", help="batch outputs (NetCDF)")
+    p_merge.add_argument("-o", "--output", required=True, help="the merged file")
+
     args = parser.parse_args(argv)
     from .core import PavefricError
+    from .merge import MergeError
 
     try:
         if args.command == "run":
@@ -279,7 +291,11 @@ def main(argv: list[str] | None = None) -> int:
                       f"skew={args.skew}, seed={args.seed})")
             write_profile(args.output, z, header)
             print(f"wrote {args.output}")
-    except PavefricError as exc:
+        elif args.command == "merge":
+            from .merge import merge
+
+            print(f"wrote {merge(args.parts, args.output)}")
+    except (PavefricError, MergeError) as exc:
         print(f"pavefric: error: {exc}", file=sys.stderr)
         return 1
     return 0

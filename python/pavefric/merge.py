@@ -1,0 +1,185 @@
+"""Merge batch outputs of one survey run in parts (SLURM job arrays, one
+batch per part) into one NetCDF file: ``python -m pavefric merge``.
+
+A survey split in parts (each a batch scene over its own profiles, with the
+same physics, depths and speeds) gives one output per part; this joins them
+along ``profile``, in the order given. It is bookkeeping, not physics: every
+value is copied, none computed. It refuses parts that ran other physics
+(their scenes differ outside ``&batch`` and ``&output``), other depths or
+speeds, or that share a profile name, naming the files and what differs.
+docs/cluster.md ("A survey of a million profiles") shows where it fits.
+"""
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+# global attributes that differ from part to part by nature
+_PER_PART = {"history", "title", "input_namelist", "profiles_computed", "profiles_failed",
+             "date_created"}
+_COUNTS = ("profiles_computed", "profiles_failed")
+
+
+class MergeError(ValueError):
+    """Parts that cannot be merged (the message says which and why)."""
+
+
+def _physics(namelist: str) -> str:
+    """A scene's text without comments, blank differences and the groups
+    that differ between the parts of one survey (&batch, &output): what the
+    parts must share. Quotes are respected ('!' and '/' inside a quoted path
+    are text)."""
+    kept, quote, skipping, k, n = [], None, False, 0, len(namelist)
+    while k < n:
+        ch = namelist[k]
+        if quote:
+            if not skipping:
+                kept.append(ch)
+            if ch == quote:
+                quote = None
+        elif ch in "'\"":
+            quote = ch
+            if not skipping:
+                kept.append(ch)
+        elif ch == "!":                            # a comment, to the end of the line
+            end = namelist.find("\n", k)
+            k = n if end < 0 else end
+            continue
+        elif ch in "&$" and not skipping:
+            m = re.match(r"[&$]([A-Za-z_]\w*)", namelist[k:])
+            if m and m.group(1).lower() in ("batch", "output"):
+                skipping = True
+                k += m.end()
+                continue
+            kept.append(ch)
+        elif skipping and ch == "/":
+            skipping = False
+        elif not skipping:
+            kept.append(ch)
+        k += 1
+    return " ".join("".join(kept).split()).lower()
+
+
+def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path:
+    """Join the batch outputs ``parts`` along ``profile`` into ``output``.
+
+    Parameters
+    ----------
+    parts : sequence of path-like
+        Batch outputs of the program (or ``pavefric.run``), in the order
+        their profiles should appear.
+    output : path-like
+        The merged file; written under a temporary name in its directory and
+        renamed when complete. It may not be one of the parts.
+
+    Returns
+    -------
+    pathlib.Path
+        The merged file.
+
+    Raises
+    ------
+    MergeError
+        When the parts ran different physics, depths or speeds, share a
+        profile, are not batch outputs, or the output is one of them.
+    """
+    import xarray as xr
+
+    paths = [Path(p) for p in parts]
+    if not paths:
+        raise MergeError("merge: no parts given")
+    out = Path(output)
+    for p in paths:
+        if not p.is_file():
+            raise MergeError(f"merge: '{p}' is not a file")
+        if out.exists() and os.path.samefile(out, p):
+            raise MergeError(f"merge: the output '{out}' is one of the parts; name another file")
+    if out.exists() and not out.is_file():
+        raise MergeError(f"merge: the output '{out}' exists and is not a regular file")
+
+    sets = []
+    try:
+        for p in paths:
+            try:
+                sets.append(xr.open_dataset(p, mask_and_scale=False, decode_times=False))
+            except (OSError, ValueError) as exc:
+                raise MergeError(f"merge: cannot read '{p}' as NetCDF ({exc})") from None
+        first = sets[0]
+        for p, ds in zip(paths, sets):
+            if "profile" not in ds.dims:
+                raise MergeError(f"merge: '{p}' is not a batch output (no 'profile' dimension)")
+        phys = _physics(str(first.attrs.get("input_namelist", "")))
+        names: dict[str, Path] = {}
+        for p, ds in zip(paths, sets):
+            if _physics(str(ds.attrs.get("input_namelist", ""))) != phys:
+                raise MergeError(f"merge: '{p}' ran another scene than '{paths[0]}' (their "
+                                 "namelists differ outside &batch and &output)")
+            for name in set(first.variables) ^ set(ds.variables):
+                raise MergeError(f"merge: '{name}' is in only one of '{paths[0]}' and '{p}'")
+            for name, var in ds.variables.items():
+                if "profile" in var.dims:
+                    continue
+                if not np.array_equal(var.values, first[name].values):
+                    raise MergeError(f"merge: '{name}' differs between '{paths[0]}' and '{p}'")
+            for name, value in ds.attrs.items():
+                if name in _PER_PART:
+                    continue
+                if str(first.attrs.get(name)) != str(value):
+                    raise MergeError(f"merge: the attribute '{name}' differs between "
+                                     f"'{paths[0]}' and '{p}'")
+            for name in _profile_names(ds):
+                if name in names:
+                    raise MergeError(f"merge: the profile '{name}' is in both '{names[name]}' "
+                                     f"and '{p}'")
+                names[name] = p
+
+        merged = xr.concat([ds.drop_vars([v for v in ds.variables if "profile" not in
+                                          ds[v].dims]) for ds in sets], dim="profile",
+                           data_vars="all", coords="minimal", compat="equals",
+                           combine_attrs="override")
+        for name, var in first.variables.items():
+            if "profile" not in var.dims:
+                merged[name] = var
+        merged = merged[list(first.variables)]
+        for name in first.variables:               # keep each variable's own encoding
+            merged[name].attrs = dict(first[name].attrs)
+            merged[name].encoding = {k: v for k, v in first[name].encoding.items()
+                                     if k in ("dtype", "_FillValue", "zlib", "complevel",
+                                              "shuffle", "contiguous", "char_dim_name")}
+            if merged[name].dtype.kind in "SU":
+                merged[name].encoding.pop("dtype", None)
+        merged.attrs = dict(first.attrs)
+        for key in _COUNTS:
+            if key in first.attrs:
+                merged.attrs[key] = int(sum(int(ds.attrs.get(key, 0)) for ds in sets))
+        merged.attrs["input_namelist"] = str(first.attrs.get("input_namelist", ""))
+        merged.attrs["history"] = "\n".join(
+            [f"pavefric merge of {len(paths)} parts: " + " ".join(str(p) for p in paths)] +
+            [str(ds.attrs.get("history", "")) for ds in sets])
+        merged.attrs["merged_parts"] = " ".join(str(p) for p in paths)
+        fd, tmp = tempfile.mkstemp(prefix=out.name + ".", suffix=".tmp",
+                                   dir=str(out.parent.resolve()))
+        os.close(fd)
+        try:
+            merged.to_netcdf(tmp, format="NETCDF4")
+            os.replace(tmp, out)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+    finally:
+        for ds in sets:
+            ds.close()
+    return out
+
+
+def _profile_names(ds) -> list[str]:
+    values = ds["profile"].values
+    if values.dtype.kind == "S" and values.ndim == 2:          # char(profile, strlen)
+        return [b"".join(row).decode("utf-8").rstrip("\x00 ") for row in values]
+    return [v.decode("utf-8") if isinstance(v, bytes) else str(v) for v in values]

@@ -1,0 +1,105 @@
+"""A survey at scale, simulated small (issue 23, docs/cluster.md "A survey of a
+million profiles"): many small profiles on many ranks (oversubscribed), and a
+survey run in parts (job arrays) joined by `python -m pavefric merge`; the
+output complete and equal, bit for bit, to one serial run (one machine)."""
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from conftest import run_program
+from test_mpi_batch import mpirun
+
+SCENE = ("&batch profiles = '{pattern}', depths = 0.0, 1.0e-3 /\n"
+         "&surface closed = .false., mu_loc = 0.6 /\n"
+         "&operation speeds_kmh = 20, 60 /\n")
+
+
+@pytest.fixture(scope="module")
+def survey(tmp_path_factory):
+    """400 small profiles (96 points), one broken, and the serial run of all."""
+    from pavefric.surfaces import road_profiles
+
+    tmp = tmp_path_factory.mktemp("survey")
+    road_profiles(str(tmp / "profiles"), n=400, points=96)
+    (tmp / "profiles" / "seg_0123.txt").write_text("height_mm\n0.1\nabc\n")
+    (tmp / "all.nml").write_text(SCENE.format(pattern="profiles/*.txt"))
+    r = run_program(tmp / "all.nml", "-o", tmp / "all.nc")
+    assert r.returncode == 4, r.stderr             # done, one profile failed
+    return tmp
+
+
+def same_values(a_path, b_path):
+    with xr.open_dataset(a_path) as a, xr.open_dataset(b_path) as b:
+        assert set(a.variables) == set(b.variables)
+        for name in a.variables:
+            x, y = a[name].values, b[name].values
+            assert x.shape == y.shape, name
+            if x.dtype.kind == "f":
+                assert np.array_equal(x, y, equal_nan=True), name
+            else:
+                assert np.array_equal(x, y), name
+        return dict(b.attrs)
+
+
+def test_many_ranks_oversubscribed_equal_the_serial_run(survey, tmp_path):
+    r = mpirun(survey / "all.nml", "-o", tmp_path / "mpi.nc", n=8)
+    assert r.returncode == 4, r.stderr          # done, one profile failed, on every rank
+    same_values(survey / "all.nc", tmp_path / "mpi.nc")
+    with xr.open_dataset(tmp_path / "mpi.nc") as ds:
+        assert ds.sizes["profile"] == 400
+        assert int((ds["status"] == 1).sum()) == 399 and int((ds["status"] == 2).sum()) == 1
+        assert ds.attrs["profiles_computed"] == 399 and ds.attrs["profiles_failed"] == 1
+
+
+def test_a_survey_in_parts_merges_to_the_whole_run(survey, tmp_path):
+    parts = []
+    for k, pattern in enumerate(["seg_00*.txt", "seg_01*.txt", "seg_02*.txt", "seg_03*.txt",
+                                 "seg_04*.txt"]):
+        scene = survey / f"part{k}.nml"
+        scene.write_text(SCENE.format(pattern=f"profiles/{pattern}") +
+                         "! this part's own comment\n")
+        out = tmp_path / f"part{k}.nc"
+        r = run_program(scene, "-o", out)
+        assert r.returncode in (0, 4), r.stderr
+        parts.append(out)
+    merged = tmp_path / "merged.nc"
+    r = subprocess.run([sys.executable, "-m", "pavefric", "merge", *map(str, parts), "-o",
+                        str(merged)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    attrs = same_values(survey / "all.nc", merged)
+    assert attrs["profiles_computed"] == 399 and attrs["profiles_failed"] == 1
+    assert "part0.nc" in attrs["merged_parts"] and "part4.nc" in attrs["merged_parts"]
+
+
+def _merge(*args):
+    return subprocess.run([sys.executable, "-m", "pavefric", "merge", *map(str, args)],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_merge_refuses_parts_that_do_not_belong_together(survey, tmp_path):
+    def part(name, pattern, extra=""):
+        scene = tmp_path / f"{name}.nml"
+        scene.write_text(SCENE.format(pattern=str(survey / "profiles" / pattern)) + extra)
+        out = tmp_path / f"{name}.nc"
+        assert run_program(scene, "-o", out).returncode in (0, 4)
+        return out
+
+    a = part("a", "seg_000*.txt")
+    b = part("b", "seg_001*.txt")
+    overlap = part("overlap", "seg_0019.txt")
+    other_mu = part("other_mu", "seg_002*.txt", "&pad length = 0.010 /\n")
+    r = _merge(a, overlap, b, "-o", tmp_path / "m.nc")
+    assert r.returncode == 1 and "the profile 'seg_0019' is in both" in r.stderr
+    r = _merge(a, other_mu, "-o", tmp_path / "m.nc")
+    assert r.returncode == 1 and "ran another scene" in r.stderr
+    before = a.read_bytes()
+    r = _merge(a, b, "-o", a)
+    assert r.returncode == 1 and "is one of the parts" in r.stderr
+    assert a.read_bytes() == before
+    r = _merge(a, survey / "all.nml", "-o", tmp_path / "m.nc")
+    assert r.returncode == 1 and "cannot read" in r.stderr and "all.nml" in r.stderr
+    assert not (tmp_path / "m.nc").exists()
+    assert not list(tmp_path.glob("m.nc.*"))          # no temporary left behind
