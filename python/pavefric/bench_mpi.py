@@ -175,16 +175,138 @@ def journal_resume(log=print, n: int = 2000, points: int = 4096) -> dict:
     return {"profiles": n, "compute": compute, "resume": best}
 
 
+# The survey that docs/cluster.md plans: a national network's texture survey.
+SURVEY = {"profiles": 1_000_000, "points": 100_000, "dx": 0.5e-3, "speeds": 8,
+          "depths": (0.0, 0.5e-3, 1.0e-3), "cores_per_node": 64}
+
+
+def _survey_profiles(directory: Path, n: int, points: int) -> Path:
+    """n survey profiles of `points` heights at the survey's spacing, in one
+    NetCDF file as pavefric.write_profiles writes it (float64 heights)."""
+    from . import write_profiles
+    from .surfaces import spectral_profile
+
+    zs = np.array([spectral_profile(points, SURVEY["dx"], rms=0.5e-3, skew=-0.4, seed=k,
+                                    wavelength_max=40e-3) for k in range(n)])
+    path = directory / f"survey_{n}.nc"
+    write_profiles(path, zs, dx=SURVEY["dx"], names=[f"s{k:05d}" for k in range(n)],
+                   chainage=10.0 * np.arange(n))
+    return path
+
+
+def _survey_scene(directory: Path, survey: Path, speeds: int, depths, tag: str) -> Path:
+    kmh = ", ".join(str(10 * (k + 1)) for k in range(speeds))
+    dep = ", ".join(repr(float(d)) for d in depths)
+    scene = directory / f"survey_{tag}.nml"
+    scene.write_text(f"&batch profiles = '{survey.name}', depths = {dep}, restart = .false. /\n"
+                     "&surface closed = .false., mu_loc = 0.6 /\n"
+                     f"&operation speeds_kmh = {kmh} /\n")
+    return scene
+
+
+def _timed(cmd, env, cwd, repeats) -> tuple[float, float]:
+    """Best wall time of `cmd` and the peak RSS (kB) of its last run."""
+    import resource
+
+    best = float("inf")
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        r = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=cwd)
+        best = min(best, time.perf_counter() - t0)
+        if r.returncode != 0:
+            raise RuntimeError(f"{' '.join(map(str, cmd))}: {r.stderr[-400:]}")
+    rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    return best, rss
+
+
+def survey_plan(log=print, quick: bool = False, repeats: int = 3) -> dict:
+    """What a survey of SURVEY costs, from measurements on this machine:
+    seconds per profile (the full sweep of speeds and depths, one thread),
+    the fixed cost per profile (read, preprocess, texture, write: the part
+    that does not grow with speeds), weak scaling over 1 and 2 ranks, two
+    threads against one; then the planned core-hours, wall time on N nodes,
+    input and output sizes. docs/cluster.md quotes it."""
+    exe = _program()
+    if exe is None or shutil.which("mpirun") is None:
+        log("  (survey plan skipped: the program or mpirun is missing)")
+        return {}
+    points = 10_000 if quick else SURVEY["points"]
+    n = 2 if quick else 4
+    reps = 1 if quick else repeats
+    log(f"\n== Survey plan: measured on {n} profiles of {points:,} points at "
+        f"{SURVEY['dx'] * 1e3:g} mm, {SURVEY['speeds']} speeds x {len(SURVEY['depths'])} depths ==")
+    out: dict = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        d = Path(tmp)
+        survey = _survey_profiles(d, n, points)
+        survey2 = _survey_profiles(d, 2 * n, points)
+        full = _survey_scene(d, survey, SURVEY["speeds"], SURVEY["depths"], "full")
+        one = _survey_scene(d, survey, 1, (0.0,), "one")
+        eight = _survey_scene(d, survey, SURVEY["speeds"], (0.0,), "eight")
+        full2 = _survey_scene(d, survey2, SURVEY["speeds"], SURVEY["depths"], "full2")
+        env1 = {**_env(), "OMP_NUM_THREADS": "1"}
+        t_full, rss = _timed([exe, str(full), "-o", "f.nc"], env1, d, reps)
+        t_one, _ = _timed([exe, str(one), "-o", "o.nc"], env1, d, reps)
+        t_eight, _ = _timed([exe, str(eight), "-o", "e.nc"], env1, d, reps)
+        t_thr, _ = _timed([exe, str(full), "-o", "t.nc"], {**env1, "OMP_NUM_THREADS": "2"}, d,
+                          reps)
+        mpi = [shutil.which("mpirun"), "--oversubscribe", "-n", "2"]
+        if os.geteuid() == 0:
+            mpi.append("--allow-run-as-root")
+        t_mpi, _ = _timed(mpi + [exe, str(full2), "-o", "m.nc"], env1, d, reps)
+        # per profile: the growth from n to 2n profiles (the header is shared)
+        out_bytes = ((d / "m.nc").stat().st_size - (d / "f.nc").stat().st_size) / n
+        in_bytes = (survey2.stat().st_size - survey.stat().st_size) / n
+    per = t_full / n
+    # one speed costs (t_eight - t_one) / 7 a profile; the rest of t_one is fixed
+    per_speed = max(t_eight - t_one, 0.0) / 7 / n
+    fixed = max(t_one / n - per_speed, 0.0)
+    weak = t_full / t_mpi
+    log(f"  one rank, one thread: {per:.3f} s a profile (all {SURVEY['speeds']} speeds x "
+        f"{len(SURVEY['depths'])} depths); peak memory {rss / 1024:.0f} MB")
+    log(f"  fixed cost a profile (read, preprocess, texture, write, start-up shared): "
+        f"{fixed:.3f} s ({100 * fixed / per:.1f} %); one dry speed {per_speed:.3f} s")
+    log(f"  weak scaling: 2 ranks on {2 * n} profiles vs 1 rank on {n}: efficiency "
+        f"{weak:.2f}; two threads on one rank: {t_full / t_thr:.2f}x")
+    scale = SURVEY["points"] / points
+    core_s = SURVEY["profiles"] * per * scale
+    core_h = core_s / 3600
+    eff = min(weak, 1.0)
+    rows = []
+    for nodes in (1, 4, 16, 64):
+        cores = nodes * SURVEY["cores_per_node"]
+        rows.append((nodes, cores, core_h / (cores * eff)))
+    in_total = SURVEY["profiles"] * in_bytes * scale
+    out_total = SURVEY["profiles"] * out_bytes
+    log(f"  planned ({SURVEY['profiles']:,} profiles of {SURVEY['points']:,} points): "
+        f"{core_h:,.0f} core-hours at this machine's rate; input {in_total / 1e9:,.0f} GB "
+        f"(float64 heights as write_profiles stores them), output {out_total / 1e9:.2f} GB "
+        f"({out_bytes / 1e3:.1f} kB a profile)")
+    for nodes, cores, hours in rows:
+        log(f"    {nodes:3d} nodes x {SURVEY['cores_per_node']} cores: {hours:8.1f} h wall "
+            f"(weak-scaling efficiency {eff:.2f})")
+    out.update(per_profile=per, fixed=fixed, per_speed=per_speed, weak=weak,
+               threads=t_full / t_thr, rss_kb=rss, core_hours=core_h, input_bytes=in_total,
+               output_bytes=out_total, plan=rows, points=points, measured_profiles=n)
+    return out
+
+
 def run(log=print, quick: bool = False) -> dict:
     """Every batch figure: uneven MPI batch, long list, journal resume
     (``quick``: small sizes, one repeat, to check the code runs)."""
     if quick:
         return {"mpi_uneven": mpi_uneven(log, repeats=1, n_short=24, long_points=10_000),
                 "list": profile_list_reading(log, n=2000),
-                "resume": journal_resume(log, n=100, points=1024)}
+                "resume": journal_resume(log, n=100, points=1024),
+                "survey": survey_plan(log, quick=True)}
     return {"mpi_uneven": mpi_uneven(log), "list": profile_list_reading(log),
-            "resume": journal_resume(log)}
+            "resume": journal_resume(log), "survey": survey_plan(log)}
 
 
 if __name__ == "__main__":
-    run()
+    if sys.argv[1:] == ["survey"]:
+        survey_plan()
+    elif sys.argv[1:] == ["survey", "--quick"]:
+        survey_plan(quick=True)
+    else:
+        run()
