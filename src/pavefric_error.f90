@@ -35,7 +35,7 @@ contains
       character(len=*), intent(in) :: message
       integer, intent(in), optional :: stat
       allocate(error)
-      error%message = message
+      call printable(message, error%message)
       if (present(stat)) error%stat = stat
    end subroutine fatal_error
 
@@ -45,9 +45,38 @@ contains
    pure subroutine add_warning(warnings, line)
       character(len=:), allocatable, intent(inout) :: warnings
       character(len=*), intent(in) :: line
+      character(len=:), allocatable :: clean
       if (.not. allocated(warnings)) warnings = ""
       if (len(warnings) > 0) warnings = warnings // achar(10)
-      warnings = warnings // line
+      call printable(line, clean)
+      warnings = warnings // clean
    end subroutine add_warning
+
+   !> `text` with every control character (a form feed, a tab, a line break
+   !> quoted from the input) written as \xHH: a message is one line on a
+   !> terminal and in Python, whatever bytes of the input it quotes.
+   pure subroutine printable(text, clean)
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable, intent(out) :: clean
+      character(len=*), parameter :: hex = "0123456789abcdef"
+      integer :: k, n, c
+      n = 0
+      do k = 1, len(text)
+         c = iachar(text(k:k))
+         n = n + merge(4, 1, c < 32 .or. c == 127)
+      end do
+      allocate(character(len=n) :: clean)
+      n = 0
+      do k = 1, len(text)
+         c = iachar(text(k:k))
+         if (c < 32 .or. c == 127) then
+            clean(n+1:n+4) = "\x" // hex(c/16+1:c/16+1) // hex(mod(c, 16)+1:mod(c, 16)+1)
+            n = n + 4
+         else
+            n = n + 1
+            clean(n:n) = text(k:k)
+         end if
+      end do
+   end subroutine printable
 
 end module pavefric_error

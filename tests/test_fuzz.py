@@ -100,3 +100,19 @@ def test_random_bytes_as_a_scene_are_a_clean_error(tmp_path_factory, data):
                        timeout=60)
     assert r.returncode == 1, (data, r.returncode)
     assert r.stderr.startswith(b"pavefric: error: ") and r.stderr.count(b"\n") == 1
+
+
+@pytest.mark.parametrize("scene", [
+    "&surface profile_file = 0*1\x0c",          # found by the fuzzer above (a form feed)
+    "&surface profile_file = 'p.txt', mu_loc = 0.\x076 /",     # a bell inside a number
+    "&surface mu_loc = 1\x1b[31m /",
+])
+def test_control_characters_quoted_in_an_error_stay_on_one_line(tmp_path, scene):
+    """A message quoting the input writes its control characters as \\xHH:
+    a form feed, a vertical tab or an escape sequence would otherwise break
+    the one-line message (Python's splitlines) or the user's terminal."""
+    check_outcome(tmp_path, scene, "")
+    r = subprocess.run([program(), "s.nml", "-o", "o.nc"], capture_output=True, text=True,
+                       cwd=tmp_path, timeout=60)
+    assert r.returncode == 1 and not any(ord(c) < 32 and c != "\n" for c in r.stderr), r.stderr
+    assert "\\x" in r.stderr, r.stderr
