@@ -84,7 +84,8 @@ program pavefric_main
    else if (.not. is_root()) then
       call parallel_finalize()       ! a single scene runs on rank 0 only
    else
-      call run_scene(scene_path, out_override, command, out_path, res, error, warnings=warnings)
+      call run_scene(scene_path, out_override, command, out_path, res, error, warnings=warnings, &
+         & announce=print_estimate)
       if (allocated(error)) call fail(error%message)
       call parallel_finalize()
       call report_scene()
@@ -121,6 +122,13 @@ contains
             & "error_message in " // summary%output // "); exit status 4"
       end if
    end subroutine report_batch
+
+   !> The cost estimate, on stderr before the model runs (progress, not results).
+   subroutine print_estimate(text)
+      character(len=*), intent(in) :: text
+      write(error_unit, '(a)') "pavefric: " // text
+      flush(error_unit)
+   end subroutine print_estimate
 
    !> Each warning line on stderr (they are also in the output's `warnings`).
    subroutine print_warnings(text)

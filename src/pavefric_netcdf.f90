@@ -308,6 +308,9 @@ contains
       call w%gatt("pad_elements", res%n_elements)
       call w%gatt("averaged_positions", res%n_positions)
       call w%gatt("spinup_positions", res%n_spinup)
+      call w%gatt("estimated_element_steps", real(res%estimate%total_element_steps, wp))
+      call w%gatt("estimated_memory_bytes", res%estimate%bytes)
+      call w%gatt("estimated_seconds", res%estimate%seconds)
       if (allocated(w%error)) goto 99
       call w%check(nf90_enddef(w%ncid), "end of definitions")
       if (allocated(w%error)) goto 99

@@ -1,13 +1,16 @@
 !> Running a scene file end to end: namelist, profile, model, NetCDF output.
 !> Shared by the program and the Python layer, so both give the same numbers.
 module pavefric_run
-   use pavefric_kinds, only: wp, pavefric_version
+   use pavefric_kinds, only: wp, i8, pavefric_version
    use pavefric_error, only: error_type, fatal_error, stat_io
    use pavefric_format, only: to_str
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
-   use pavefric_simulate, only: sim_result_type, simulate
+   use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
+      & cost_estimate_type
+   use pavefric_rubber, only: rubber_model
+   use pavefric_film, only: film_model
    use pavefric_outputs, only: output_metadata_type
    use pavefric_netcdf, only: write_results, temporary_name
    use pavefric_fsys, only: make_directory, dir_name, remove_file, output_guard_type, &
@@ -19,6 +22,7 @@ module pavefric_run
    private
 
    public :: run_scene, run_profile, load_scene_profile, ctm_dx, preprocess_summary, timestamp
+   public :: scene_estimate, estimate_text, announce_interface
    public :: rms_plausible_low, rms_plausible_high, mu_plausible_high
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
@@ -26,10 +30,54 @@ module pavefric_run
    !> Plausible RMS height of a road texture profile (m): below, the heights
    !> are most likely in another unit than declared; above, not a texture.
    real(wp), parameter :: rms_plausible_low = 1.0e-5_wp, rms_plausible_high = 0.02_wp
+   !> A run estimated to take this long (s) or more is announced before it starts.
+   real(wp), parameter :: announce_seconds = 1.0_wp
    !> Largest plausible friction coefficient (DFT and skid testers read up to ~1.3).
    real(wp), parameter :: mu_plausible_high = 2.0_wp
 
+   abstract interface
+      !> Told one line before a long step starts (the program prints it).
+      subroutine announce_interface(text)
+         character(len=*), intent(in) :: text
+      end subroutine announce_interface
+   end interface
+
 contains
+
+   !> The cost of running `scene` on its preprocessed profile, before it runs
+   !> (the same numbers the run records in its output).
+   function scene_estimate(scene, clean) result(c)
+      type(scene_type), intent(in) :: scene
+      type(clean_profile_type), intent(in) :: clean
+      type(cost_estimate_type) :: c
+      class(rubber_model), allocatable :: rubber
+      class(film_model), allocatable :: film
+      logical :: friction_film
+      call make_components(scene%model, rubber, film)
+      friction_film = .false.
+      if (allocated(film)) friction_film = film%changes_friction()
+      c = estimate_cost(scene%model, size(clean%z), clean%dx, scene%closed, &
+         & size(scene%speeds_kmh), scene%series, friction_film, rubber%state_size())
+   end function scene_estimate
+
+   !> The estimate in words, for the progress line.
+   subroutine estimate_text(c, tolerance, text)
+      type(cost_estimate_type), intent(in) :: c
+      real(wp), intent(in) :: tolerance
+      character(len=:), allocatable, intent(out) :: text
+      character(len=32) :: mib, sec
+      write(mib, '(i0)') max(1_i8, nint(c%bytes / 2.0_wp**20, i8))
+      if (c%seconds < 0.01_wp) then
+         sec = "under 0.01"
+      else
+         write(sec, '(f0.2)') c%seconds
+         if (sec(1:1) == ".") sec = "0" // sec
+      end if
+      text = "estimate: " // to_str(c%total_element_steps) // " element-steps, about " // &
+         & trim(mib) // " MiB, " // trim(sec) // " s on one thread"
+      if (tolerance > 0.0_wp) text = text // " for the first pass (&numerics tolerance: " // &
+         & "each refinement doubles it)"
+   end subroutine estimate_text
 
    !> Read the scene's profile (any supported format), preprocess it as the
    !> scene says, and settle its spacing.
@@ -107,13 +155,18 @@ contains
    !> Run the scene in `path`; write its NetCDF output to `output_override`
    !> when that is not empty, else to the namelist's &output file, else to
    !> outputs/<scene name>.nc. `command` goes into the history attribute.
-   subroutine run_scene(path, output_override, command, out_path, res, error, warnings)
+   subroutine run_scene(path, output_override, command, out_path, res, error, warnings, announce)
       character(len=*), intent(in) :: path, output_override, command
       character(len=:), allocatable, intent(out) :: out_path
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
       !> The warnings recorded in the output, one a line.
       character(len=:), allocatable, intent(out), optional :: warnings
+      !> Told the cost estimate before the model runs, when it is long
+      !> (announce_seconds or more; the output records it always).
+      procedure(announce_interface), optional :: announce
+      character(len=:), allocatable :: line
+      type(cost_estimate_type) :: cost
       type(scene_type) :: scene
       type(output_metadata_type) :: meta
       type(clean_profile_type) :: clean
@@ -149,6 +202,13 @@ contains
 
       call load_scene_profile(scene, clean, error)
       if (allocated(error)) return
+      if (present(announce)) then
+         cost = scene_estimate(scene, clean)
+         if (cost%seconds >= announce_seconds) then
+            call estimate_text(cost, scene%model%tolerance, line)
+            call announce(line)
+         end if
+      end if
       call run_profile(scene, clean, res, meta, error)
       if (allocated(error)) return
       meta%title = "pavefric friction-speed curve of scene " // scene%name

@@ -22,7 +22,7 @@ module pavefric_simulate
    private
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
-   public :: make_components
+   public :: make_components, cost_estimate_type, estimate_cost
 
 
    !> Finest time step the tolerance refinement may reach (&numerics substeps' bound).
@@ -39,6 +39,35 @@ module pavefric_simulate
       end function c_physical_memory
    end interface
 
+   !> What a run will cost, known before it starts: printed by the program
+   !> before the run and recorded in the output, so that a user sees the
+   !> price of a knob (substeps, elements_per_sample) before paying it.
+   type :: cost_estimate_type
+      !> Element updates of one pass at the scene's knobs, per speed and for
+      !> all speeds: (spin-up + averaged positions) x pad elements, exactly
+      !> (`memory_updates` counts the same on a viscous scene).
+      integer(i8) :: element_steps = 0, total_element_steps = 0
+      !> Peak memory of the run (bytes): geometry, per-speed state, series
+      !> and the output built in memory.
+      real(wp) :: bytes = 0.0_wp
+      !> Seconds on one thread at the calibrated rates below; with
+      !> &numerics tolerance, of the first pass (each refinement doubles it).
+      real(wp) :: seconds = 0.0_wp
+   end type cost_estimate_type
+
+   ! The cost model (one thread): a part per profile sample (reading,
+   ! preprocessing, texture metrics, writing), a part per pad position that
+   ! the speeds' lanes share (the wet balance's iterations run until every
+   ! lane has converged), and a part per element-step of each speed. Fitted
+   ! on the "training" runs of `python -m pavefric bench`'s cost-estimate
+   ! section (a 65,536-point open profile at 1 to 12 speeds, each model) on
+   ! the 2-core AMD EPYC development machine; its "test" runs, which the fit
+   ! did not see, judge it (docs/performance.md).
+   real(wp), parameter :: sec_point = 5.9e-7_wp, sec_step = 3.76e-9_wp, sec_arm = 7.4e-10_wp
+   real(wp), parameter :: sec_bearing_step = 1.2e-8_wp, sec_bearing_position = 4.7e-7_wp
+   real(wp), parameter :: sec_squeeze_step = 2.2e-8_wp, sec_squeeze_position = 1.2e-7_wp
+   real(wp), parameter :: sec_run = 1.0e-3_wp
+
    !> Results of one scene, per speed (and per position with `series`).
    type :: sim_result_type
       !> Pad elements N.
@@ -49,6 +78,8 @@ module pavefric_simulate
       integer :: n_spinup = 0
       !> The rubber thickness (m), to compare max_compression with.
       real(wp) :: thickness = 0.0_wp
+      !> The cost estimated before the run (of its first pass).
+      type(cost_estimate_type) :: estimate
       !> Speeds (m s-1) and (km h-1).
       real(wp), allocatable :: speed(:), speed_kmh(:)
       !> Mean friction coefficient over the profile (Eq. 12).
@@ -348,8 +379,9 @@ contains
       call make_components(m, rubber, film)
       friction_film = .false.
       if (allocated(film)) friction_film = film%changes_friction()
-      call check_memory(m, size(z), dx, closed, size(speeds_kmh), want_series, friction_film, &
-         & rubber%state_size(), error)
+      res%estimate = estimate_cost(m, size(z), dx, closed, size(speeds_kmh), want_series, &
+         & friction_film, rubber%state_size())
+      call check_memory(res%estimate, error)
       if (allocated(error)) return
       call build_geometry(m, z, dx, closed, friction_film, geo, error)
       if (allocated(error)) return
@@ -500,37 +532,67 @@ contains
       end if
    end subroutine check_inputs
 
-   !> Estimate the memory a run needs and refuse it, before allocating, when
-   !> it exceeds what the machine has (a clear error instead of the process
-   !> being killed).
-   subroutine check_memory(m, np, dx, closed, ns, want_series, friction_film, n_state, &
-      & error)
+   !> The cost of a run at the model's knobs (cost_estimate_type), from the
+   !> scene alone: np profile samples, ns speeds. `n_state`: the rubber's
+   !> state values per element and speed (1 + Maxwell arms).
+   pure function estimate_cost(m, np, dx, closed, ns, want_series, friction_film, n_state) &
+      & result(c)
       type(model_type), intent(in) :: m
-      !> n_state: the rubber's state values per element and speed
       integer, intent(in) :: np, ns, n_state
       real(wp), intent(in) :: dx
       logical, intent(in) :: closed, want_series, friction_film
-      type(error_type), allocatable, intent(out) :: error
-      real(wp) :: fine, n_ext, n_el, bytes, n_avg, limit
+      type(cost_estimate_type) :: c
+      real(wp) :: fine, n_ext, n_el, n_avg, n_spin, per_step, per_position
       fine = real(m%elements_per_sample, wp) * real(m%substeps, wp)
       n_el = real(pad_elements(m, dx), wp)
       n_ext = real(np, wp) * fine + n_el * real(m%substeps, wp)
+      n_avg = real(averaged_positions(m, np, dx, closed), wp)
+      n_spin = 0.0_wp
+      if (closed) n_spin = real(ceiling(n_el * real(m%substeps, wp) / &
+         & real(m%position_stride, wp)), wp)
       ! geometry: z, tan_theta, clamped (+ slopes), and the refinement's copies
-      bytes = n_ext * (8.0_wp + 8.0_wp + 4.0_wp) * 2.0_wp
-      if (friction_film) bytes = bytes + n_ext * 16.0_wp * real(min(ns, 64), wp)
+      c%bytes = n_ext * (8.0_wp + 8.0_wp + 4.0_wp) * 2.0_wp
+      if (friction_film) c%bytes = c%bytes + n_ext * 16.0_wp * real(min(ns, 64), wp)
       ! per speed (one per thread at most, counted for all): element arrays,
       ! the rubber's state and its coefficients per element (a Maxwell
       ! rubber: 1 + 4 arms for 1 + arms state values)
-      bytes = bytes + n_el * 8.0_wp * real(10 + 5 * n_state, wp) * real(ns, wp)
-      n_avg = real(averaged_positions(m, np, dx, closed), wp)
-      if (want_series) bytes = bytes + n_avg * real(ns, wp) * 8.0_wp * 6.0_wp
+      c%bytes = c%bytes + n_el * 8.0_wp * real(10 + 5 * n_state, wp) * real(ns, wp)
+      ! series: the arrays, and again the output file built from them
+      if (want_series) c%bytes = c%bytes + 2.0_wp * n_avg * real(ns, wp) * 8.0_wp * 6.0_wp
+      if (n_avg > 0.0_wp .and. n_el > 0.0_wp .and. (n_avg + n_spin) * n_el < 9.0e18_wp) then
+         c%element_steps = int((n_avg + n_spin) * n_el, i8)
+         c%total_element_steps = c%element_steps * int(ns, i8)
+      end if
+      per_step = sec_step + sec_arm * real(n_state - 1, wp)
+      per_position = 0.0_wp
+      if (m%depth > 0.0_wp) then
+         if (m%wet_model == "squeeze") then
+            per_step = per_step + sec_squeeze_step
+            per_position = sec_squeeze_position
+         else
+            per_step = per_step + sec_bearing_step
+            per_position = sec_bearing_position
+         end if
+      end if
+      c%seconds = sec_run + sec_point * real(np, wp) + per_step * &
+         & real(c%total_element_steps, wp)
+      if (n_el > 0.0_wp) c%seconds = c%seconds + per_position * real(c%element_steps, wp) / n_el
+   end function estimate_cost
+
+   !> Refuse a run, before allocating, whose estimated memory exceeds what
+   !> the machine has (a clear error instead of the process being killed).
+   subroutine check_memory(c, error)
+      type(cost_estimate_type), intent(in) :: c
+      type(error_type), allocatable, intent(out) :: error
+      real(wp) :: limit
       limit = real(c_physical_memory(), wp)
       if (limit <= 0.0_wp) limit = 16.0_wp * 2.0_wp**30
-      if (bytes > 0.8_wp * limit) then
-         call fatal_error(error, "the run needs about " // to_str(nint(bytes / 2.0_wp**20, i8)) // &
-            & " MiB, more than this machine's memory (" // to_str(nint(limit / 2.0_wp**20, i8)) // &
-            & " MiB): reduce &numerics elements_per_sample or substeps, the number of " // &
-            & "speeds, or set &output series = .false.", stat_memory)
+      if (c%bytes > 0.8_wp * limit) then
+         call fatal_error(error, "the run needs about " // to_str(nint(c%bytes / 2.0_wp**20, i8)) &
+            & // " MiB, more than this machine's memory (" // &
+            & to_str(nint(limit / 2.0_wp**20, i8)) // " MiB): reduce &numerics " // &
+            & "elements_per_sample or substeps, the number of speeds, or set &output " // &
+            & "series = .false.", stat_memory)
       end if
    end subroutine check_memory
 

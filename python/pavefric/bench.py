@@ -407,6 +407,92 @@ def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3
     return out
 
 
+# The scenes of the cost estimate: (set, name, namelist groups). The core's
+# cost model (src/pavefric_simulate.f90, sec_*) was fitted on the
+# "training" runs (a 65,536-point open profile, 1 to 12 speeds, each model);
+# the "test" runs, which the fit never saw, judge it (other lengths, closed
+# profiles, other knobs and pads). Its form (parts per profile sample, per
+# pad position, per element-step) was chosen after a first fit on six-speed
+# runs alone missed runs of one to four speeds by up to 2x.
+_PRONY = "prony_stiffness = 1e8, 5e7, 2e7, prony_times = 1e-4, 1e-3, 1e-2"
+_SPEEDS = {1: "40", 3: "20, 40, 60", 6: "10, 20, 30, 40, 60, 80",
+           12: "5, 10, 15, 20, 25, 30, 40, 50, 60, 70, 80, 90"}
+ESTIMATE_SCENES = [
+    *[("training", f"dry Kelvin-Voigt, {n} speed(s)",
+       f"&rubber viscosity = 3e3 / &operation speeds_kmh = {v} /") for n, v in _SPEEDS.items()],
+    *[("training", f"wet kane2017, {n} speed(s)",
+       f"&water depth = 1e-3, alpha = 1.0 / &operation speeds_kmh = {v} /")
+      for n, v in _SPEEDS.items()],
+    *[("training", f"wet squeeze, {n} speed(s)",
+       f"&water depth = 1e-3, wet_model = 'squeeze' / &operation speeds_kmh = {_SPEEDS[n]} /")
+      for n in (1, 12)],
+    *[("training", f"dry Maxwell 3 arms, {n} speed(s)",
+       f"&rubber model = 'maxwell', {_PRONY} / &operation speeds_kmh = {_SPEEDS[n]} /")
+      for n in (1, 12)],
+    ("test", "closed 16,384 points, wet kane2017, 3 speeds, substeps 8",
+     "&surface closed = .true. / &water depth = 1e-3 / &numerics substeps = 8 / "
+     "&operation speeds_kmh = 20, 40, 60 /"),
+    ("test", "dry, 1 speed, elements_per_sample 2, substeps 3",
+     "&numerics elements_per_sample = 2, substeps = 3 / &operation speeds_kmh = 60 /"),
+    ("test", "wet squeeze, 2 speeds, substeps 4",
+     "&water depth = 0.5e-3, wet_model = 'squeeze' / &numerics substeps = 4 / "
+     "&operation speeds_kmh = 30, 70 /"),
+    ("test", "wet kane2017, 10 speeds, a 40 mm pad",
+     "&water depth = 2e-3 / &pad length = 0.040 / "
+     "&operation speeds_kmh = 5, 10, 20, 30, 40, 50, 60, 70, 80, 90 /"),
+    ("test", "dry Maxwell 1 arm, 4 speeds, position_stride 2",
+     "&rubber model = 'maxwell', prony_stiffness = 1e8, prony_times = 1e-3 / "
+     "&numerics position_stride = 2, substeps = 2 / &operation speeds_kmh = 20, 40, 60, 80 /"),
+]
+
+
+def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]:
+    """The cost the program estimates before a run (printed, and recorded as
+    the output's estimated_seconds, from the core's calibrated rates)
+    against the wall time of the same run of the program, one thread."""
+    import tempfile
+
+    import xarray as xr
+
+    from .surfaces import spectral_profile, write_profile
+
+    exe = Path(sys.executable).parent / "pavefric"
+    log(f"\n== Cost estimate against the measured time (the program on a {points:,}-point "
+        f"open profile, or a closed one of a quarter of that, one thread; best of "
+        f"{repeats}) ==")
+    rows = []
+    env = {**os.environ, "OMP_NUM_THREADS": "1"}
+    with tempfile.TemporaryDirectory() as tmp:
+        d = Path(tmp)
+        write_profile(str(d / "p.txt"), spectral_profile(points, 0.87e-3, rms=0.5e-3,
+                                                         skew=-0.3, seed=3))
+        write_profile(str(d / "c.txt"), spectral_profile(max(points // 4, 1024), 0.87e-3,
+                                                         rms=0.6e-3, skew=-0.5, seed=5))
+        for k, (which, name, groups) in enumerate(ESTIMATE_SCENES):
+            scene = d / f"s{k}.nml"
+            closed = "closed = .true." in groups
+            groups = groups.replace("&surface closed = .true. / ", "")
+            scene.write_text(f"&surface profile_file = '{'c' if closed else 'p'}.txt', "
+                             f"height_unit = 'mm', mu_loc = 0.6, "
+                             f"closed = {'.true.' if closed else '.false.'} /\n"
+                             + groups.replace("/ ", "/\n") + "\n")
+            best = float("inf")
+            for _ in range(repeats):
+                t0 = time.perf_counter()
+                r = subprocess.run([str(exe), str(scene), "-o", str(d / "o.nc")],
+                                   capture_output=True, text=True, env=env)
+                best = min(best, time.perf_counter() - t0)
+                if r.returncode != 0:
+                    raise RuntimeError(f"{name}: {r.stderr}")
+            with xr.open_dataset(d / "o.nc") as ds:
+                est = float(ds.attrs["estimated_seconds"])
+            rows.append({"set": which, "scene": name, "estimated": est, "measured": best,
+                         "ratio": est / best})
+            log(f"  {which:8s} {name:56s} estimated {est:7.3f} s, measured {best:7.3f} s, "
+                f"ratio {est / best:5.2f}")
+    return rows
+
+
 def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False) -> dict:
     """Every figure, printed as measured; with ``report``, docs/performance.md.
     ``quick``: small sizes and one repeat (minutes to seconds), to check that
@@ -443,6 +529,8 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
         "reading": bench_io.reading(log, largest, small=min(largest, 1_000_000)),
         "batch": bench_mpi.run(log, quick=quick),
         "rubber": rubber_report.cost(log, repeats=1 if quick else 7),
+        "estimate": estimate_accuracy(log, points=8192 if quick else 65_536,
+                                      repeats=1 if quick else 3),
     }
     if report:
         from .reports import performance_report

@@ -364,8 +364,8 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     _, _, outputs = _tables()
     ntext = 4096 + 2 * len(text)
     while True:
-        (speed, speed_kmh, values, series_values, present, position, counts, texture, texts,
-         lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
+        (speed, speed_kmh, values, series_values, present, position, counts, texture, estimate,
+         texts, lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
                                                         n_series, ntext)
         _check(status, message)
         if series and int(counts[1]) != npos:
@@ -427,6 +427,9 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         "profile_points": int(z.size),
         "profile_dx": float(dx),
         "profile_closed": int(bool(closed)),
+        "estimated_element_steps": float(estimate[0]),
+        "estimated_memory_bytes": float(estimate[1]),
+        "estimated_seconds": float(estimate[2]),
     }
     attrs.update(_parameter_attributes(parameters_text))
     if warning_text:

@@ -217,6 +217,11 @@ def outputs_markdown() -> str:
         "profile used |",
         "| `pad_elements`, `averaged_positions`, `spinup_positions` | the "
         "discretisation |",
+        "| `estimated_element_steps`, `estimated_memory_bytes`, `estimated_seconds` | the "
+        "cost estimated before the run, from the scene alone: element updates of all "
+        "speeds ((spin-up + averaged positions) x pad elements, exact), peak memory, and "
+        "seconds on one thread at rates calibrated by `python -m pavefric bench` (with "
+        "`&numerics tolerance`: of the first pass; each refinement doubles it) |",
         "| `preprocessing`, `preprocess_*` | what preprocessing did to the profile, in "
         "a sentence and as numbers (docs/profiles.md) |",
         "",

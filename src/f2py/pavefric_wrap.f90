@@ -158,7 +158,8 @@ end subroutine pf_layout
 !> is 0 (call again); when the series have more positions than npos (a
 !> tolerance run refined the step), counts(2) says how many, status 0.
 subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
-      & series, present, position, counts, texture, texts, text_lengths, status, message)
+      & series, present, position, counts, texture, estimate, texts, text_lengths, status, &
+      & message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type, scene_from_text
@@ -174,6 +175,9 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    character(len=*), intent(in) :: settings
    real(c_double), intent(out) :: speed(ns), speed_kmh(ns), values(ns, nout)
    real(c_double), intent(out) :: series(npos, ns, nser), position(npos), texture(3)
+   !> The cost estimated before the run: element-steps (all speeds, first
+   !> pass), bytes, seconds on one thread.
+   real(c_double), intent(out) :: estimate(3)
    integer(c_int), intent(out) :: present(nout), counts(6), text_lengths(3), status
    character, intent(out) :: texts(ntext)
    character(len=2048), intent(out) :: message
@@ -188,7 +192,7 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    integer :: k, n_pos, c, slot
 
    speed = 0; speed_kmh = 0; values = 0; series = 0; present = 0; position = 0; texture = 0
-   counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
+   estimate = 0; counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
    call scene_from_text(settings, "", scene, error, arrays=.true.)
    if (allocated(error)) goto 99
    if (size(scene%speeds_kmh) /= ns .or. nout /= n_outputs) then
@@ -238,6 +242,8 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    if (scene%series) position = res%position
    counts = [res%n_elements, res%n_positions, res%n_spinup, merge(1, 0, meta%has_texture), &
       & meta%texture%n_segments, meta%texture%n_valid]
+   estimate = [real(res%estimate%total_element_steps, c_double), res%estimate%bytes, &
+      & res%estimate%seconds]
    if (meta%has_texture) texture = [meta%texture%mpd, meta%texture%rms_height, &
       & meta%texture%rms_slope]
    joined = res%effects // meta%warnings // meta%parameters_text

@@ -1,0 +1,83 @@
+"""The cost of a run, estimated before it starts (issues 19 and 23): element-
+steps exactly, memory checked before allocating, seconds at calibrated rates
+(compared with measured times in the benchmark, not here: timings are for
+the benchmark). Recorded in every output; printed by the program before a
+run estimated at a second or more."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import DX, program, write_scene
+
+VISCOUS = dict(viscosity=3e3)
+
+
+@pytest.mark.parametrize("knobs", [
+    {}, {"substeps": 4}, {"elements_per_sample": 3}, {"position_stride": 5},
+    {"closed": False}, {"closed": False, "substeps": 3, "elements_per_sample": 2},
+    {"depth": 1e-3}, {"depth": 1e-3, "wet_model": "squeeze"},
+    {"rubber_model": "maxwell", "prony_stiffness": [1e8, 5e7], "prony_times": [1e-4, 1e-2]},
+])
+def test_estimated_element_steps_are_the_steps_the_run_made(profile_m, knobs):
+    """memory_updates counts every element update of a rubber with memory:
+    the estimate, made from the scene alone, is that count exactly."""
+    kw = dict(knobs)
+    closed = kw.pop("closed", True)
+    if "rubber_model" not in kw:
+        kw |= VISCOUS
+    ds = pavefric.simulate(profile_m, DX, [5.0, 20.0, 60.0], closed=closed, **kw)
+    assert ds.attrs["estimated_element_steps"] == float(ds["memory_updates"].values.sum())
+    assert ds.attrs["estimated_element_steps"] == 3 * ds.attrs["pad_elements"] * (
+        ds.attrs["averaged_positions"] + ds.attrs["spinup_positions"])
+    assert 0 < ds.attrs["estimated_memory_bytes"] < 1e9
+    assert ds.attrs["estimated_seconds"] > 0
+
+
+def test_the_estimate_grows_as_the_knobs_say(profile_m):
+    """Linear in substeps, quadratic in elements_per_sample (more elements,
+    each over a finer profile), wet dearer than dry: what a user must see
+    before choosing a knob."""
+    def est(**kw):
+        a = pavefric.simulate(profile_m, DX, [20.0], **kw).attrs
+        return a["estimated_element_steps"], a["estimated_seconds"]
+
+    base, _ = est()
+    sub, dry = est(substeps=8)
+    eps, _ = est(elements_per_sample=4)
+    _, wet = est(substeps=8, depth=1e-3)
+    assert sub / base == pytest.approx(8, rel=0.02)
+    assert eps / base == pytest.approx(16, rel=0.02)
+    assert wet > 2 * dry
+
+
+def test_the_program_announces_a_long_run_and_records_every_estimate(tmp_path, profile_m):
+    long_scene = write_scene(tmp_path / "long", profile=profile_m,
+                             groups={"water": "depth = 1e-3", "numerics": "substeps = 1024",
+                                     "operation": "speeds_kmh = 20, 40, 60"})
+    out = tmp_path / "long.nc"
+    r = subprocess.run([program(), str(long_scene), "-o", str(out)], capture_output=True,
+                       text=True, env={**os.environ, "OMP_NUM_THREADS": "1"}, timeout=600)
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(out) as ds:
+        steps = int(ds.attrs["estimated_element_steps"])
+        assert ds.attrs["estimated_seconds"] >= 1.0
+    line = [x for x in r.stderr.splitlines() if x.startswith("pavefric: estimate: ")]
+    assert len(line) == 1 and f"{steps} element-steps" in line[0] and "MiB" in line[0], r.stderr
+    short_scene = write_scene(tmp_path / "short", profile=profile_m)
+    r = subprocess.run([program(), str(short_scene), "-o", str(tmp_path / "s.nc")],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0 and "estimate" not in r.stderr        # short runs stay quiet
+    with xr.open_dataset(tmp_path / "s.nc") as ds:
+        assert ds.attrs["estimated_element_steps"] > 0
+
+
+def test_a_run_that_cannot_fit_is_refused_before_allocating(profile_m):
+    """Series of 4096 elements per sample at 60 speeds: terabytes. Refused
+    with the estimate and the knobs to change; the Python process lives on."""
+    with pytest.raises(MemoryError, match=r"needs about \d+ MiB.*elements_per_sample"):
+        pavefric.simulate(profile_m, DX, list(np.linspace(1, 120, 60)), series=True,
+                          elements_per_sample=4096)
