@@ -30,6 +30,10 @@ module pavefric_run
    !> Plausible RMS height of a road texture profile (m): below, the heights
    !> are most likely in another unit than declared; above, not a texture.
    real(wp), parameter :: rms_plausible_low = 1.0e-5_wp, rms_plausible_high = 0.02_wp
+   !> The paper's wet model's regimes (bearing_regime_warning): a depth
+   !> under this share of the texture depth that carries load, or over this
+   !> multiple of it.
+   real(wp), parameter :: thin_film_share = 0.01_wp, deep_water_ratio = 2.0_wp
    !> A run estimated to take this long (s) or more is announced before it starts.
    real(wp), parameter :: announce_seconds = 1.0_wp
    !> Largest plausible friction coefficient (DFT and skid testers read up to ~1.3).
@@ -274,7 +278,43 @@ contains
             & "what any road gives (" // to_str(mu_plausible_high) // "); check &surface " // &
             & "mu_loc and the profile's units")
       end do
+      call bearing_regime_warning(scene, res, meta)
    end subroutine run_profile
+
+   !> The paper's wet model (wet_model = 'kane2017') outside the regime where
+   !> its answer means what it says (docs/model.md, "Where Eq. 15 misleads"):
+   !> a film far thinner than the texture that still carries load (friction
+   !> then jumps as depth -> 0 instead of returning to the dry value), and
+   !> water deeper than twice the texture (Eq. 15's wedge load falls as the
+   !> inlet film grows, so friction rises back toward dry with more water).
+   subroutine bearing_regime_warning(scene, res, meta)
+      type(scene_type), intent(in) :: scene
+      type(sim_result_type), intent(in) :: res
+      type(output_metadata_type), intent(inout) :: meta
+      real(wp) :: depth, texture
+      depth = scene%model%depth
+      if (.not. depth > 0.0_wp .or. scene%model%wet_model /= "kane2017") return
+      if (.not. any(res%wet_fraction > 0.0_wp)) return
+      if (meta%has_texture) then
+         texture = meta%texture%mpd
+      else
+         texture = 0.0_wp
+      end if
+      if (.not. texture > 0.0_wp) return
+      if (depth < thin_film_share * texture) then
+         call add_warning(meta%warnings, "&water depth = " // to_str(depth) // " m, under " // &
+            & to_str(thin_film_share) // " of the texture depth (MPD " // to_str(texture) // &
+            & " m), still carried load with wet_model = 'kane2017' (the film closes under " // &
+            & "the pad, Eq. 15): the paper's model jumps as the depth goes to 0 instead of " // &
+            & "returning to the dry friction (docs/model.md); wet_model = 'squeeze' does not")
+      else if (depth > deep_water_ratio * texture) then
+         call add_warning(meta%warnings, "&water depth = " // to_str(depth) // " m is more " // &
+            & "than " // to_str(deep_water_ratio) // " x the texture depth (MPD " // &
+            & to_str(texture) // " m): with wet_model = 'kane2017' the bearing's load (Eq. 15)" // &
+            & " falls as the water deepens, so friction rises back toward dry (docs/model.md);" // &
+            & " wet_model = 'squeeze' does not")
+      end if
+   end subroutine bearing_regime_warning
 
    !> A warning when the profile's RMS height is outside what a road texture
    !> can be (most often heights in another unit than &surface height_unit says).
