@@ -17,7 +17,7 @@ module pavefric_netcdf
    use pavefric_model, only: param_spec_type, parameter_table, kind_real, &
       & kind_integer, kind_logical, kind_text, kind_real_list
    use pavefric_fsys, only: rename_file, remove_file, process_id, register_temporary, &
-      & release_temporary, test_pause
+      & release_temporary, test_pause, output_guard_type, check_output_path
    use pavefric_format, only: to_str
    implicit none
    private
@@ -182,6 +182,20 @@ contains
       type(output_metadata_type), intent(in) :: meta
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
+      type(output_guard_type) :: guard
+      ! The rule of every writer (program, Python, C and Fortran API alike):
+      ! never onto a FIFO, a device or a directory, never over a file the
+      ! results came from; then a temporary in the same directory, renamed.
+      call check_output_path(path, "&output file", guard, error)
+      if (allocated(error)) return
+      if (allocated(meta%scene_file)) then
+         call guard%check_input(meta%scene_file, "the scene file", error)
+         if (allocated(error)) return
+      end if
+      if (allocated(meta%profile_file)) then
+         call guard%check_input(meta%profile_file, "the profile (&surface profile_file)", error)
+         if (allocated(error)) return
+      end if
       tmp = temporary_name(path)
       call write_file(tmp, res, meta, error)
       call commit_temporary(tmp, path, error)

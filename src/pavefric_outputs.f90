@@ -38,6 +38,9 @@ module pavefric_outputs
    !> came from, the profile, its texture, the parameters used, warnings.
    type :: output_metadata_type
       character(len=:), allocatable :: title, history, input_namelist, profile_file
+      !> The scene file the results came from (when they came from one): with
+      !> profile_file, an input the output must never be written over.
+      character(len=:), allocatable :: scene_file
       real(wp) :: dx = 0.0_wp
       integer :: profile_points = 0
       logical :: closed = .true.

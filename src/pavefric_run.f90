@@ -219,6 +219,7 @@ contains
       meta%history = timestamp() // " pavefric " // pavefric_version // ": " // command
       meta%preprocess = clean%report
       meta%preprocessing = preprocess_summary(clean%report)
+      meta%scene_file = path
       if (present(warnings)) warnings = meta%warnings
       call write_results(out_path, res, meta, error)
    end subroutine run_scene

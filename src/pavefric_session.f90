@@ -48,6 +48,9 @@ module pavefric_session
       type(scene_type) :: scene
       !> Whether the scene came from text (then the profile must be set).
       logical :: from_text = .false.
+      !> The scene file read (when the session came from a file): an input
+      !> that session_write must never write over.
+      character(len=:), allocatable :: scene_path
       !> The scene's input text, and the changes made since (one line per
       !> change, the latest of each variable): the output's input_namelist.
       character(len=:), allocatable :: input_text, changes
@@ -73,6 +76,7 @@ contains
       call lock_files()
       call read_scene(path, s%scene, error)
       call unlock_files()
+      s%scene_path = path
    end subroutine load_session
 
    !> A session on namelist text (the groups of a scene file); the profile
@@ -396,6 +400,9 @@ contains
          call fatal_error(error, "&output file: an empty path")
          return
       end if
+      ! write_results refuses an input of the run (the scene file, the
+      ! profile file), a FIFO, a device or a directory
+      if (allocated(s%scene_path)) s%meta%scene_file = s%scene_path
       s%meta%history = timestamp() // " pavefric " // pavefric_version // ": API run of scene " // &
          & s%scene%name
       call lock_files()

@@ -8,6 +8,7 @@ package wraps it for pre- and post-processing.
 >>> ds["mu"].values
 """
 from .core import (CTM_DX, PavefricError, PavefricKeywordError, PavefricWarning, Profile,
+                   check_output,
                    ProfilesFailedWarning, Scene, defaults, groups, layout, load_scene,
                    open_dataset, parameters, run, simulate)
 from .profiles import ProfileEntry, list_profiles, read_profile, write_profiles
@@ -22,4 +23,4 @@ __all__ = ["CTM_DX", "PavefricError", "PavefricKeywordError", "PavefricWarning",
            "ProfilesFailedWarning", "Scene", "load_scene", "defaults", "groups", "parameters",
            "layout", "open", "open_dataset", "ifi", "plot_mu_speed", "plot_profile",
            "read_profile", "texture", "run", "simulate", "__version__", "write_profiles",
-           "list_profiles", "ProfileEntry"]
+           "list_profiles", "ProfileEntry", "check_output"]

@@ -95,6 +95,26 @@ def _check(status: int, message: Any) -> None:
         raise PavefricError(_text(message))
 
 
+def check_output(path: str | os.PathLike, inputs=()) -> None:
+    """The rule every pavefric writer follows, from the core (the program's
+    and the C API's own): ``path`` must be missing or a regular file (never
+    a FIFO, a device or a directory) and not the same file as any of
+    ``inputs`` (symbolic and hard links seen through). Raises
+    PavefricError naming the path and why; the caller then writes through a
+    temporary in the same directory and a rename.
+
+    Parameters
+    ----------
+    path : path-like
+        The file about to be written.
+    inputs : iterable of path-like
+        The files the data written came from.
+    """
+    joined = "\n".join(os.fspath(p) for p in inputs if p)
+    status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n")
+    _check(status, message)
+
+
 def _warn(text: str) -> None:
     import warnings
 

@@ -90,6 +90,8 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     """
     import xarray as xr
 
+    from .core import PavefricError, check_output
+
     paths = [Path(p) for p in parts]
     if not paths:
         raise MergeError("merge: no parts given")
@@ -97,10 +99,10 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     for p in paths:
         if not p.is_file():
             raise MergeError(f"merge: '{p}' is not a file")
-        if out.exists() and os.path.samefile(out, p):
-            raise MergeError(f"merge: the output '{out}' is one of the parts; name another file")
-    if out.exists() and not out.is_file():
-        raise MergeError(f"merge: the output '{out}' exists and is not a regular file")
+    try:        # the rule of every pavefric writer: never over an input, a FIFO, a device
+        check_output(out, paths)
+    except PavefricError as exc:
+        raise MergeError(f"merge: {exc}") from None
 
     sets = []
     try:

@@ -128,7 +128,10 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
 
     ``heights``: a 2-D array (profiles x points; one length for all) or a
     list of 1-D arrays (any lengths: the CF contiguous ragged layout); a
-    1-D array is one profile. Values in ``units`` ('m', 'mm' or 'um'); NaN
+    1-D array is one profile; a ``Profile`` from ``read_profile`` stands for
+    its heights. The file is never written over a file the profiles came
+    from, nor onto a FIFO, a device or a directory (the rule of every
+    pavefric writer). Values in ``units`` ('m', 'mm' or 'um'); NaN
     marks a dropout. ``dx``: the spacing (m), one number or one per profile
     (None: the reader's default or the scene's dx). ``names``: one per
     profile (default '1', '2', ...), ``chainage``: distance along the road
@@ -137,6 +140,13 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
     """
     import netCDF4
 
+    from .core import check_output
+
+    # never over a file the profiles came from, never onto a FIFO or device
+    check_output(path, [getattr(h, "path", None) for h in
+                        (heights if isinstance(heights, (list, tuple)) else [heights])])
+    heights = ([getattr(h, "heights", h) for h in heights] if isinstance(heights, (list, tuple))
+               else getattr(heights, "heights", heights))
     if units not in _UNITS:
         raise PavefricError(f"write_profiles units = {units!r}: expected 'm', 'mm' or 'um'")
     ragged = isinstance(heights, (list, tuple))

@@ -681,3 +681,35 @@ subroutine pf_profile_read_seconds(path, format, height_unit, profile_name, repe
    n_numbers = n_points
    if (raw%has_x) n_numbers = 2 * n_points
 end subroutine pf_profile_read_seconds
+
+!> The rule every writer of pavefric follows (pavefric_fsys), for Python's
+!> writers: `path` must be missing or a regular file (never a FIFO, a
+!> device or a directory), and not the same file as any of `inputs` (paths
+!> separated by newlines: what the data written came from). status 0: the
+!> path may be written (through a temporary in its directory and a rename).
+subroutine pf_check_output(path, inputs, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_fsys, only: output_guard_type, check_output_path
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, inputs
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(output_guard_type) :: guard
+   type(error_type), allocatable :: error
+   integer :: start, k
+   status = 0; message = ""
+   call check_output_path(path, "the output path", guard, error)
+   start = 1
+   do while (.not. allocated(error) .and. start <= len(inputs))
+      k = index(inputs(start:), achar(10))
+      if (k == 0) k = len(inputs) - start + 2
+      if (k > 1) call guard%check_input(inputs(start:start+k-2), "an input of the data written", &
+         & error)
+      start = start + k
+   end do
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+   end if
+end subroutine pf_check_output
