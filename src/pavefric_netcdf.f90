@@ -28,10 +28,27 @@ module pavefric_netcdf
    !> A NetCDF file being written and the first error met: every call goes
    !> through `check`, which adds context to nf90_strerror; after an error the
    !> remaining calls do nothing.
+   !> A text too long for an attribute, kept for its variable until the
+   !> definitions end (long_text_limit).
+   type :: pending_text_type
+      integer :: varid = -1
+      character(len=:), allocatable :: text
+   end type pending_text_type
+
+   !> Texts longer than this (bytes) are written as a character variable of
+   !> the attribute's name, the attribute then saying where they are: HDF5
+   !> keeps attributes in an object header of at most 64 KiB, so a scene of
+   !> 200 KB (long comments, a long list of speeds) failed at the end of a
+   !> run. pavefric.open_dataset restores such attributes.
+   integer, parameter, public :: long_text_limit = 16384
+   character(len=*), parameter, public :: long_text_note = "in the variable of this name: "
+
    type :: nc_writer_type
       integer :: ncid = -1
       character(len=:), allocatable :: path
       type(error_type), allocatable :: error
+      !> Long texts to write as variables once the definitions end.
+      type(pending_text_type), allocatable :: pending(:)
    contains
       procedure :: create => writer_create
       procedure :: check => writer_check
@@ -117,11 +134,45 @@ contains
       call w%check(nf90_put_att(w%ncid, varid, "long_name", long_name), name // " long_name")
    end subroutine writer_def
 
+   !> A global text attribute; a text longer than long_text_limit becomes a
+   !> character variable of the same name (the attribute says so).
    subroutine gatt_text(w, name, text)
       class(nc_writer_type), intent(inout) :: w
       character(len=*), intent(in) :: name, text
-      call w%check(nf90_put_att(w%ncid, nf90_global, name, text), "attribute " // name)
+      type(pending_text_type), allocatable :: grown(:)
+      integer :: dimid, varid, n
+      if (len(text) <= long_text_limit) then
+         call w%check(nf90_put_att(w%ncid, nf90_global, name, text), "attribute " // name)
+         return
+      end if
+      if (allocated(w%error)) return
+      call w%check(nf90_def_dim(w%ncid, name // "_strlen", len(text), dimid), name // " length")
+      call w%check(nf90_def_var(w%ncid, name, nf90_char, [dimid], varid), "variable " // name)
+      call w%check(nf90_put_att(w%ncid, varid, "long_name", "the global attribute " // name // &
+         & ", too long for an attribute"), name // " long_name")
+      call w%check(nf90_put_att(w%ncid, nf90_global, name, long_text_note // &
+         & to_str(len(text)) // " characters"), "attribute " // name)
+      if (allocated(w%error)) return
+      n = 0
+      if (allocated(w%pending)) n = size(w%pending)
+      allocate(grown(n + 1))
+      if (n > 0) grown(1:n) = w%pending
+      grown(n + 1)%varid = varid
+      grown(n + 1)%text = text
+      call move_alloc(grown, w%pending)
    end subroutine gatt_text
+
+   !> Write the long texts gatt_text kept (after the definitions end).
+   subroutine writer_put_pending(w)
+      class(nc_writer_type), intent(inout) :: w
+      integer :: k
+      if (.not. allocated(w%pending)) return
+      do k = 1, size(w%pending)
+         call w%check(nf90_put_var(w%ncid, w%pending(k)%varid, w%pending(k)%text), &
+            & "a long attribute")
+      end do
+      deallocate(w%pending)
+   end subroutine writer_put_pending
 
    subroutine gatt_int(w, name, value)
       class(nc_writer_type), intent(inout) :: w
@@ -146,6 +197,7 @@ contains
       integer(c_int) :: status, errno, n
       character(len=256) :: text
       if (w%ncid >= 0) then
+         if (.not. allocated(w%error)) call writer_put_pending(w)
          if (allocated(w%error)) then
             status = nf90_abort(w%ncid)
          else
@@ -409,7 +461,10 @@ contains
             case (kind_text)
                call w%gatt(name, v%t)
             case (kind_real_list)
-               call w%check(nf90_put_att(w%ncid, nf90_global, name, v%list), name)
+               ! a long list (speeds) stays in `parameters` alone: HDF5 attributes
+               ! share an object header of 64 KiB
+               if (8 * size(v%list) <= long_text_limit) &
+                  & call w%check(nf90_put_att(w%ncid, nf90_global, name, v%list), name)
             end select
          end associate
       end do

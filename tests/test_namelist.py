@@ -341,3 +341,16 @@ def test_two_million_values_end_in_a_clear_error(tmp_path):
                                           ", ".join(["20"] * 2_000_000)})
     r = run_program(scene, "-o", tmp_path / "o.nc")
     assert r.returncode == 1 and "&operation speeds_kmh: more than 100000 values" in r.stderr
+
+
+def test_a_ten_megabyte_comment_runs_and_the_scene_is_kept_whole(tmp_path, profile_m):
+    """A scene text beyond what an HDF5 attribute holds is written as a
+    variable; pavefric.open_dataset gives it back as the attribute."""
+    scene = write_scene(tmp_path, profile=profile_m)
+    scene.write_text("! " + "c" * HUGE + "\n" + scene.read_text())
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 0, r.stderr[-300:]
+    ds = pavefric.open_dataset(tmp_path / "o.nc")
+    assert ds.attrs["input_namelist"] == scene.read_text()
+    with xr.open_dataset(tmp_path / "o.nc") as raw:
+        assert raw.attrs["input_namelist"].startswith("in the variable of this name: ")

@@ -608,12 +608,34 @@ class _ProgressBar:
             sys.stderr.write("\n")
 
 
+# A global attribute too long for HDF5's attribute storage is written as a
+# character variable of its name; the attribute then begins with this note
+# (src/pavefric_netcdf.f90, long_text_note).
+LONG_TEXT_NOTE = "in the variable of this name: "
+
+
+def restore_long_attributes(ds):
+    """Put the texts pavefric wrote as variables (attributes longer than
+    HDF5 allows, e.g. a 200 KB scene in ``input_namelist``) back into
+    ``ds.attrs``, and drop those variables. Returns ``ds``."""
+    for name, value in list(ds.attrs.items()):
+        if isinstance(value, str) and value.startswith(LONG_TEXT_NOTE) and name in ds.variables:
+            text = ds[name].values
+            if text.dtype.kind == "S":
+                text = b"".join(np.atleast_1d(text).ravel()).decode("utf-8", "replace")
+            ds.attrs[name] = str(text.item() if hasattr(text, "item") and
+                                 not isinstance(text, str) else text)
+            ds = ds.drop_vars(name)
+    return ds
+
+
 def open_dataset(path: str | os.PathLike):
-    """Read a pavefric NetCDF output into memory as an ``xarray.Dataset``."""
+    """Read a pavefric NetCDF output into memory as an ``xarray.Dataset``
+    (long attributes restored: ``restore_long_attributes``)."""
     import xarray as xr
 
     with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+        return restore_long_attributes(ds.load())
 
 
 @dataclass

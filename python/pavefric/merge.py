@@ -90,7 +90,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     """
     import xarray as xr
 
-    from .core import PavefricError, check_output
+    from .core import PavefricError, check_output, restore_long_attributes
 
     paths = [Path(p) for p in parts]
     if not paths:
@@ -108,7 +108,8 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     try:
         for p in paths:
             try:
-                sets.append(xr.open_dataset(p, mask_and_scale=False, decode_times=False))
+                sets.append(restore_long_attributes(
+                    xr.open_dataset(p, mask_and_scale=False, decode_times=False)))
             except (OSError, ValueError) as exc:
                 raise MergeError(f"merge: cannot read '{p}' as NetCDF ({exc})") from None
         first = sets[0]
