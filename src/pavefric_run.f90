@@ -8,7 +8,7 @@ module pavefric_run
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
-      & cost_estimate_type
+      & cost_estimate_type, check_memory
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
    use pavefric_outputs, only: output_metadata_type
@@ -208,6 +208,8 @@ contains
       if (allocated(error)) return
       if (present(announce)) then
          cost = scene_estimate(scene, clean)
+         call check_memory(cost, error)      ! a refusal is the one line, not after the estimate
+         if (allocated(error)) return
          if (cost%seconds >= announce_seconds) then
             call estimate_text(cost, scene%model%tolerance, line)
             call announce(line)

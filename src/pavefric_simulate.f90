@@ -22,7 +22,7 @@ module pavefric_simulate
    private
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
-   public :: make_components, cost_estimate_type, estimate_cost
+   public :: make_components, cost_estimate_type, estimate_cost, check_memory
 
 
    !> Finest time step the tolerance refinement may reach (&numerics substeps' bound).
@@ -589,8 +589,9 @@ contains
       if (limit <= 0.0_wp) limit = 16.0_wp * 2.0_wp**30
       if (c%bytes > 0.8_wp * limit) then
          call fatal_error(error, "the run needs about " // to_str(nint(c%bytes / 2.0_wp**20, i8)) &
-            & // " MiB, more than this machine's memory (" // &
-            & to_str(nint(limit / 2.0_wp**20, i8)) // " MiB): reduce &numerics " // &
+            & // " MiB, more than the memory this process may use (" // &
+            & to_str(nint(limit / 2.0_wp**20, i8)) // " MiB: the machine's, or the " // &
+            & "limit of the job, ulimit or container): reduce &numerics " // &
             & "elements_per_sample or substeps, the number of speeds, or set &output " // &
             & "series = .false.", stat_memory)
       end if

@@ -5,6 +5,8 @@ the benchmark). Recorded in every output; printed by the program before a
 run estimated at a second or more."""
 import os
 import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -81,3 +83,44 @@ def test_a_run_that_cannot_fit_is_refused_before_allocating(profile_m):
     with pytest.raises(MemoryError, match=r"needs about \d+ MiB.*elements_per_sample"):
         pavefric.simulate(profile_m, DX, list(np.linspace(1, 120, 60)), series=True,
                           elements_per_sample=4096)
+
+
+def _limited(megabytes):
+    import resource
+
+    def apply():
+        resource.setrlimit(resource.RLIMIT_AS, (megabytes << 20, megabytes << 20))
+    return apply
+
+
+def test_a_memory_limit_is_honoured_with_a_clear_refusal(tmp_path, profile_m):
+    """substeps = 2048 with series under a 400 MB address-space limit (ulimit
+    -v, as a job may have): the program ended in a segmentation fault inside
+    HDF5; it now refuses before the run, one line naming the estimate, the
+    limit and the knobs, and writes nothing. With room, the same scene runs."""
+    scene = write_scene(tmp_path, profile=profile_m,
+                        groups={"water": "depth = 1e-3", "numerics": "substeps = 2048",
+                                "operation": "speeds_kmh = 20, 40, 60",
+                                "output": "series = .true."})
+    out = tmp_path / "o.nc"
+    r = subprocess.run([program(), str(scene), "-o", str(out)], capture_output=True, text=True,
+                       preexec_fn=_limited(400), timeout=600)
+    assert r.returncode == 1, (r.returncode, r.stderr[-500:])
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "needs about" in lines[0] and "may use" in lines[0], r.stderr
+    assert "substeps" in lines[0] and not out.exists()
+    # the library alike: a MemoryError, and the Python process lives on
+    code = ("import sys; sys.path.insert(0, %r)\n"
+            "import pavefric\n"
+            "from make_regression import read_heights\n"
+            "z = read_heights('synthetic_1024.txt')\n"
+            "try:\n"
+            "    pavefric.simulate(z, 0.87e-3, [20, 40, 60], depth=1e-3, substeps=2048, "
+            "series=True)\n"
+            "except MemoryError as e:\n"
+            "    print('MemoryError:', e)\n" % str(Path(__file__).parent))
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                       preexec_fn=_limited(1000), timeout=600)
+    assert r.returncode == 0 and "MemoryError: the run needs about" in r.stdout, \
+        (r.returncode, r.stdout[-300:], r.stderr[-500:])
