@@ -289,7 +289,7 @@ contains
       type(nc_writer_type) :: w
       type(output_var_type) :: table(n_outputs)
       integer :: d_speed, d_pos, stat, k, ns, np
-      integer :: v_speed, v_kmh, v_pos, v_mpd, v_rh, v_rs, ids(n_outputs)
+      integer :: v_speed, v_kmh, v_pos, v_mpd, v_rh, v_rs, ids(n_outputs), v_f60, v_sp, v_spm
       real(wp), allocatable :: values(:)
       logical :: series
 
@@ -325,6 +325,16 @@ contains
             end if
          end associate
       end do
+      if (meta%ifi%has_f60) then
+         call w%def("ifi_f60", nf90_double, [integer ::], "1", "International Friction " // &
+            & "Index F60 (ASTM E1960): the computed friction at 20 km/h as a DFT value, " // &
+            & "carried to 60 km/h with ifi_sp", v_f60)
+         call w%def("ifi_sp", nf90_double, [integer ::], "km h-1", "speed constant Sp of " // &
+            & "ASTM E1960 from the mean profile depth (14.2 + 89.7 MPD in mm)", v_sp)
+      end if
+      if (meta%ifi%has_speed_constant) call w%def("speed_constant", nf90_double, &
+         & [integer ::], "km h-1", "the model's own speed constant: -1 / slope of ln(mu) " // &
+         & "fitted by least squares against speed (to compare with ifi_sp)", v_spm)
       if (meta%has_texture) then
          call w%def("mpd", nf90_double, [integer ::], "m", &
             & "mean profile depth (ISO 13473-1 / ASTM E1845, 100 mm segments, slope " // &
@@ -412,6 +422,12 @@ contains
             end select
          end associate
       end do
+      if (meta%ifi%has_f60) then
+         call w%check(nf90_put_var(w%ncid, v_f60, meta%ifi%f60), "ifi_f60")
+         call w%check(nf90_put_var(w%ncid, v_sp, meta%ifi%sp_texture), "ifi_sp")
+      end if
+      if (meta%ifi%has_speed_constant) call w%check(nf90_put_var(w%ncid, v_spm, &
+         & meta%ifi%speed_constant), "speed_constant")
       if (meta%has_texture) then
          call w%check(nf90_put_var(w%ncid, v_mpd, meta%texture%mpd), "mpd")
          call w%check(nf90_put_var(w%ncid, v_rh, meta%texture%rms_height), "rms_height")

@@ -7,6 +7,7 @@ module pavefric_outputs
    use pavefric_kinds, only: wp
    use pavefric_simulate, only: sim_result_type
    use pavefric_texture, only: texture_type
+   use pavefric_ifi, only: ifi_type
    use pavefric_preprocess, only: preprocess_report_type
    use pavefric_model, only: param_set_type, model_type
    use pavefric_simulate, only: make_components
@@ -57,6 +58,9 @@ module pavefric_outputs
       character(len=:), allocatable :: parameters_text
       !> Warnings about the input and the results, one a line ('' = none).
       character(len=:), allocatable :: warnings
+      !> The International Friction Index of the speed sweep (ASTM E1960)
+      !> and the model's own speed constant.
+      type(ifi_type) :: ifi
    end type output_metadata_type
 
 contains

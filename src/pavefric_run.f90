@@ -16,6 +16,7 @@ module pavefric_run
    use pavefric_fsys, only: make_directory, dir_name, remove_file, output_guard_type, &
       & check_output_path, release_temporary
    use pavefric_texture, only: texture_metrics
+   use pavefric_ifi, only: ifi_from_sweep
    use pavefric_model, only: parameter_table, parameters_namelist
    use pavefric_error, only: add_warning
    implicit none
@@ -282,6 +283,11 @@ contains
             & "mu_loc and the profile's units")
       end do
       call bearing_regime_warning(scene, res, meta)
+      if (meta%has_texture) then
+         meta%ifi = ifi_from_sweep(res%speed_kmh, res%mu, meta%texture%mpd)
+      else
+         meta%ifi = ifi_from_sweep(res%speed_kmh, res%mu, 0.0_wp)
+      end if
    end subroutine run_profile
 
    !> The paper's wet model (wet_model = 'kane2017') outside the regime where

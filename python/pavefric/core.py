@@ -385,7 +385,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     ntext = 4096 + 2 * len(text)
     while True:
         (speed, speed_kmh, values, series_values, present, position, counts, texture, estimate,
-         texts, lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
+         ifi, texts, lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
                                                         n_series, ntext)
         _check(status, message)
         if series and int(counts[1]) != npos:
@@ -436,6 +436,16 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                               "height about the mean"})
         data["rms_slope"] = ((), float(texture[2]), {"units": "1", "long_name": "RMS slope "
                              "between neighbouring samples at the profile spacing"})
+    if ifi[0]:
+        data["ifi_f60"] = ((), float(ifi[1]), {"units": "1", "long_name": "International "
+                           "Friction Index F60 (ASTM E1960): the computed friction at 20 km/h "
+                           "as a DFT value, carried to 60 km/h with ifi_sp"})
+        data["ifi_sp"] = ((), float(ifi[2]), {"units": "km h-1", "long_name": "speed constant "
+                          "Sp of ASTM E1960 from the mean profile depth (14.2 + 89.7 MPD in mm)"})
+    if ifi[3]:
+        data["speed_constant"] = ((), float(ifi[4]), {"units": "km h-1", "long_name": "the "
+                                  "model's own speed constant: -1 / slope of ln(mu) fitted by "
+                                  "least squares against speed (to compare with ifi_sp)"})
     attrs = {
         "effects": effects,
         "warnings": warning_text,

@@ -194,6 +194,17 @@ def outputs_markdown() -> str:
         "`n_valid_segments`), `rms_height` (m) and `rms_slope`; otherwise a global "
         "attribute `texture_note` says why not.",
         "",
+        "## International Friction Index (ASTM E1960)",
+        "",
+        "`ifi_f60` (the computed friction at 20 km/h taken as a DFT value, carried to "
+        "60 km/h: F60 = 0.081 + 0.732 mu20 exp(-40/Sp); mu20 on the least-squares line of "
+        "ln mu against speed when 20 km/h was not run) and `ifi_sp` (km/h, Sp = 14.2 + "
+        "89.7 MPD in mm), when the texture depth is known; `speed_constant` (km/h), the "
+        "model's own: -1 / slope of ln mu fitted against speed, when friction falls over two "
+        "speeds or more. Compare `speed_constant` with `ifi_sp` as PIARC would "
+        "(docs/speed_gradient.md). In the NetCDF file and `pavefric.simulate`, not (yet) "
+        "through the C API.",
+        "",
         "## Global attributes",
         "",
         "| name | meaning |",

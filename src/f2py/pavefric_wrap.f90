@@ -158,8 +158,8 @@ end subroutine pf_layout
 !> is 0 (call again); when the series have more positions than npos (a
 !> tolerance run refined the step), counts(2) says how many, status 0.
 subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
-      & series, present, position, counts, texture, estimate, texts, text_lengths, status, &
-      & message)
+      & series, present, position, counts, texture, estimate, ifi, texts, text_lengths, &
+      & status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type, scene_from_text
@@ -178,6 +178,9 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    !> The cost estimated before the run: element-steps (all speeds, first
    !> pass), bytes, seconds on one thread.
    real(c_double), intent(out) :: estimate(3)
+   !> ASTM E1960: has F60 (1/0), F60, Sp from MPD (km/h), has the model's
+   !> speed constant (1/0), that constant (km/h).
+   real(c_double), intent(out) :: ifi(5)
    integer(c_int), intent(out) :: present(nout), counts(6), text_lengths(3), status
    character, intent(out) :: texts(ntext)
    character(len=2048), intent(out) :: message
@@ -192,7 +195,7 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    integer :: k, n_pos, c, slot
 
    speed = 0; speed_kmh = 0; values = 0; series = 0; present = 0; position = 0; texture = 0
-   estimate = 0; counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
+   estimate = 0; ifi = 0; counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
    call scene_from_text(settings, "", scene, error, arrays=.true.)
    if (allocated(error)) goto 99
    if (size(scene%speeds_kmh) /= ns .or. nout /= n_outputs) then
@@ -244,6 +247,9 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
       & meta%texture%n_segments, meta%texture%n_valid]
    estimate = [real(res%estimate%total_element_steps, c_double), res%estimate%bytes, &
       & res%estimate%seconds]
+   ifi = [merge(1.0_c_double, 0.0_c_double, meta%ifi%has_f60), meta%ifi%f60, &
+      & meta%ifi%sp_texture, merge(1.0_c_double, 0.0_c_double, meta%ifi%has_speed_constant), &
+      & meta%ifi%speed_constant]
    if (meta%has_texture) texture = [meta%texture%mpd, meta%texture%rms_height, &
       & meta%texture%rms_slope]
    joined = res%effects // meta%warnings // meta%parameters_text
