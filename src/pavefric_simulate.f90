@@ -369,6 +369,7 @@ contains
       class(film_model), allocatable :: film
       integer :: j, ns, stat, c, j0, j1, n_chunks, width
       logical :: friction_film
+      character(len=:), allocatable :: effect
 
       res%warnings = ""
       res%effects = ""
@@ -469,10 +470,15 @@ contains
       end if
 
       res%effects = "elastic_contact,facet_friction"
-      if (any(res%viscous_memory_ran)) res%effects = res%effects // "," // rubber%memory_effect()
+      if (any(res%viscous_memory_ran)) then
+         call rubber%memory_effect(effect)
+         res%effects = res%effects // "," // effect
+      end if
       if (allocated(film)) then
-         if (any(res%bearing_ran) .or. any(res%friction_film_ran)) &
-            & res%effects = res%effects // "," // film%effect()
+         if (any(res%bearing_ran) .or. any(res%friction_film_ran)) then
+            call film%effect(effect)
+            res%effects = res%effects // "," // effect
+         end if
       end if
       call check_results(res, error)
    end subroutine simulate_fixed
@@ -996,9 +1002,26 @@ contains
    !> attribute says.
    pure function effects_text(res) result(text)
       type(sim_result_type), intent(in) :: res
-      character(len=:), allocatable :: text
-      text = res%effects
+      character(len=effects_text_len(res)) :: text
+      character(len=:), allocatable :: deferred_text
+      call effects_text_text(res, deferred_text)
+      text = deferred_text
    end function effects_text
+
+   !> The length of effects_text's text.
+   pure integer function effects_text_len(res)
+      type(sim_result_type), intent(in) :: res
+      character(len=:), allocatable :: deferred_text
+      call effects_text_text(res, deferred_text)
+      effects_text_len = len(deferred_text)
+   end function effects_text_len
+
+   !> The text of effects_text, into a deferred-length argument.
+   pure subroutine effects_text_text(res, text)
+      type(sim_result_type), intent(in) :: res
+      character(len=:), allocatable, intent(out) :: text
+      text = res%effects
+   end subroutine effects_text_text
 
    !> Per lane and element: c = h - z + u_free, the penetration at which the
    !> element starts to push (Eqs. 4, 8), its minimum over the pad, and d = c -
