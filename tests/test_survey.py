@@ -8,6 +8,8 @@ import sys
 import pytest
 import xarray as xr
 
+import pavefric
+
 from conftest import run_program
 from test_batch import same_contents
 from test_mpi_batch import mpirun
@@ -93,3 +95,22 @@ def test_merge_refuses_parts_that_do_not_belong_together(survey, tmp_path):
     assert r.returncode == 1 and "cannot read" in r.stderr and "all.nml" in r.stderr
     assert not (tmp_path / "m.nc").exists()
     assert not list(tmp_path.glob("m.nc.*"))          # no temporary left behind
+
+
+def test_parts_with_a_large_scene_merge_and_keep_it(survey, tmp_path):
+    """A scene beyond what an HDF5 attribute holds (a variable in each part)
+    stays whole through the merge."""
+    comment = "! a survey scene may carry long comments, line after line\n" * 1000
+    parts = []
+    for k, pattern in enumerate(["seg_000*.txt", "seg_001*.txt"]):
+        scene = survey / f"big{k}.nml"
+        scene.write_text(comment + SCENE.format(pattern=f"profiles/{pattern}"))
+        out = tmp_path / f"big{k}.nc"
+        assert run_program(scene, "-o", out).returncode in (0, 4)
+        parts.append(out)
+    merged = tmp_path / "merged.nc"
+    r = _merge(*parts, "-o", merged)
+    assert r.returncode == 0, r.stderr
+    ds = pavefric.open_dataset(merged)
+    assert ds.attrs["input_namelist"] == (survey / "big0.nml").read_text()
+    assert ds.sizes["profile"] == 19

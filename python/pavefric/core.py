@@ -629,6 +629,26 @@ def restore_long_attributes(ds):
     return ds
 
 
+# Texts longer than this (bytes) are stored as variables (LONG_TEXT_NOTE).
+LONG_TEXT_LIMIT = 16384
+
+
+def store_long_attributes(ds):
+    """The inverse of ``restore_long_attributes``, for Python's writers: each
+    global text attribute longer than LONG_TEXT_LIMIT becomes a character
+    variable of its name, the attribute saying where (the core's own
+    convention, src/pavefric_netcdf.f90). Returns a new dataset."""
+    ds = ds.copy()
+    for name, value in list(ds.attrs.items()):
+        if isinstance(value, str) and len(value.encode("utf-8")) > LONG_TEXT_LIMIT:
+            raw = np.frombuffer(value.encode("utf-8"), dtype="S1")
+            ds[name] = (f"{name}_strlen",), raw, {
+                "long_name": f"the global attribute {name}, too long for an attribute"}
+            ds[name].encoding = {"dtype": "S1"}
+            ds.attrs[name] = f"{LONG_TEXT_NOTE}{raw.size} characters"
+    return ds
+
+
 def open_dataset(path: str | os.PathLike):
     """Read a pavefric NetCDF output into memory as an ``xarray.Dataset``
     (long attributes restored: ``restore_long_attributes``)."""

@@ -90,7 +90,8 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     """
     import xarray as xr
 
-    from .core import PavefricError, check_output, restore_long_attributes
+    from .core import (PavefricError, check_output, restore_long_attributes,
+                       store_long_attributes)
 
     paths = [Path(p) for p in parts]
     if not paths:
@@ -169,7 +170,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
                                    dir=str(out.parent.resolve()))
         os.close(fd)
         try:
-            merged.to_netcdf(tmp, format="NETCDF4")
+            store_long_attributes(merged).to_netcdf(tmp, format="NETCDF4")
             os.replace(tmp, out)
         except BaseException:
             if os.path.exists(tmp):
