@@ -4,7 +4,7 @@
 !> which ones it has. Speeds are independent, so they run in parallel under
 !> OpenMP with results identical to a serial run.
 module pavefric_simulate
-   use, intrinsic :: iso_c_binding, only: c_long_long
+   use, intrinsic :: iso_c_binding, only: c_long_long, c_int
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
@@ -37,6 +37,11 @@ module pavefric_simulate
          import :: c_long_long
          integer(c_long_long) :: bytes
       end function c_physical_memory
+      !> 0 if this thread's OpenMP pool came through fork() (src/pavefric_files_lock.c).
+      function parallel_ok() bind(C, name="pavefric_parallel_ok") result(ok)
+         import :: c_int
+         integer(c_int) :: ok
+      end function parallel_ok
    end interface
 
    !> What a run will cost, known before it starts: printed by the program
@@ -367,7 +372,7 @@ contains
       type(speed_summary_type), allocatable :: summaries(:)
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
-      integer :: j, ns, stat, c, j0, j1, n_chunks, width
+      integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
       logical :: friction_film
       character(len=:), allocatable :: effect
 
@@ -423,7 +428,12 @@ contains
       !$ n_chunks = max(n_chunks, min(ns, omp_get_max_threads()))
       width = (ns + n_chunks - 1) / n_chunks
       n_chunks = (ns + width - 1) / width
-      !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries)
+      ! one thread on a thread whose OpenMP pool came through fork() (it
+      ! would wait for threads that are gone; src/pavefric_files_lock.c)
+      n_threads = 1
+      !$ if (parallel_ok() == 1) n_threads = omp_get_max_threads()
+      !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries) &
+      !$omp & num_threads(n_threads)
       do c = 1, n_chunks
          j0 = (c - 1) * width + 1
          j1 = min(ns, c * width)
