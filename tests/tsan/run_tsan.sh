@@ -32,17 +32,31 @@ gcc -g -O1 -fsanitize=thread -I"$root/src" -o "$work/check_api" "$root/tests/api
     exit 2
 log="$work/tsan.log"
 status=0
-TSAN_OPTIONS="halt_on_error=0 exitcode=0 history_size=4 log_path=$work/tsan" \
+TSAN_OPTIONS="halt_on_error=0 exitcode=0 history_size=4 second_deadlock_stack=1 log_path=$work/tsan" \
     "$work/check_api" stress "$threads" "$jobs" "$root/inputs/ctm_wet.nml" "$work" ||
     status=$?
 cat "$work"/tsan.* >"$log" 2>/dev/null || true
 reports=$(grep -c '^WARNING: ThreadSanitizer' "$log" || true)
-# a report counts when one of its frames is pavefric's (a symbol or a source file)
-ours=$(awk '/^WARNING: ThreadSanitizer/ {inrep=1; hit=0; next}
-            inrep && /pavefric/ {hit=1}
-            inrep && /^SUMMARY: ThreadSanitizer/ {if (hit) n++; inrep=0}
-            END {print n+0}' "$log")
-echo "run_tsan: check_api stress exit $status; ThreadSanitizer reports: $reports, in pavefric code: $ours"
+# A report counts when one of its frames is pavefric's (a symbol or a source
+# file) -- except a lock-order inversion between libgfortran's own mutexes
+# (every mutex in the cycle taken inside libgfortran: its global unit-table
+# lock and the per-unit locks, internal units for to_str's writes against
+# file units at a close; the per-unit mutexes live on the heap, and TSan
+# sees two units at one reused address as one mutex). Those are counted
+# and printed apart.
+read -r ours runtime < <(awk '
+    function finish() { if (inrep) { if (hit && !(inversion && only_runtime)) n++;
+                                      else if (inversion && only_runtime) r++ } inrep = 0 }
+    /^WARNING: ThreadSanitizer/ { finish(); inrep = 1; hit = 0;
+        inversion = /lock-order-inversion/; only_runtime = 1; want = 0; next }
+    !inrep { next }
+    /acquired here while holding/ { want = 1; next }
+    want && /#0 pthread_mutex_lock/ { next }
+    want && /#1 / { if ($0 !~ /libgfortran/) only_runtime = 0; want = 0 }
+    /pavefric/ { hit = 1 }
+    /^SUMMARY: ThreadSanitizer/ { finish() }
+    END { finish(); print n + 0, r + 0 }' "$log")
+echo "run_tsan: check_api stress exit $status; ThreadSanitizer reports: $reports, in pavefric code: $ours (lock-order inversions inside libgfortran: $runtime)"
 if [ "$ours" -gt 0 ] || [ "$status" -ne 0 ]; then
     cat "$log"
     exit 1
