@@ -51,15 +51,6 @@ module pavefric_api
       end function c_strlen
    end interface
 
-   ! Every call on a scene handle one at a time across threads
-   ! (src/pavefric_files_lock.c says why); a run's OpenMP threads are its own.
-   interface
-      subroutine api_lock() bind(C, name="pavefric_api_lock")
-      end subroutine api_lock
-      subroutine api_unlock() bind(C, name="pavefric_api_unlock")
-      end subroutine api_unlock
-   end interface
-
 contains
 
    ! --- version ---------------------------------------------------------------
@@ -176,9 +167,7 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. get_text(path, "scene file: the path", fpath, error)) return
       if (.not. new_scene(scene, error)) return
-      call api_lock()
       call load_session(fpath, scene%ptr, error%ptr)
-      call api_unlock()
       if (allocated(error%ptr)) then
          deallocate(scene)
          return
@@ -199,9 +188,7 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. get_text(text, "scene: the namelist text", ftext, error)) return
       if (.not. new_scene(scene, error)) return
-      call api_lock()
       call session_from_text(ftext, scene%ptr, error%ptr)
-      call api_unlock()
       if (allocated(error%ptr)) then
          deallocate(scene)
          return
@@ -264,9 +251,7 @@ contains
       if (.not. get_text(group, "pavefric_set_parameter: the group", fgroup, error)) return
       if (.not. get_text(name, "pavefric_set_parameter: the name", fname, error)) return
       if (.not. get_text(value, "pavefric_set_parameter: the value", fvalue, error)) return
-      call api_lock()
       call session_set_parameter(scene%ptr, fgroup, fname, fvalue, error%ptr)
-      call api_unlock()
    end subroutine set_parameter_api
 
    !> The value of `&group name` the scene uses, as namelist text
@@ -285,9 +270,7 @@ contains
       if (.not. open_scene(vscene, scene, error)) return
       if (.not. get_text(group, "pavefric_get_parameter: the group", fgroup, error)) return
       if (.not. get_text(name, "pavefric_get_parameter: the name", fname, error)) return
-      call api_lock()
       call session_get_parameter(scene%ptr, fgroup, fname, fvalue, error%ptr)
-      call api_unlock()
       if (allocated(error%ptr)) return
       call put_text(fvalue, buffer, buffer_size)
       length = clamp(len(fvalue))
@@ -320,9 +303,7 @@ contains
          return
       end if
       call c_f_pointer(heights_m, z, [n])
-      call api_lock()
       call session_set_profile(scene%ptr, z, real(dx_m, wp), closed == 1, error%ptr)
-      call api_unlock()
    end subroutine set_profile_api
 
    !> Run the model; mu[speed count] receives the scene-averaged friction per
@@ -335,9 +316,7 @@ contains
       real(c_double), pointer :: out(:)
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      call api_lock()
       call session_run(scene%ptr, error%ptr)
-      call api_unlock()
       if (allocated(error%ptr)) return
       if (.not. c_associated(mu)) return
       call c_f_pointer(mu, out, [size(scene%ptr%res%mu)])
@@ -390,10 +369,8 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
       if (.not. get_text(name, "pavefric_get_result_size: the name", fname, error)) return
-      call api_lock()
       n = clamp(session_result_size(scene%ptr, fname))
       if (n < 0) call session_get_result(scene%ptr, fname, none, error%ptr)
-      call api_unlock()
    end function get_result_size_api
 
    !> Values of result `name` of the last run into values[size] (size at
@@ -412,7 +389,6 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
       if (.not. get_text(name, "pavefric_get_result: the name", fname, error)) return
-      call api_lock()
       n = session_result_size(scene%ptr, fname)
       if (n <= 0) then
          ! the session names what is wrong
@@ -421,13 +397,10 @@ contains
             call session_get_result(scene%ptr, fname, none, error%ptr)
          end block
       end if
-      call api_unlock()
       if (n <= 0) return
       if (.not. room(values, size_, n, "result '" // fname // "'", error)) return
       call c_f_pointer(values, out, [n])
-      call api_lock()
       call session_get_result(scene%ptr, fname, out, error%ptr)
-      call api_unlock()
    end subroutine get_result_api
 
    !> The warnings about the scene and, after a run, its results (one a
@@ -444,9 +417,7 @@ contains
       length = 0
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      call api_lock()
       text = session_warnings(scene%ptr)
-      call api_unlock()
       call put_text(text, buffer, buffer_size)
       length = clamp(len(text))
    end function get_warnings_api
@@ -461,9 +432,7 @@ contains
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
       if (.not. get_text(path, "&output file: the path", fpath, error)) return
-      call api_lock()
       call session_write(scene%ptr, fpath, error%ptr)
-      call api_unlock()
    end subroutine write_output_api
 
    ! --- helpers ------------------------------------------------------------------

@@ -75,10 +75,10 @@ contains
 
    !> Where a batch writes: the override, the scene's &output file, or
    !> outputs/<scene name>.nc.
-   function batch_output_path(scene, output_override) result(out)
+   subroutine batch_output_path(scene, output_override, out)
       type(scene_type), intent(in) :: scene
       character(len=*), intent(in) :: output_override
-      character(len=:), allocatable :: out
+      character(len=:), allocatable, intent(out) :: out
       logical :: ok
       if (len_trim(output_override) > 0) then
          out = trim(output_override)
@@ -88,7 +88,7 @@ contains
          ok = make_directory("outputs")
          out = "outputs/" // scene%name // ".nc"
       end if
-   end function batch_output_path
+   end subroutine batch_output_path
 
    !> Read a batch scene and expand its profiles: everything but the journal
    !> (MPI ranks other than 0 stop here; rank 0 alone reads the journal).
@@ -123,7 +123,7 @@ contains
       batch%speeds = batch%scene%speeds_kmh
       batch%n_depths = size(batch%depths)
       batch%n_speeds = size(batch%speeds)
-      batch%output = batch_output_path(batch%scene, output_override)
+      call batch_output_path(batch%scene, output_override, batch%output)
       batch%journal = batch%output // ".journal"
       call check_batch_outputs(path, output_override, batch, error); if (allocated(error)) return
       batch%fingerprint = batch_fingerprint(batch)
@@ -408,13 +408,30 @@ contains
 
    pure function strip_extension(path) result(out)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: out
+      character(len=strip_extension_len(path)) :: out
+      character(len=:), allocatable :: deferred_text
+      call strip_extension_text(path, deferred_text)
+      out = deferred_text
+   end function strip_extension
+
+   !> The length of strip_extension's text.
+   pure integer function strip_extension_len(path)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: deferred_text
+      call strip_extension_text(path, deferred_text)
+      strip_extension_len = len(deferred_text)
+   end function strip_extension_len
+
+   !> The text of strip_extension, into a deferred-length argument.
+   pure subroutine strip_extension_text(path, out)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: out
       integer :: dot, slash
       out = path
       dot = index(path, ".", back=.true.)
       slash = index(path, "/", back=.true.)
       if (dot > slash + 1) out = path(1:dot-1)
-   end function strip_extension
+   end subroutine strip_extension_text
 
    !> Indices of two equal strings (i = 0 when all differ): a merge sort of
    !> the indices, then neighbours compared; n log n for long lists.
@@ -512,13 +529,30 @@ contains
    end function batch_fingerprint
 
    !> The journal's first line.
-   function journal_header(batch) result(line)
+   pure function journal_header(batch) result(line)
       type(batch_type), intent(in) :: batch
-      character(len=:), allocatable :: line
+      character(len=journal_header_len(batch)) :: line
+      character(len=:), allocatable :: deferred_text
+      call journal_header_text(batch, deferred_text)
+      line = deferred_text
+   end function journal_header
+
+   !> The length of journal_header's text.
+   pure integer function journal_header_len(batch)
+      type(batch_type), intent(in) :: batch
+      character(len=:), allocatable :: deferred_text
+      call journal_header_text(batch, deferred_text)
+      journal_header_len = len(deferred_text)
+   end function journal_header_len
+
+   !> The text of journal_header, into a deferred-length argument.
+   pure subroutine journal_header_text(batch, line)
+      type(batch_type), intent(in) :: batch
+      character(len=:), allocatable, intent(out) :: line
       line = journal_magic // " " // journal_version // " " // batch%fingerprint // " " // &
          & to_str(batch%n_profiles) // " " // to_str(batch%n_depths) // " " // &
          & to_str(batch%n_speeds)
-   end function journal_header
+   end subroutine journal_header_text
 
    !> A new journal (replacing any old one).
    subroutine journal_start(batch, error)
@@ -658,10 +692,11 @@ contains
 
    !> One journal line: `P <checksum> <digest> <values...> ;<message>`, the
    !> checksum the SHA-256 of everything after it.
-   function journal_line(batch, blk) result(line)
+   subroutine journal_line(batch, blk, line)
       type(batch_type), intent(in) :: batch
       type(block_type), intent(in) :: blk
-      character(len=:), allocatable :: line, body, message
+      character(len=:), allocatable, intent(out) :: line
+      character(len=:), allocatable :: body, message
       real(wp), allocatable :: values(:)
       integer, parameter :: w = 26
       integer :: k, nv
@@ -677,7 +712,7 @@ contains
       end do
       body(digest_len+nv*w+1:) = " ;" // message
       line = "P " // sha256_hex(body) // " " // body
-   end function journal_line
+   end subroutine journal_line
 
    !> Parse and check one journal line; `ok` false when any check fails.
    subroutine parse_line(batch, line, blk, ok)
@@ -734,7 +769,8 @@ contains
          batch%journal_unit = fd
          batch%journal_open = .true.
       end if
-      line = journal_line(batch, blk) // achar(10)
+      call journal_line(batch, blk, line)
+      line = line // achar(10)
       if (batch%journal_cut) line = achar(10) // line   ! end the line a kill cut short
       err = c_journal_write(int(batch%journal_unit, c_int), line, int(len(line), c_long))
       if (err /= 0) then

@@ -22,7 +22,7 @@ contains
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
-      tmp = temporary_name(path)
+      call temporary_name(path, tmp)
       call write_batch_file(tmp, batch, blocks, history, error)
       call commit_temporary(tmp, path, error)
    end subroutine write_batch_results

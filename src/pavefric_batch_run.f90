@@ -82,24 +82,42 @@ contains
    end subroutine progress_step
 
    !> The line saying what a resume took from the journal (empty if nothing).
-   function resume_note(batch) result(text)
+   pure function resume_note(batch) result(text)
       type(batch_type), intent(in) :: batch
-      character(len=:), allocatable :: text
+      character(len=resume_note_len(batch)) :: text
+      character(len=:), allocatable :: deferred_text
+      call resume_note_text(batch, deferred_text)
+      text = deferred_text
+   end function resume_note
+
+   !> The length of resume_note's text.
+   pure integer function resume_note_len(batch)
+      type(batch_type), intent(in) :: batch
+      character(len=:), allocatable :: deferred_text
+      call resume_note_text(batch, deferred_text)
+      resume_note_len = len(deferred_text)
+   end function resume_note_len
+
+   !> The text of resume_note, into a deferred-length argument.
+   pure subroutine resume_note_text(batch, text)
+      type(batch_type), intent(in) :: batch
+      character(len=:), allocatable, intent(out) :: text
       text = ""
-      if (batch%journal_taken > 0) call add("resuming: " // to_str(batch%journal_taken) // &
+      if (batch%journal_taken > 0) call add(text, "resuming: " // to_str(batch%journal_taken) // &
          & " of " // to_str(batch%n_profiles) // " profiles already done")
-      if (batch%journal_damaged > 0) call add(to_str(batch%journal_damaged) // &
+      if (batch%journal_damaged > 0) call add(text, to_str(batch%journal_damaged) // &
          & " damaged journal line(s) ignored (their profiles are recomputed)")
-      if (batch%journal_changed > 0) call add(to_str(batch%journal_changed) // &
+      if (batch%journal_changed > 0) call add(text, to_str(batch%journal_changed) // &
          & " profile file(s) changed since the journal (recomputed)")
       if (len(text) > 0) text = "pavefric batch: " // text
    contains
-      subroutine add(part)
+      pure subroutine add(text, part)
+         character(len=:), allocatable, intent(inout) :: text
          character(len=*), intent(in) :: part
          if (len(text) > 0) text = text // "; "
          text = text // part
       end subroutine add
-   end function resume_note
+   end subroutine resume_note_text
 
    !> The summary of a run that computed `computed` profiles.
    subroutine summarize(batch, blocks, computed, finished, s)

@@ -75,11 +75,13 @@ module pavefric_film
          class(film_model), intent(in) :: self
       end function flag_interface
 
-      pure function name_interface(self) result(name)
+      !> A name, into a deferred-length argument (not a function result:
+      !> gfortran keeps such a result's length in a static variable).
+      pure subroutine name_interface(self, name)
          import :: film_model
          class(film_model), intent(in) :: self
-         character(len=:), allocatable :: name
-      end function name_interface
+         character(len=:), allocatable, intent(out) :: name
+      end subroutine name_interface
    end interface
 
    !> The paper's hydrodynamic pseudo-bearing (Eqs. 13-15): an inclined-pad
@@ -209,11 +211,11 @@ contains
       bearing_changes_friction = .false.
    end function bearing_changes_friction
 
-   pure function bearing_effect(self) result(name)
+   pure subroutine bearing_effect(self, name)
       class(pseudo_bearing_film), intent(in) :: self
-      character(len=:), allocatable :: name
+      character(len=:), allocatable, intent(out) :: name
       name = "hydrodynamic_bearing"
-   end function bearing_effect
+   end subroutine bearing_effect
 
    !> Wet iff the water fills the valleys under the pad: the mean gap (the
    !> trapped water's volume per unit width over L) is below H_in (Sect. 3).

@@ -22,7 +22,24 @@ contains
    !> -0.00087), scientific otherwise (1.4e8, 1e-9).
    pure function real_to_str(x) result(s)
       real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
+      character(len=real_to_str_len(x)) :: s
+      character(len=:), allocatable :: deferred_text
+      call real_to_str_text(x, deferred_text)
+      s = deferred_text
+   end function real_to_str
+
+   !> The length of real_to_str's text.
+   pure integer function real_to_str_len(x)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: deferred_text
+      call real_to_str_text(x, deferred_text)
+      real_to_str_len = len(deferred_text)
+   end function real_to_str_len
+
+   !> The text of real_to_str, into a deferred-length argument.
+   pure subroutine real_to_str_text(x, s)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable, intent(out) :: s
       character(len=40) :: buf
       character(len=12) :: fmt
       character(len=:), allocatable :: digits
@@ -78,7 +95,7 @@ contains
          s = s // "e" // int_to_str(expo)
       end if
       if (x < 0.0_wp) s = "-" // s
-   end function real_to_str
+   end subroutine real_to_str_text
 
    !> ASCII letters in lower case.
    pure function to_lower(s) result(t)
@@ -94,30 +111,81 @@ contains
    !> A default integer as text.
    pure function int_to_str(i) result(s)
       integer, intent(in) :: i
-      character(len=:), allocatable :: s
+      character(len=int_to_str_len(i)) :: s
+      character(len=:), allocatable :: deferred_text
+      call int_to_str_text(i, deferred_text)
+      s = deferred_text
+   end function int_to_str
+
+   !> The length of int_to_str's text.
+   pure integer function int_to_str_len(i)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: deferred_text
+      call int_to_str_text(i, deferred_text)
+      int_to_str_len = len(deferred_text)
+   end function int_to_str_len
+
+   !> The text of int_to_str, into a deferred-length argument.
+   pure subroutine int_to_str_text(i, s)
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: s
       character(len=24) :: buf
       write(buf, '(i0)') i
       s = trim(buf)
-   end function int_to_str
+   end subroutine int_to_str_text
 
    !> A 64-bit integer as text.
    pure function int8_to_str(i) result(s)
       integer(i8), intent(in) :: i
-      character(len=:), allocatable :: s
+      character(len=int8_to_str_len(i)) :: s
+      character(len=:), allocatable :: deferred_text
+      call int8_to_str_text(i, deferred_text)
+      s = deferred_text
+   end function int8_to_str
+
+   !> The length of int8_to_str's text.
+   pure integer function int8_to_str_len(i)
+      integer(i8), intent(in) :: i
+      character(len=:), allocatable :: deferred_text
+      call int8_to_str_text(i, deferred_text)
+      int8_to_str_len = len(deferred_text)
+   end function int8_to_str_len
+
+   !> The text of int8_to_str, into a deferred-length argument.
+   pure subroutine int8_to_str_text(i, s)
+      integer(i8), intent(in) :: i
+      character(len=:), allocatable, intent(out) :: s
       character(len=24) :: buf
       write(buf, '(i0)') i
       s = trim(buf)
-   end function int8_to_str
+   end subroutine int8_to_str_text
 
    !> A logical as Fortran namelist text.
    pure function logical_to_str(b) result(s)
       logical, intent(in) :: b
-      character(len=:), allocatable :: s
+      character(len=logical_to_str_len(b)) :: s
+      character(len=:), allocatable :: deferred_text
+      call logical_to_str_text(b, deferred_text)
+      s = deferred_text
+   end function logical_to_str
+
+   !> The length of logical_to_str's text.
+   pure integer function logical_to_str_len(b)
+      logical, intent(in) :: b
+      character(len=:), allocatable :: deferred_text
+      call logical_to_str_text(b, deferred_text)
+      logical_to_str_len = len(deferred_text)
+   end function logical_to_str_len
+
+   !> The text of logical_to_str, into a deferred-length argument.
+   pure subroutine logical_to_str_text(b, s)
+      logical, intent(in) :: b
+      character(len=:), allocatable, intent(out) :: s
       if (b) then
          s = ".true."
       else
          s = ".false."
       end if
-   end function logical_to_str
+   end subroutine logical_to_str_text
 
 end module pavefric_format

@@ -60,12 +60,12 @@ module pavefric_fsys
          integer(c_int) :: stat
       end function c_file_id
       !> strerror into `buf` (src/pavefric_ncmem.c); the length written.
-      function c_strerror(err, buf, n) bind(C, name="pavefric_strerror") result(written)
+      pure subroutine c_strerror(err, buf, n, written) bind(C, name="pavefric_strerror_into")
          import :: c_int, c_char
          integer(c_int), value :: err, n
          character(kind=c_char), intent(out) :: buf(*)
-         integer(c_int) :: written
-      end function c_strerror
+         integer(c_int), intent(out) :: written
+      end subroutine c_strerror
       function c_realpath(path, out, outlen) bind(C, name="pavefric_realpath") result(need)
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -126,7 +126,24 @@ contains
    !> Directory part of a path ("." when there is none).
    pure function dir_name(path) result(dir)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: dir
+      character(len=dir_name_len(path)) :: dir
+      character(len=:), allocatable :: deferred_text
+      call dir_name_text(path, deferred_text)
+      dir = deferred_text
+   end function dir_name
+
+   !> The length of dir_name's text.
+   pure integer function dir_name_len(path)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: deferred_text
+      call dir_name_text(path, deferred_text)
+      dir_name_len = len(deferred_text)
+   end function dir_name_len
+
+   !> The text of dir_name, into a deferred-length argument.
+   pure subroutine dir_name_text(path, dir)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: dir
       integer :: pos
       pos = index(path, "/", back=.true.)
       if (pos == 0) then
@@ -136,17 +153,34 @@ contains
       else
          dir = path(1:pos-1)
       end if
-   end function dir_name
+   end subroutine dir_name_text
 
    !> File name without directory and without its last extension.
    pure function base_name(path) result(base)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: base
+      character(len=base_name_len(path)) :: base
+      character(len=:), allocatable :: deferred_text
+      call base_name_text(path, deferred_text)
+      base = deferred_text
+   end function base_name
+
+   !> The length of base_name's text.
+   pure integer function base_name_len(path)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: deferred_text
+      call base_name_text(path, deferred_text)
+      base_name_len = len(deferred_text)
+   end function base_name_len
+
+   !> The text of base_name, into a deferred-length argument.
+   pure subroutine base_name_text(path, base)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: base
       integer :: pos
       base = path(index(path, "/", back=.true.)+1:)
       pos = index(base, ".", back=.true.)
       if (pos > 1) base = base(1:pos-1)
-   end function base_name
+   end subroutine base_name_text
 
    !> Whether a path is absolute.
    pure function is_absolute(path) result(yes)
@@ -159,24 +193,58 @@ contains
    !> `path` relative to `dir`, unless it is absolute.
    pure function join_path(dir, path) result(full)
       character(len=*), intent(in) :: dir, path
-      character(len=:), allocatable :: full
+      character(len=join_path_len(dir, path)) :: full
+      character(len=:), allocatable :: deferred_text
+      call join_path_text(dir, path, deferred_text)
+      full = deferred_text
+   end function join_path
+
+   !> The length of join_path's text.
+   pure integer function join_path_len(dir, path)
+      character(len=*), intent(in) :: dir, path
+      character(len=:), allocatable :: deferred_text
+      call join_path_text(dir, path, deferred_text)
+      join_path_len = len(deferred_text)
+   end function join_path_len
+
+   !> The text of join_path, into a deferred-length argument.
+   pure subroutine join_path_text(dir, path, full)
+      character(len=*), intent(in) :: dir, path
+      character(len=:), allocatable, intent(out) :: full
       if (is_absolute(path) .or. dir == ".") then
          full = path
       else
          full = dir // "/" // path
       end if
-   end function join_path
+   end subroutine join_path_text
 
    !> The C library's text for an errno value.
-   function os_message(err) result(text)
+   pure function os_message(err) result(text)
       integer(c_int), intent(in) :: err
-      character(len=:), allocatable :: text
+      character(len=os_message_len(err)) :: text
+      character(len=:), allocatable :: deferred_text
+      call os_message_text(err, deferred_text)
+      text = deferred_text
+   end function os_message
+
+   !> The length of os_message's text.
+   pure integer function os_message_len(err)
+      integer(c_int), intent(in) :: err
+      character(len=:), allocatable :: deferred_text
+      call os_message_text(err, deferred_text)
+      os_message_len = len(deferred_text)
+   end function os_message_len
+
+   !> The text of os_message, into a deferred-length argument.
+   pure subroutine os_message_text(err, text)
+      integer(c_int), intent(in) :: err
+      character(len=:), allocatable, intent(out) :: text
       character(len=256) :: buf
       integer(c_int) :: n
       buf = ""
-      n = c_strerror(err, buf, int(len(buf), c_int))
+      call c_strerror(err, buf, int(len(buf), c_int), n)
       text = buf(1:max(0, min(int(n), len(buf))))
-   end function os_message
+   end subroutine os_message_text
 
    !> Refuse an output `path` that exists and is not a regular file (a
    !> directory, device, FIFO or socket: the temp-file-and-rename write would
@@ -218,7 +286,7 @@ contains
       stat = c_file_id(input // c_null_char, dev, ino, kind)
       if (stat /= 0 .or. kind == kind_missing) return
       if (dev /= guard%dev .or. ino /= guard%ino) return
-      where = canonical_path(input)
+      call canonical_path(input, where)
       if (len(where) > 0 .and. where /= input) then
          where = " (resolves to '" // where // "')"
       else
@@ -231,9 +299,9 @@ contains
 
    !> The canonical absolute path of an existing file (symbolic links, '.'
    !> and '..' resolved); empty if it cannot be resolved.
-   function canonical_path(path) result(full)
+   subroutine canonical_path(path, full)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: full
+      character(len=:), allocatable, intent(out) :: full
       integer(c_int) :: need
       integer :: stat
       allocate(character(len=4096) :: full, stat=stat)
@@ -256,7 +324,7 @@ contains
       else
          full = full(1:need)
       end if
-   end function canonical_path
+   end subroutine canonical_path
 
    !> Record `path` as a temporary file that a fatal signal (SIGTERM, SIGINT,
    !> SIGHUP) removes before the program dies; see `install_signal_cleanup`.
@@ -291,7 +359,24 @@ contains
    !> "-o 'x'" or "&output file = 'x'", the way messages name a setting.
    pure function setting(what, path) result(text)
       character(len=*), intent(in) :: what, path
-      character(len=:), allocatable :: text
+      character(len=setting_len(what, path)) :: text
+      character(len=:), allocatable :: deferred_text
+      call setting_text(what, path, deferred_text)
+      text = deferred_text
+   end function setting
+
+   !> The length of setting's text.
+   pure integer function setting_len(what, path)
+      character(len=*), intent(in) :: what, path
+      character(len=:), allocatable :: deferred_text
+      call setting_text(what, path, deferred_text)
+      setting_len = len(deferred_text)
+   end function setting_len
+
+   !> The text of setting, into a deferred-length argument.
+   pure subroutine setting_text(what, path, text)
+      character(len=*), intent(in) :: what, path
+      character(len=:), allocatable, intent(out) :: text
       if (len(what) > 0) then
          if (what(1:1) == "&") then
             text = what // " = '" // path // "'"
@@ -299,11 +384,28 @@ contains
          end if
       end if
       text = what // " '" // path // "'"
-   end function setting
+   end subroutine setting_text
 
    pure function kind_name(kind) result(name)
       integer, intent(in) :: kind
-      character(len=:), allocatable :: name
+      character(len=kind_name_len(kind)) :: name
+      character(len=:), allocatable :: deferred_text
+      call kind_name_text(kind, deferred_text)
+      name = deferred_text
+   end function kind_name
+
+   !> The length of kind_name's text.
+   pure integer function kind_name_len(kind)
+      integer, intent(in) :: kind
+      character(len=:), allocatable :: deferred_text
+      call kind_name_text(kind, deferred_text)
+      kind_name_len = len(deferred_text)
+   end function kind_name_len
+
+   !> The text of kind_name, into a deferred-length argument.
+   pure subroutine kind_name_text(kind, name)
+      integer, intent(in) :: kind
+      character(len=:), allocatable, intent(out) :: name
       select case (kind)
       case (2)
          name = "a directory"
@@ -318,6 +420,6 @@ contains
       case default
          name = "a special file"
       end select
-   end function kind_name
+   end subroutine kind_name_text
 
 end module pavefric_fsys

@@ -162,11 +162,11 @@ contains
       end do
    end subroutine update_kernel
 
-   pure function mx_memory_effect(self) result(name)
+   pure subroutine mx_memory_effect(self, name)
       class(maxwell_rubber), intent(in) :: self
-      character(len=:), allocatable :: name
+      character(len=:), allocatable, intent(out) :: name
       name = "viscous_memory"
-   end function mx_memory_effect
+   end subroutine mx_memory_effect
 
    !> The exact weights of one arm over a step of length dt = advance / V,
    !> given vt = V tau: r = dt/tau, e = exp(-r), g = (1 - e)/r, one_g = 1 - g,
@@ -250,7 +250,24 @@ contains
    !> max_log10_shift decades.
    pure function wlf_check(temperature, reference, c1, c2) result(why)
       real(wp), intent(in) :: temperature, reference, c1, c2
-      character(len=:), allocatable :: why
+      character(len=wlf_check_len(temperature, reference, c1, c2)) :: why
+      character(len=:), allocatable :: deferred_text
+      call wlf_check_text(temperature, reference, c1, c2, deferred_text)
+      why = deferred_text
+   end function wlf_check
+
+   !> The length of wlf_check's text.
+   pure integer function wlf_check_len(temperature, reference, c1, c2)
+      real(wp), intent(in) :: temperature, reference, c1, c2
+      character(len=:), allocatable :: deferred_text
+      call wlf_check_text(temperature, reference, c1, c2, deferred_text)
+      wlf_check_len = len(deferred_text)
+   end function wlf_check_len
+
+   !> The text of wlf_check, into a deferred-length argument.
+   pure subroutine wlf_check_text(temperature, reference, c1, c2, why)
+      real(wp), intent(in) :: temperature, reference, c1, c2
+      character(len=:), allocatable, intent(out) :: why
       real(wp) :: dt, log_at
       why = ""
       if (temperature == reference) return
@@ -261,6 +278,6 @@ contains
       end if
       log_at = -c1 * dt / (c2 + dt)
       if (.not. (abs(log_at) <= max_log10_shift)) why = "too far"
-   end function wlf_check
+   end subroutine wlf_check_text
 
 end module pavefric_maxwell

@@ -28,6 +28,15 @@ module pavefric_model
 
    integer, parameter :: shape_flat = 0, shape_rounded = 1
 
+   !> The values used, as a namelist that reproduces them (defaults
+   !> included); optional variables not set are left out. `groups`
+   !> (space-separated, optional) selects the groups; default all. Two
+   !> specifics: an explicit-length result cannot depend on an optional
+   !> argument.
+   interface parameters_namelist
+      module procedure :: parameters_namelist_all, parameters_namelist_groups
+   end interface parameters_namelist
+
    !> Kinds of value.
    integer, parameter :: kind_real = 1, kind_integer = 2, kind_logical = 3, kind_text = 4, &
       & kind_real_list = 5
@@ -844,7 +853,24 @@ contains
    !> 'must be finite and > 0', 'must be > 0 and < 90 degree' ...
    pure function range_text(spec) result(t)
       type(param_spec_type), intent(in) :: spec
-      character(len=:), allocatable :: t
+      character(len=range_text_len(spec)) :: t
+      character(len=:), allocatable :: deferred_text
+      call range_text_text(spec, deferred_text)
+      t = deferred_text
+   end function range_text
+
+   !> The length of range_text's text.
+   pure integer function range_text_len(spec)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable :: deferred_text
+      call range_text_text(spec, deferred_text)
+      range_text_len = len(deferred_text)
+   end function range_text_len
+
+   !> The text of range_text, into a deferred-length argument.
+   pure subroutine range_text_text(spec, t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable, intent(out) :: t
       character(len=:), allocatable :: unit
       unit = ""
       if (len(spec%unit) > 0 .and. spec%unit /= "1" .and. spec%unit /= "path") &
@@ -854,22 +880,57 @@ contains
       if (spec%upper < huge(1.0_wp)) t = t // " and " // &
          & trim(merge("< ", "<=", spec%upper_strict)) // " " // to_str(spec%upper)
       t = t // unit
-   end function range_text
+   end subroutine range_text_text
 
    pure function int_upper(spec) result(t)
       type(param_spec_type), intent(in) :: spec
-      character(len=:), allocatable :: t
+      character(len=int_upper_len(spec)) :: t
+      character(len=:), allocatable :: deferred_text
+      call int_upper_text(spec, deferred_text)
+      t = deferred_text
+   end function int_upper
+
+   !> The length of int_upper's text.
+   pure integer function int_upper_len(spec)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable :: deferred_text
+      call int_upper_text(spec, deferred_text)
+      int_upper_len = len(deferred_text)
+   end function int_upper_len
+
+   !> The text of int_upper, into a deferred-length argument.
+   pure subroutine int_upper_text(spec, t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable, intent(out) :: t
       if (spec%upper >= real(huge(1), wp)) then
          t = to_str(huge(1))
       else
          t = to_str(nint(spec%upper))
       end if
-   end function int_upper
+   end subroutine int_upper_text
 
    !> "'a', 'b' or 'c'" from "a b c".
    pure function choice_list(choices) result(t)
       character(len=*), intent(in) :: choices
-      character(len=:), allocatable :: t, rest
+      character(len=choice_list_len(choices)) :: t
+      character(len=:), allocatable :: deferred_text
+      call choice_list_text(choices, deferred_text)
+      t = deferred_text
+   end function choice_list
+
+   !> The length of choice_list's text.
+   pure integer function choice_list_len(choices)
+      character(len=*), intent(in) :: choices
+      character(len=:), allocatable :: deferred_text
+      call choice_list_text(choices, deferred_text)
+      choice_list_len = len(deferred_text)
+   end function choice_list_len
+
+   !> The text of choice_list, into a deferred-length argument.
+   pure subroutine choice_list_text(choices, t)
+      character(len=*), intent(in) :: choices
+      character(len=:), allocatable, intent(out) :: t
+      character(len=:), allocatable :: rest
       integer :: k, n, total
       total = 0
       rest = trim(adjustl(choices))
@@ -888,7 +949,7 @@ contains
          t = t // "'" // rest(1:k-1) // "'"
          rest = trim(adjustl(rest(k:)))
       end do
-   end function choice_list
+   end subroutine choice_list_text
 
    !> .true./.false./t/f/true/false/.t./.f. in any case.
    pure subroutine parse_logical(tok, b, stat)
@@ -945,7 +1006,26 @@ contains
    pure function where(path, line) result(t)
       character(len=*), intent(in) :: path
       integer, intent(in) :: line
-      character(len=:), allocatable :: t
+      character(len=where_len(path, line)) :: t
+      character(len=:), allocatable :: deferred_text
+      call where_text(path, line, deferred_text)
+      t = deferred_text
+   end function where
+
+   !> The length of where's text.
+   pure integer function where_len(path, line)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: line
+      character(len=:), allocatable :: deferred_text
+      call where_text(path, line, deferred_text)
+      where_len = len(deferred_text)
+   end function where_len
+
+   !> The text of where, into a deferred-length argument.
+   pure subroutine where_text(path, line, t)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: line
+      character(len=:), allocatable, intent(out) :: t
       if (len(path) == 0) then
          t = ""
       else if (line > 0) then
@@ -953,7 +1033,7 @@ contains
       else
          t = "in " // path // " "
       end if
-   end function where
+   end subroutine where_text
 
    ! --- the model -------------------------------------------------------------
 
@@ -1097,7 +1177,26 @@ contains
    pure function format_value(spec, value) result(t)
       type(param_spec_type), intent(in) :: spec
       type(param_value_type), intent(in) :: value
-      character(len=:), allocatable :: t
+      character(len=format_value_len(spec, value)) :: t
+      character(len=:), allocatable :: deferred_text
+      call format_value_text(spec, value, deferred_text)
+      t = deferred_text
+   end function format_value
+
+   !> The length of format_value's text.
+   pure integer function format_value_len(spec, value)
+      type(param_spec_type), intent(in) :: spec
+      type(param_value_type), intent(in) :: value
+      character(len=:), allocatable :: deferred_text
+      call format_value_text(spec, value, deferred_text)
+      format_value_len = len(deferred_text)
+   end function format_value_len
+
+   !> The text of format_value, into a deferred-length argument.
+   pure subroutine format_value_text(spec, value, t)
+      type(param_spec_type), intent(in) :: spec
+      type(param_value_type), intent(in) :: value
+      character(len=:), allocatable, intent(out) :: t
       integer :: k
       select case (spec%kind)
       case (kind_real)
@@ -1115,16 +1214,56 @@ contains
             t = t // to_str(value%list(k))
          end do
       end select
-   end function format_value
+   end subroutine format_value_text
 
    !> The values used, as a namelist that reproduces them (defaults
    !> included); optional variables not set are left out. `groups`
    !> (space-separated) selects the groups; default all.
-   pure function parameters_namelist(specs, set, groups) result(t)
+   pure function parameters_namelist_all(specs, set) result(t)
       type(param_spec_type), intent(in) :: specs(:)
       type(param_set_type), intent(in) :: set
+      character(len=parameters_namelist_all_len(specs, set)) :: t
+      character(len=:), allocatable :: deferred_text
+      call parameters_namelist_text(specs, set, deferred_text)
+      t = deferred_text
+   end function parameters_namelist_all
+
+   !> The length of parameters_namelist_all's text.
+   pure integer function parameters_namelist_all_len(specs, set)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(in) :: set
+      character(len=:), allocatable :: deferred_text
+      call parameters_namelist_text(specs, set, deferred_text)
+      parameters_namelist_all_len = len(deferred_text)
+   end function parameters_namelist_all_len
+
+   !> parameters_namelist with `groups` given.
+   pure function parameters_namelist_groups(specs, set, groups) result(t)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in) :: groups
+      character(len=parameters_namelist_groups_len(specs, set, groups)) :: t
+      character(len=:), allocatable :: deferred_text
+      call parameters_namelist_text(specs, set, deferred_text, groups)
+      t = deferred_text
+   end function parameters_namelist_groups
+
+   !> The length of parameters_namelist_groups's text.
+   pure integer function parameters_namelist_groups_len(specs, set, groups)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in) :: groups
+      character(len=:), allocatable :: deferred_text
+      call parameters_namelist_text(specs, set, deferred_text, groups)
+      parameters_namelist_groups_len = len(deferred_text)
+   end function parameters_namelist_groups_len
+
+   !> The text of parameters_namelist, into a deferred-length argument.
+   pure subroutine parameters_namelist_text(specs, set, t, groups)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(in) :: set
+      character(len=:), allocatable, intent(out) :: t
       character(len=*), intent(in), optional :: groups
-      character(len=:), allocatable :: t
       type(group_spec_type) :: gs(n_groups)
       integer :: g, k
       logical :: any_value
@@ -1146,18 +1285,35 @@ contains
          end do
          if (any_value) t = t // "&" // gs(g)%name // achar(10) // body // "/" // achar(10)
       end do
-   end function parameters_namelist
+   end subroutine parameters_namelist_text
 
    pure function doubled_quotes(s) result(t)
       character(len=*), intent(in) :: s
-      character(len=:), allocatable :: t
+      character(len=doubled_quotes_len(s)) :: t
+      character(len=:), allocatable :: deferred_text
+      call doubled_quotes_text(s, deferred_text)
+      t = deferred_text
+   end function doubled_quotes
+
+   !> The length of doubled_quotes's text.
+   pure integer function doubled_quotes_len(s)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: deferred_text
+      call doubled_quotes_text(s, deferred_text)
+      doubled_quotes_len = len(deferred_text)
+   end function doubled_quotes_len
+
+   !> The text of doubled_quotes, into a deferred-length argument.
+   pure subroutine doubled_quotes_text(s, t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable, intent(out) :: t
       integer :: k
       t = ""
       do k = 1, len(s)
          t = t // s(k:k)
          if (s(k:k) == "'") t = t // "'"
       end do
-   end function doubled_quotes
+   end subroutine doubled_quotes_text
 
    !> Warnings for values outside what a road, its water or a friction
    !> tester can be (the declarations' plausible ranges).
@@ -1204,12 +1360,34 @@ contains
       type(param_spec_type), intent(in) :: spec
       real(wp), intent(in) :: r
       character(len=*), intent(in) :: sub
-      character(len=:), allocatable :: line, unit
+      character(len=implausible_len(spec, r, sub)) :: line
+      character(len=:), allocatable :: deferred_text
+      call implausible_text(spec, r, sub, deferred_text)
+      line = deferred_text
+   end function implausible
+
+   !> The length of implausible's text.
+   pure integer function implausible_len(spec, r, sub)
+      type(param_spec_type), intent(in) :: spec
+      real(wp), intent(in) :: r
+      character(len=*), intent(in) :: sub
+      character(len=:), allocatable :: deferred_text
+      call implausible_text(spec, r, sub, deferred_text)
+      implausible_len = len(deferred_text)
+   end function implausible_len
+
+   !> The text of implausible, into a deferred-length argument.
+   pure subroutine implausible_text(spec, r, sub, line)
+      type(param_spec_type), intent(in) :: spec
+      real(wp), intent(in) :: r
+      character(len=*), intent(in) :: sub
+      character(len=:), allocatable, intent(out) :: line
+      character(len=:), allocatable :: unit
       unit = ""
       if (len(spec%unit) > 0 .and. spec%unit /= "1") unit = " " // spec%unit
       line = "&" // spec%group // " " // spec%name // sub // " = " // to_str(r) // unit // &
          & ": outside the plausible range [" // to_str(spec%plausible_lower) // ", " // &
          & to_str(spec%plausible_upper) // "]" // unit // " (" // spec%plausible_note // ")"
-   end function implausible
+   end subroutine implausible_text
 
 end module pavefric_model

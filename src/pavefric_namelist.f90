@@ -507,7 +507,26 @@ contains
    pure function visible(text, k) result(s)
       character(len=*), intent(in) :: text
       integer, intent(in) :: k
-      character(len=:), allocatable :: s
+      character(len=visible_len(text, k)) :: s
+      character(len=:), allocatable :: deferred_text
+      call visible_text(text, k, deferred_text)
+      s = deferred_text
+   end function visible
+
+   !> The length of visible's text.
+   pure integer function visible_len(text, k)
+      character(len=*), intent(in) :: text
+      integer, intent(in) :: k
+      character(len=:), allocatable :: deferred_text
+      call visible_text(text, k, deferred_text)
+      visible_len = len(deferred_text)
+   end function visible_len
+
+   !> The text of visible, into a deferred-length argument.
+   pure subroutine visible_text(text, k, s)
+      character(len=*), intent(in) :: text
+      integer, intent(in) :: k
+      character(len=:), allocatable, intent(out) :: s
       integer :: e
       e = index(text(k:), achar(10))
       if (e == 0) then
@@ -520,12 +539,29 @@ contains
       if (len(s) > 0) then
          if (s(len(s):len(s)) == achar(13)) s = s(1:len(s)-1)
       end if
-   end function visible
+   end subroutine visible_text
 
    !> Line breaks and runs of blanks as one blank; ends trimmed.
    pure function squeeze_blanks(s) result(t)
       character(len=*), intent(in) :: s
-      character(len=:), allocatable :: t
+      character(len=squeeze_blanks_len(s)) :: t
+      character(len=:), allocatable :: deferred_text
+      call squeeze_blanks_text(s, deferred_text)
+      t = deferred_text
+   end function squeeze_blanks
+
+   !> The length of squeeze_blanks's text.
+   pure integer function squeeze_blanks_len(s)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: deferred_text
+      call squeeze_blanks_text(s, deferred_text)
+      squeeze_blanks_len = len(deferred_text)
+   end function squeeze_blanks_len
+
+   !> The text of squeeze_blanks, into a deferred-length argument.
+   pure subroutine squeeze_blanks_text(s, t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable, intent(out) :: t
       character(len=:), allocatable :: buf    ! on the heap: s may be long
       integer :: k, n
       logical :: prev_blank
@@ -549,19 +585,38 @@ contains
          if (buf(n:n) == " ") n = n - 1
       end if
       t = buf(1:n)
-   end function squeeze_blanks
+   end subroutine squeeze_blanks_text
 
    !> "path:line: " for messages; nothing when the text has no file (keywords).
    pure function at(path, line) result(t)
       character(len=*), intent(in) :: path
       integer, intent(in) :: line
-      character(len=:), allocatable :: t
+      character(len=at_len(path, line)) :: t
+      character(len=:), allocatable :: deferred_text
+      call at_text(path, line, deferred_text)
+      t = deferred_text
+   end function at
+
+   !> The length of at's text.
+   pure integer function at_len(path, line)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: line
+      character(len=:), allocatable :: deferred_text
+      call at_text(path, line, deferred_text)
+      at_len = len(deferred_text)
+   end function at_len
+
+   !> The text of at, into a deferred-length argument.
+   pure subroutine at_text(path, line, t)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: line
+      character(len=:), allocatable, intent(out) :: t
       if (len(path) == 0) then
          t = ""
       else
          t = path // ":" // to_str(line) // ": "
       end if
-   end function at
+   end subroutine at_text
 
    pure subroutine grow_groups(a)
       type(nml_group_type), allocatable, intent(inout) :: a(:)

@@ -100,9 +100,24 @@ void pavefric_nc_close_to_file(int ncid, const char *path, int *nc_status, int *
  * its length (at most outlen). */
 int pavefric_strerror(int err, char *out, int outlen)
 {
-    const char *text = strerror(err);
+    /* strerror_r, not strerror: strerror may format unknown numbers into
+     * a static buffer, and API calls run on several threads at once */
+    char local[256];
+    const char *text = local;
+    local[0] = '\0';
+#if defined(__GLIBC__) && defined(_GNU_SOURCE)
+    text = strerror_r(err, local, sizeof local);
+#else
+    if (strerror_r(err, local, sizeof local) != 0) local[0] = '\0';
+#endif
     size_t n = strlen(text);
     if (n > (size_t)outlen) n = (size_t)outlen;
     memcpy(out, text, n);
     return (int)n;
+}
+
+/* pavefric_strerror as a subroutine (Fortran: pure, so os_message is) */
+void pavefric_strerror_into(int err, char *out, int outlen, int *written)
+{
+    *written = pavefric_strerror(err, out, outlen);
 }

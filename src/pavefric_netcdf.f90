@@ -220,12 +220,12 @@ contains
    !> The temporary name a final path is first written under. The name goes
    !> on the list of temporary files a fatal signal removes (in the
    !> program); `commit_temporary` takes it off.
-   function temporary_name(path) result(tmp)
+   subroutine temporary_name(path, tmp)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: tmp
+      character(len=:), allocatable, intent(out) :: tmp
       tmp = path // ".tmp" // to_str(process_id())
       call register_temporary(tmp)
-   end function temporary_name
+   end subroutine temporary_name
 
    !> Write `res` to `path` (NetCDF-4), via a temporary file and a rename.
    subroutine write_results(path, res, meta, error)
@@ -248,7 +248,7 @@ contains
          call guard%check_input(meta%profile_file, "the profile (&surface profile_file)", error)
          if (allocated(error)) return
       end if
-      tmp = temporary_name(path)
+      call temporary_name(path, tmp)
       call write_file(tmp, res, meta, error)
       call commit_temporary(tmp, path, error)
    end subroutine write_results

@@ -130,7 +130,24 @@ contains
    !> When variable k is written (docs/outputs.md), as output_present decides.
    pure function output_condition(k) result(text)
       integer, intent(in) :: k
-      character(len=:), allocatable :: text
+      character(len=output_condition_len(k)) :: text
+      character(len=:), allocatable :: deferred_text
+      call output_condition_text(k, deferred_text)
+      text = deferred_text
+   end function output_condition
+
+   !> The length of output_condition's text.
+   pure integer function output_condition_len(k)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: deferred_text
+      call output_condition_text(k, deferred_text)
+      output_condition_len = len(deferred_text)
+   end function output_condition_len
+
+   !> The text of output_condition, into a deferred-length argument.
+   pure subroutine output_condition_text(k, text)
+      integer, intent(in) :: k
+      character(len=:), allocatable, intent(out) :: text
       select case (k)
       case (12:14)
          text = "when the drainage film (&water wet_model = 'squeeze') ran at any speed"
@@ -143,7 +160,7 @@ contains
       case default
          text = "always"
       end select
-   end function output_condition
+   end subroutine output_condition_text
 
    !> Whether variable k is part of this run's results: series variables
    !> only with series, the squeeze film's only when it ran.

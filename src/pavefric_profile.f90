@@ -113,13 +113,32 @@ contains
    pure function point_location(raw, line) result(text)
       type(raw_profile_type), intent(in) :: raw
       integer, intent(in) :: line
-      character(len=:), allocatable :: text
+      character(len=point_location_len(raw, line)) :: text
+      character(len=:), allocatable :: deferred_text
+      call point_location_text(raw, line, deferred_text)
+      text = deferred_text
+   end function point_location
+
+   !> The length of point_location's text.
+   pure integer function point_location_len(raw, line)
+      type(raw_profile_type), intent(in) :: raw
+      integer, intent(in) :: line
+      character(len=:), allocatable :: deferred_text
+      call point_location_text(raw, line, deferred_text)
+      point_location_len = len(deferred_text)
+   end function point_location_len
+
+   !> The text of point_location, into a deferred-length argument.
+   pure subroutine point_location_text(raw, line, text)
+      type(raw_profile_type), intent(in) :: raw
+      integer, intent(in) :: line
+      character(len=:), allocatable, intent(out) :: text
       text = raw%path // ":" // to_str(line)
       if (allocated(raw%format)) then
          if (raw%format == "netcdf") text = raw%path // ", profile '" // raw%name // &
             & "', point " // to_str(line)
       end if
-   end function point_location
+   end subroutine point_location_text
 
    !> Metres per unit for a height unit name; 0 when unknown.
    pure function unit_factor(name) result(f)

@@ -801,20 +801,56 @@ contains
    end subroutine dim_length
 
    !> "path, profile 'name'" for messages.
-   function where(cat, i) result(text)
+   pure function where(cat, i) result(text)
       type(profile_catalog_type), intent(in) :: cat
       integer, intent(in) :: i
-      character(len=:), allocatable :: text
+      character(len=where_len(cat, i)) :: text
+      character(len=:), allocatable :: deferred_text
+      call where_text(cat, i, deferred_text)
+      text = deferred_text
+   end function where
+
+   !> The length of where's text.
+   pure integer function where_len(cat, i)
+      type(profile_catalog_type), intent(in) :: cat
+      integer, intent(in) :: i
+      character(len=:), allocatable :: deferred_text
+      call where_text(cat, i, deferred_text)
+      where_len = len(deferred_text)
+   end function where_len
+
+   !> The text of where, into a deferred-length argument.
+   pure subroutine where_text(cat, i, text)
+      type(profile_catalog_type), intent(in) :: cat
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: text
       text = cat%path // ", profile " // to_str(i)
       if (allocated(cat%names)) then
          if (allocated(cat%names(i)%s)) text = cat%path // ", profile '" // cat%names(i)%s // "'"
       end if
-   end function where
+   end subroutine where_text
 
    !> The first few names, for messages.
-   function some_names(cat) result(text)
+   pure function some_names(cat) result(text)
       type(profile_catalog_type), intent(in) :: cat
-      character(len=:), allocatable :: text
+      character(len=some_names_len(cat)) :: text
+      character(len=:), allocatable :: deferred_text
+      call some_names_text(cat, deferred_text)
+      text = deferred_text
+   end function some_names
+
+   !> The length of some_names's text.
+   pure integer function some_names_len(cat)
+      type(profile_catalog_type), intent(in) :: cat
+      character(len=:), allocatable :: deferred_text
+      call some_names_text(cat, deferred_text)
+      some_names_len = len(deferred_text)
+   end function some_names_len
+
+   !> The text of some_names, into a deferred-length argument.
+   pure subroutine some_names_text(cat, text)
+      type(profile_catalog_type), intent(in) :: cat
+      character(len=:), allocatable, intent(out) :: text
       integer :: k
       text = ""
       do k = 1, min(cat%n_profiles, 5)
@@ -822,7 +858,7 @@ contains
          text = text // "'" // cat%names(k)%s // "'"
       end do
       if (cat%n_profiles > 5) text = text // ", ..."
-   end function some_names
+   end subroutine some_names_text
 
    !> Check a netCDF status; on failure, an error naming the file and what
    !> was read, and the file closed.

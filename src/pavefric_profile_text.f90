@@ -47,7 +47,24 @@ contains
    !> the leading lines are examined.
    pure function detect_text_format(buf) result(format)
       character(len=*), intent(in) :: buf
-      character(len=:), allocatable :: format
+      character(len=detect_text_format_len(buf)) :: format
+      character(len=:), allocatable :: deferred_text
+      call detect_text_format_text(buf, deferred_text)
+      format = deferred_text
+   end function detect_text_format
+
+   !> The length of detect_text_format's text.
+   pure integer function detect_text_format_len(buf)
+      character(len=*), intent(in) :: buf
+      character(len=:), allocatable :: deferred_text
+      call detect_text_format_text(buf, deferred_text)
+      detect_text_format_len = len(deferred_text)
+   end function detect_text_format_len
+
+   !> The text of detect_text_format, into a deferred-length argument.
+   pure subroutine detect_text_format_text(buf, format)
+      character(len=*), intent(in) :: buf
+      character(len=:), allocatable, intent(out) :: format
       integer(i8) :: pos, ls, le, k, nb
       logical :: letter, first
       nb = len(buf, kind=i8)
@@ -88,7 +105,7 @@ contains
             end if
          end if
       end do
-   end function detect_text_format
+   end subroutine detect_text_format_text
 
    !> A plain profile: one column of heights, or two (distance, height),
    !> separated by blanks, tabs, ',' or ';'; values times `factor` metres.
@@ -503,7 +520,28 @@ contains
       character(len=*), intent(in) :: line
       character, intent(in) :: sep
       integer, intent(in) :: k
-      character(len=:), allocatable :: name
+      character(len=column_name_len(line, sep, k)) :: name
+      character(len=:), allocatable :: deferred_text
+      call column_name_text(line, sep, k, deferred_text)
+      name = deferred_text
+   end function column_name
+
+   !> The length of column_name's text.
+   pure integer function column_name_len(line, sep, k)
+      character(len=*), intent(in) :: line
+      character, intent(in) :: sep
+      integer, intent(in) :: k
+      character(len=:), allocatable :: deferred_text
+      call column_name_text(line, sep, k, deferred_text)
+      column_name_len = len(deferred_text)
+   end function column_name_len
+
+   !> The text of column_name, into a deferred-length argument.
+   pure subroutine column_name_text(line, sep, k, name)
+      character(len=*), intent(in) :: line
+      character, intent(in) :: sep
+      integer, intent(in) :: k
+      character(len=:), allocatable, intent(out) :: name
       integer(i8) :: fs, fe
       call field_bounds(line, 1_i8, len(line, kind=i8), sep, k, fs, fe)
       name = line(fs:fe)
@@ -511,7 +549,7 @@ contains
          if (name(1:1) == '"' .and. name(len(name):len(name)) == '"') &
             & name = trim(adjustl(name(2:len(name)-1)))
       end if
-   end function column_name
+   end subroutine column_name_text
 
    !> The unit a column name states: in parentheses or brackets ('Height
    !> (mm)', 'z [um]', 'Height (µm)') or as a suffix after the last '_'
@@ -634,13 +672,30 @@ contains
    !> A token for a message: at most quote_len characters.
    pure function quoted(tok) result(q)
       character(len=*), intent(in) :: tok
-      character(len=:), allocatable :: q
+      character(len=quoted_len(tok)) :: q
+      character(len=:), allocatable :: deferred_text
+      call quoted_text(tok, deferred_text)
+      q = deferred_text
+   end function quoted
+
+   !> The length of quoted's text.
+   pure integer function quoted_len(tok)
+      character(len=*), intent(in) :: tok
+      character(len=:), allocatable :: deferred_text
+      call quoted_text(tok, deferred_text)
+      quoted_len = len(deferred_text)
+   end function quoted_len
+
+   !> The text of quoted, into a deferred-length argument.
+   pure subroutine quoted_text(tok, q)
+      character(len=*), intent(in) :: tok
+      character(len=:), allocatable, intent(out) :: q
       if (len(tok) <= quote_len) then
          q = tok
       else
          q = tok(1:quote_len) // "..."
       end if
-   end function quoted
+   end subroutine quoted_text
 
    !> Copy the first n points into `raw` (exactly sized), or fail.
    subroutine finish(path, n, has_x, xs, zs, ok, lines, raw, error)

@@ -85,11 +85,13 @@ module pavefric_rubber
          real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       end subroutine update_interface
 
-      pure function name_interface(self) result(name)
+      !> A name, into a deferred-length argument (not a function result:
+      !> gfortran keeps such a result's length in a static variable).
+      pure subroutine name_interface(self, name)
          import :: rubber_model
          class(rubber_model), intent(in) :: self
-         character(len=:), allocatable :: name
-      end function name_interface
+         character(len=:), allocatable, intent(out) :: name
+      end subroutine name_interface
    end interface
 
    !> The paper's Kelvin-Voigt element p = K u + C du/dt, backward Euler.
@@ -178,10 +180,10 @@ contains
       end do
    end subroutine kv_update_kernel
 
-   pure function kv_memory_effect(self) result(name)
+   pure subroutine kv_memory_effect(self, name)
       class(kelvin_voigt_rubber), intent(in) :: self
-      character(len=:), allocatable :: name
+      character(len=:), allocatable, intent(out) :: name
       name = "viscous_memory"
-   end function kv_memory_effect
+   end subroutine kv_memory_effect
 
 end module pavefric_rubber

@@ -136,9 +136,26 @@ contains
    end subroutine load_scene_profile
 
    !> One line saying what preprocessing did.
-   function preprocess_summary(r) result(text)
+   pure function preprocess_summary(r) result(text)
       type(preprocess_report_type), intent(in) :: r
-      character(len=:), allocatable :: text
+      character(len=preprocess_summary_len(r)) :: text
+      character(len=:), allocatable :: deferred_text
+      call preprocess_summary_text(r, deferred_text)
+      text = deferred_text
+   end function preprocess_summary
+
+   !> The length of preprocess_summary's text.
+   pure integer function preprocess_summary_len(r)
+      type(preprocess_report_type), intent(in) :: r
+      character(len=:), allocatable :: deferred_text
+      call preprocess_summary_text(r, deferred_text)
+      preprocess_summary_len = len(deferred_text)
+   end function preprocess_summary_len
+
+   !> The text of preprocess_summary, into a deferred-length argument.
+   pure subroutine preprocess_summary_text(r, text)
+      type(preprocess_report_type), intent(in) :: r
+      character(len=:), allocatable, intent(out) :: text
       text = "format " // r%format // "; " // to_str(r%points_read) // " points read; " // &
          & to_str(r%trimmed_start) // " trimmed at the start and " // to_str(r%trimmed_end) // &
          & " at the end (reference plates); " // to_str(r%dropouts) // &
@@ -155,7 +172,7 @@ contains
          text = text // "not filtered; "
       end if
       text = text // to_str(r%points_out) // " points used"
-   end function preprocess_summary
+   end subroutine preprocess_summary_text
 
    !> Run the scene in `path`; write its NetCDF output to `output_override`
    !> when that is not empty, else to the namelist's &output file, else to
@@ -354,7 +371,7 @@ contains
       character(len=512) :: msg
       integer :: unit, ios
       logical :: ok
-      tmp = temporary_name(path)
+      call temporary_name(path, tmp)
       open(newunit=unit, file=tmp, status="replace", action="write", iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call release_temporary(tmp)
@@ -367,9 +384,10 @@ contains
       call release_temporary(tmp)
    end subroutine check_writable
 
-   !> Local time as ISO 8601.
+   !> Local time as ISO 8601 (a fixed length, not a deferred-length result:
+   !> gfortran keeps the length of those in a static variable).
    function timestamp() result(text)
-      character(len=:), allocatable :: text
+      character(len=25) :: text
       character(len=8) :: d
       character(len=10) :: t
       character(len=5) :: zone

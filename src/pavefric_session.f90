@@ -337,11 +337,13 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(output_var_type) :: table(n_outputs)
       integer :: k, n
+      character(len=:), allocatable :: known
       n = session_result_size(s, name)
       if (n < 0) then
          table = output_table()
+         call names(table, known)
          call fatal_error(error, "result '" // trim(name) // "': no such variable (known: " // &
-            & coordinate_names // names(table) // ")")
+            & coordinate_names // known // ")")
          return
       end if
       if (.not. s%has_results) then
@@ -374,15 +376,15 @@ contains
          end do
       end select
    contains
-      pure function names(t) result(list)
+      pure subroutine names(t, list)
          type(output_var_type), intent(in) :: t(:)
-         character(len=:), allocatable :: list
+         character(len=:), allocatable, intent(out) :: list
          integer :: j
          list = ""
          do j = 1, size(t)
             list = list // " " // t(j)%name
          end do
-      end function names
+      end subroutine names
    end subroutine session_get_result
 
    !> Write the last run's results to NetCDF file `path`, the program's file
@@ -413,13 +415,30 @@ contains
    !> The warnings about the scene and, after a run, its results (one a line).
    pure function session_warnings(s) result(text)
       type(session_type), intent(in) :: s
-      character(len=:), allocatable :: text
+      character(len=session_warnings_len(s)) :: text
+      character(len=:), allocatable :: deferred_text
+      call session_warnings_text(s, deferred_text)
+      text = deferred_text
+   end function session_warnings
+
+   !> The length of session_warnings's text.
+   pure integer function session_warnings_len(s)
+      type(session_type), intent(in) :: s
+      character(len=:), allocatable :: deferred_text
+      call session_warnings_text(s, deferred_text)
+      session_warnings_len = len(deferred_text)
+   end function session_warnings_len
+
+   !> The text of session_warnings, into a deferred-length argument.
+   pure subroutine session_warnings_text(s, text)
+      type(session_type), intent(in) :: s
+      character(len=:), allocatable, intent(out) :: text
       text = ""
       if (s%has_results) then
          if (allocated(s%meta%warnings)) text = s%meta%warnings
       else if (allocated(s%scene%warnings)) then
          text = s%scene%warnings
       end if
-   end function session_warnings
+   end subroutine session_warnings_text
 
 end module pavefric_session

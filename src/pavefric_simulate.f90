@@ -4,7 +4,7 @@
 !> which ones it has. Speeds are independent, so they run in parallel under
 !> OpenMP with results identical to a serial run.
 module pavefric_simulate
-   use, intrinsic :: iso_c_binding, only: c_long_long
+   use, intrinsic :: iso_c_binding, only: c_long_long, c_int
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
@@ -37,6 +37,11 @@ module pavefric_simulate
          import :: c_long_long
          integer(c_long_long) :: bytes
       end function c_physical_memory
+      !> 0 if this thread's OpenMP pool came through fork() (src/pavefric_files_lock.c).
+      function parallel_ok() bind(C, name="pavefric_parallel_ok") result(ok)
+         import :: c_int
+         integer(c_int) :: ok
+      end function parallel_ok
    end interface
 
    !> What a run will cost, known before it starts: printed by the program
@@ -367,8 +372,9 @@ contains
       type(speed_summary_type), allocatable :: summaries(:)
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
-      integer :: j, ns, stat, c, j0, j1, n_chunks, width
+      integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
       logical :: friction_film
+      character(len=:), allocatable :: effect
 
       res%warnings = ""
       res%effects = ""
@@ -422,7 +428,12 @@ contains
       !$ n_chunks = max(n_chunks, min(ns, omp_get_max_threads()))
       width = (ns + n_chunks - 1) / n_chunks
       n_chunks = (ns + width - 1) / width
-      !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries)
+      ! one thread on a thread whose OpenMP pool came through fork() (it
+      ! would wait for threads that are gone; src/pavefric_files_lock.c)
+      n_threads = 1
+      !$ if (parallel_ok() == 1) n_threads = omp_get_max_threads()
+      !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries) &
+      !$omp & num_threads(n_threads)
       do c = 1, n_chunks
          j0 = (c - 1) * width + 1
          j1 = min(ns, c * width)
@@ -469,10 +480,15 @@ contains
       end if
 
       res%effects = "elastic_contact,facet_friction"
-      if (any(res%viscous_memory_ran)) res%effects = res%effects // "," // rubber%memory_effect()
+      if (any(res%viscous_memory_ran)) then
+         call rubber%memory_effect(effect)
+         res%effects = res%effects // "," // effect
+      end if
       if (allocated(film)) then
-         if (any(res%bearing_ran) .or. any(res%friction_film_ran)) &
-            & res%effects = res%effects // "," // film%effect()
+         if (any(res%bearing_ran) .or. any(res%friction_film_ran)) then
+            call film%effect(effect)
+            res%effects = res%effects // "," // effect
+         end if
       end if
       call check_results(res, error)
    end subroutine simulate_fixed
@@ -996,9 +1012,26 @@ contains
    !> attribute says.
    pure function effects_text(res) result(text)
       type(sim_result_type), intent(in) :: res
-      character(len=:), allocatable :: text
-      text = res%effects
+      character(len=effects_text_len(res)) :: text
+      character(len=:), allocatable :: deferred_text
+      call effects_text_text(res, deferred_text)
+      text = deferred_text
    end function effects_text
+
+   !> The length of effects_text's text.
+   pure integer function effects_text_len(res)
+      type(sim_result_type), intent(in) :: res
+      character(len=:), allocatable :: deferred_text
+      call effects_text_text(res, deferred_text)
+      effects_text_len = len(deferred_text)
+   end function effects_text_len
+
+   !> The text of effects_text, into a deferred-length argument.
+   pure subroutine effects_text_text(res, text)
+      type(sim_result_type), intent(in) :: res
+      character(len=:), allocatable, intent(out) :: text
+      text = res%effects
+   end subroutine effects_text_text
 
    !> Per lane and element: c = h - z + u_free, the penetration at which the
    !> element starts to push (Eqs. 4, 8), its minimum over the pad, and d = c -

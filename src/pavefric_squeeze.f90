@@ -72,11 +72,11 @@ contains
       squeeze_changes_friction = .true.
    end function squeeze_changes_friction
 
-   pure function squeeze_effect(self) result(name)
+   pure subroutine squeeze_effect(self, name)
       class(squeeze_film), intent(in) :: self
-      character(len=:), allocatable :: name
+      character(len=:), allocatable, intent(out) :: name
       name = "squeeze_film"
-   end function squeeze_effect
+   end subroutine squeeze_effect
 
    !> One value per road sample: h**-2 (m**-2).
    pure integer function squeeze_state_size(self)

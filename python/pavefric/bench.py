@@ -190,6 +190,71 @@ def threads(log, tile: int = 64):
     return rows
 
 
+API_THREADS_CHILD = r"""
+import ctypes as C, json, pathlib, sys, threading, time
+import numpy as np, pavefric
+from pavefric.surfaces import spectral_profile
+lib = C.CDLL(str(pathlib.Path(pavefric.__file__).parent / "lib" / "libpavefric.so"))
+vp, dp = C.c_void_p, C.POINTER(C.c_double)
+for name, res, args in (("pavefric_new_error", vp, []), ("pavefric_new_scene", vp, [vp, C.c_char_p]),
+                        ("pavefric_set_profile", None, [vp, vp, C.c_int, dp, C.c_double, C.c_int]),
+                        ("pavefric_run", None, [vp, vp, dp]), ("pavefric_check_error", C.c_int, [vp])):
+    f = getattr(lib, name); f.restype = res; f.argtypes = args
+TEXT = b"&surface dx = 0.87e-3 / &water depth = DEPTH / &operation speeds_kmh = 20, 40, 60, 80 /"
+runs = []
+for seed, depth in ((22, b"1e-3"), (23, b"1e-3")):
+    z = np.ascontiguousarray(np.tile(spectral_profile(1024, 0.87e-3, rms=0.5e-3, seed=seed), TILE))
+    err = lib.pavefric_new_error()
+    scene = lib.pavefric_new_scene(err, TEXT.replace(b"DEPTH", depth))
+    lib.pavefric_set_profile(err, scene, z.size, z.ctypes.data_as(dp), 0.87e-3, 1)
+    assert not lib.pavefric_check_error(err)
+    runs.append((err, scene, z))
+cpu = {}
+def run(k, out, mode):
+    err, scene, _ = runs[k]
+    t0 = time.thread_time()
+    lib.pavefric_run(err, scene, out.ctypes.data_as(dp))
+    cpu[mode] = cpu.get(mode, 0.0) + time.thread_time() - t0
+    assert not lib.pavefric_check_error(err)
+serial_best = parallel_best = 1e9
+for _ in range(REPEATS):
+    a, b = np.zeros(4), np.zeros(4)
+    t0 = time.perf_counter(); run(0, a, "serial"); run(1, b, "serial")
+    serial_best = min(serial_best, time.perf_counter() - t0)
+    c, d = np.zeros(4), np.zeros(4)
+    threads = [threading.Thread(target=run, args=(k, o, "parallel")) for k, o in ((0, c), (1, d))]
+    t0 = time.perf_counter()
+    for t in threads: t.start()
+    for t in threads: t.join()
+    parallel_best = min(parallel_best, time.perf_counter() - t0)
+    same = a.tobytes() == c.tobytes() and b.tobytes() == d.tobytes()
+    if not same: break
+# CPU time of the runs (the threads' own clocks), the same whatever else the
+# machine does: equal in both modes when nothing in the library serialises
+print(json.dumps({"serial": serial_best, "parallel": parallel_best, "same": same,
+                  "cpu_serial": cpu["serial"], "cpu_parallel": cpu.get("parallel", 0.0)}))
+"""
+
+
+def api_threads(log, tile: int = 32, repeats: int = 5) -> dict:
+    """Issue 19: two scenes (two wet profiles of equal length, 4 speeds each) run on two
+    threads at once through the C API (ctypes, which lets go of the GIL),
+    against the same two one after the other; one OpenMP thread a run, the
+    best of `repeats` each."""
+    log(f"\n== C API: two scenes on two threads against one after the other "
+        f"({1024 * tile:,} points, 4 speeds, OMP_NUM_THREADS=1) ==")
+    code = API_THREADS_CHILD.replace("TILE", str(tile)).replace("REPEATS", str(repeats))
+    r = _child(code, env={"OMP_NUM_THREADS": "1"})
+    r["ratio"] = r["parallel"] / r["serial"]
+    r["cpu_ratio"] = r["cpu_parallel"] / r["cpu_serial"]
+    log(f"serial {r['serial']:.3f} s, two threads {r['parallel']:.3f} s: "
+        f"{r['ratio']:.2f}x the serial time (target <= 0.7x), identical results: {r['same']}; "
+        f"CPU time of the runs on two threads {r['cpu_ratio']:.2f}x that of the serial runs "
+        f"(the threads' own clocks: sharing the process costs the runs no extra work; the "
+        f"wall time also depends on how many cores are free)")
+    return r
+
+
 def mpi_batch(log, root: Path | None = None) -> dict:
     """Throughput of the demo batch's profiles with 1 and 2 MPI ranks (one
     OpenMP thread each), on a heavier sweep (8 speeds, 3 depths) so that the
@@ -525,6 +590,7 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
         "elements": scaling_elements(ref, log, points=4096 if quick else 8192),
         "length": scaling_length(log, largest),
         "threads": threads(log, tile=tile),
+        "api_threads": api_threads(log, tile=4 if quick else 32, repeats=1 if quick else 5),
         "mpi": mpi_batch(log),
         "reading": bench_io.reading(log, largest, small=min(largest, 1_000_000)),
         "batch": bench_mpi.run(log, quick=quick),

@@ -281,6 +281,14 @@ def _targets_now(results: dict) -> list[str]:
             f"on the {len(est)} test scenes the rates were not fitted on "
             f"({_span([r['ratio'] for r in fit], 1, '{:.2f}')} on the {len(fit)} training "
             f"scenes; the program, one thread) | — | — | {_met(worst <= 2)} |")
+    api = results.get("api_threads")
+    if api:
+        rows.append(
+            f"| issue 19: two scenes on two threads through the C API ≤ 0.7x the time of one "
+            f"after the other (2 cores) | {api['ratio']:.2f}x ({api['parallel']:.2f} s against "
+            f"{api['serial']:.2f} s; results identical: {api['same']}; the runs' CPU time "
+            f"{api.get('cpu_ratio', float('nan')):.2f}x the serial runs) | — | — | "
+            f"{_met(api['ratio'] <= 0.7 and api['same'])} |")
     rows += [
         "",
         "The plain loop is tests/plain_loop.f90: MODEL.md written the obvious way in "

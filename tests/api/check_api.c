@@ -17,6 +17,13 @@
  *       one scene handle per depth, run at once in as many threads, then
  *       one after the other; print "depth D: same|different" (handles are
  *       independent: no global state).
+ *   check_api stress THREADS JOBS [SCENE [DIR]]
+ *       JOBS small scenes from namelist text (each its own speeds, heights,
+ *       parameters), with set_parameter, get_parameter, two runs, a result
+ *       and the warnings each; every fifth job also loads SCENE, runs it at
+ *       30 km/h and writes DIR/stress_K.nc. Run on THREADS threads at once,
+ *       then serially; print "stress: T threads, N jobs, M same as serial"
+ *       and exit 1 unless every job's numbers and texts are the same bits.
  */
 #include <math.h>
 #include <pthread.h>
@@ -286,8 +293,144 @@ static int repeat(int argc, char **argv)
     return 0;
 }
 
+/* stress: many small scenes at once. Job k: a scene from namelist text
+ * (speeds and mu_loc of its own), synthetic heights of its own (a sum of
+ * sines, no file), then set_parameter / get_parameter / run twice, results
+ * and warnings read back; every job's record is compared with the serial
+ * run's, bit for bit. Jobs with `files` also load the scene file and write
+ * a NetCDF file (the files lock). */
+#define STRESS_SPEEDS 3
+#define STRESS_POINTS 250
+
+struct stress_job {
+    int k;
+    const char *scene_file, *dir;
+    double mu[2][STRESS_SPEEDS], compression[STRESS_SPEEDS], mu_file[64];
+    char depth[64], warnings[4096];
+    int ns_file, failed;
+    char message[512];
+};
+
+static void stress_job(struct stress_job *job)
+{
+    int k = job->k;
+    pavefric_error error = pavefric_new_error();
+    char text[512];
+    snprintf(text, sizeof text,
+             "&surface dx = 1e-3, mu_loc = %.2f / &water depth = %.1fe-3 / "
+             "&operation speeds_kmh = %d, %d, %d / &numerics tolerance = 1e-3 /",
+             0.45 + 0.01 * (k % 20), 0.1 * (k % 7), 10 + k % 5, 40 + k % 9, 70 + k % 11);
+    pavefric_scene scene = pavefric_new_scene(error, text);
+    double z[STRESS_POINTS];
+    for (int i = 0; i < STRESS_POINTS; i++)
+        z[i] = 1e-4 * (3.0 * sin(0.05 * i * (1 + k % 3)) + sin(0.31 * i + k) +
+                       0.5 * sin(1.7 * i + 0.3 * k));
+    if (!pavefric_check_error(error))
+        pavefric_set_profile(error, scene, STRESS_POINTS, z, 0.5e-3, 0);
+    if (!pavefric_check_error(error))
+        pavefric_run(error, scene, job->mu[0]);
+    char value[32];
+    snprintf(value, sizeof value, "%de-4", 2 + k % 9);
+    if (!pavefric_check_error(error))
+        pavefric_set_parameter(error, scene, "water", "depth", value);
+    if (!pavefric_check_error(error))
+        pavefric_get_parameter(error, scene, "water", "depth", job->depth, (int)sizeof job->depth);
+    if (!pavefric_check_error(error))
+        pavefric_run(error, scene, job->mu[1]);
+    if (!pavefric_check_error(error))
+        pavefric_get_result(error, scene, "max_compression", job->compression, STRESS_SPEEDS);
+    if (!pavefric_check_error(error))
+        pavefric_get_warnings(error, scene, job->warnings, (int)sizeof job->warnings);
+    if (!pavefric_check_error(error) && job->scene_file != NULL) {
+        pavefric_scene file_scene = pavefric_load_scene(error, job->scene_file);
+        job->ns_file = pavefric_get_speed_count(file_scene);
+        if (job->ns_file > 64)
+            job->ns_file = 64;
+        if (!pavefric_check_error(error))
+            pavefric_set_parameter(error, file_scene, "operation", "speeds_kmh", "30");
+        job->ns_file = pavefric_get_speed_count(file_scene);
+        if (!pavefric_check_error(error))
+            pavefric_run(error, file_scene, job->mu_file);
+        char path[4096];
+        snprintf(path, sizeof path, "%s/stress_%d.nc", job->dir, k);
+        if (!pavefric_check_error(error))
+            pavefric_write_output(error, file_scene, path);
+        pavefric_delete_scene(&file_scene);
+    }
+    job->failed = pavefric_check_error(error);
+    if (job->failed)
+        pavefric_get_error(error, job->message, (int)sizeof job->message);
+    pavefric_delete_scene(&scene);
+    pavefric_delete_error(&error);
+}
+
+struct stress_worker {
+    struct stress_job *jobs;
+    int first, step, n;
+};
+
+static void *stress_worker(void *arg)
+{
+    struct stress_worker *w = arg;
+    for (int k = w->first; k < w->n; k += w->step)
+        stress_job(&w->jobs[k]);
+    return NULL;
+}
+
+static int stress(int argc, char **argv)
+{
+    int nthreads = atoi(argv[2]), n = atoi(argv[3]);
+    const char *scene_file = argc > 4 ? argv[4] : NULL;
+    const char *dir = argc > 5 ? argv[5] : ".";
+    struct stress_job *serial = calloc(n, sizeof *serial), *parallel = calloc(n, sizeof *parallel);
+    struct stress_worker *workers = calloc(nthreads, sizeof *workers);
+    pthread_t *ids = calloc(nthreads, sizeof *ids);
+    for (int k = 0; k < n; k++) {
+        serial[k].k = parallel[k].k = k;
+        serial[k].dir = parallel[k].dir = dir;
+        /* one job in five also reads the scene file and writes NetCDF */
+        if (k % 5 == 0)
+            serial[k].scene_file = parallel[k].scene_file = scene_file;
+    }
+    for (int t = 0; t < nthreads; t++) {
+        workers[t] = (struct stress_worker){parallel, t, nthreads, n};
+        if (pthread_create(&ids[t], NULL, stress_worker, &workers[t]) != 0)
+            return 1;
+    }
+    for (int t = 0; t < nthreads; t++)
+        pthread_join(ids[t], NULL);
+    struct stress_worker one = {serial, 0, 1, n};
+    stress_worker(&one);
+    int same = 0;
+    for (int k = 0; k < n; k++) {
+        struct stress_job *a = &parallel[k], *b = &serial[k];
+        if (a->failed || b->failed) {
+            printf("job %d: failed: %s | %s\n", k, a->message, b->message);
+            continue;
+        }
+        int ok = memcmp(a->mu, b->mu, sizeof a->mu) == 0 && memcmp(a->compression, b->compression, sizeof a->compression) == 0 &&
+                 strcmp(a->depth, b->depth) == 0 && strcmp(a->warnings, b->warnings) == 0 &&
+                 a->ns_file == b->ns_file &&
+                 memcmp(a->mu_file, b->mu_file, sizeof a->mu_file) == 0;
+        if (ok)
+            same++;
+        else
+            printf("job %d: different (depth '%s' / '%s', mu %a / %a)\n", k, a->depth, b->depth,
+                   a->mu[1][0], b->mu[1][0]);
+    }
+    printf("stress: %d threads, %d jobs, %d same as serial; job 0 mu %a %a depth '%s'\n",
+           nthreads, n, same, serial[0].mu[0][0], serial[0].mu[1][0], serial[0].depth);
+    free(serial);
+    free(parallel);
+    free(workers);
+    free(ids);
+    return same == n ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc >= 4 && strcmp(argv[1], "stress") == 0)
+        return stress(argc, argv);
     if (argc >= 5 && strcmp(argv[1], "repeat") == 0)
         return repeat(argc, argv);
     if (argc >= 4 && strcmp(argv[1], "threads") == 0)
@@ -298,6 +441,7 @@ int main(int argc, char **argv)
         return bad(argv);
     fprintf(stderr, "usage: check_api dump SCENE OUTPUT.nc [HEIGHTS.bin DX CLOSED] | "
                     "check_api bad SCENE | check_api repeat SCENE OUTPUT.nc DEPTH... | "
-                    "check_api threads SCENE DEPTH...\n");
+                    "check_api threads SCENE DEPTH... | "
+                    "check_api stress THREADS JOBS [SCENE [DIR]]\n");
     return 2;
 }
