@@ -75,6 +75,7 @@ program pavefric_main
    call agree_error(error)                ! every rank ends alike
    if (allocated(error)) call fail(error%message)
    if (scene%is_batch) then
+      if (is_root()) call print_warnings(scene%warnings)   ! the scene's; profiles' at the end
       call run_batch_program(scene_path, out_override, command, max_profiles, summary, error)
       if (allocated(error)) call fail(error%message)
       if (is_root()) call report_batch()
@@ -100,7 +101,8 @@ contains
       character(len=:), allocatable :: counts
       counts = to_str(summary%total) // " profiles: " // to_str(summary%computed) // &
          & " computed in this run, " // to_str(summary%from_journal) // &
-         & " taken from the journal, " // to_str(summary%failed) // " failed"
+         & " taken from the journal, " // to_str(summary%failed) // " failed, " // &
+         & to_str(summary%warned) // " with warnings"
       if (summary%finished) then
          write(output_unit, '(a)') "pavefric " // pavefric_version // ": batch " // &
             & scene_path // " -> " // summary%output // ": " // counts
@@ -110,6 +112,18 @@ contains
          write(error_unit, '(a)') "pavefric: batch stopped before the end (--max-profiles " // &
             & to_str(max_profiles) // "); run it again to resume from its journal '" // &
             & summary%output // ".journal'"
+      end if
+      if (summary%warned > 0) then
+         do k = 1, size(summary%warned_profiles)
+            write(error_unit, '(a)') "pavefric: warning: profile " // summary%warned_profiles(k)%s
+         end do
+         if (summary%warned > size(summary%warned_profiles)) write(error_unit, '(a)') &
+            & "pavefric: warning: ... " // to_str(summary%warned - size(summary%warned_profiles)) &
+            & // " more profiles with warnings"
+         if (summary%finished) write(error_unit, '(a)') "pavefric: warning: " // &
+            & to_str(summary%warned) // " of " // to_str(summary%total) // " profiles have " // &
+            & "warnings (" // to_str(summary%warnings) // " in all: n_warnings and " // &
+            & "warning_message in " // summary%output // "); warnings leave the exit status as it is"
       end if
       if (summary%failed > 0) then
          do k = 1, size(summary%failures)
@@ -202,7 +216,7 @@ contains
          & "A scene with a &batch group runs many profiles into one NetCDF file;", &
          & "under mpirun the profiles are shared among the ranks (docs/cluster.md).", &
          & "A batch ends with a summary line: profiles computed, taken from the", &
-         & "journal of an earlier run, failed, and the output file.", &
+         & "journal of an earlier run, failed, with warnings, and the output file.", &
          & "", &
          & "Exit status (every MPI rank exits with the same):", &
          & "  0  success (a batch: every profile computed)", &
@@ -211,7 +225,9 @@ contains
          & "  2  bad usage (options)", &
          & "  3  a batch stopped early (--max-profiles); run it again to resume", &
          & "  4  a batch finished but some profiles failed: the output is written,", &
-         & "     its status and error_message variables say which and why"
+         & "     its status and error_message variables say which and why", &
+         & "Warnings (on stderr; a batch's per profile in n_warnings and", &
+         & "warning_message) do not change the exit status."
    end subroutine usage
 
 end program pavefric_main

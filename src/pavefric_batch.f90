@@ -16,11 +16,11 @@ module pavefric_batch
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_io
+   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
-   use pavefric_run, only: load_scene_profile
+   use pavefric_run, only: load_scene_profile, texture_warning, result_warnings
    use pavefric_profile, only: raw_profile_type, detect_format, open_profile_catalog, &
       & read_catalog_profile, unit_factor
    use pavefric_preprocess, only: clean_profile_type
@@ -33,6 +33,9 @@ module pavefric_batch
       & block_unpack, block_values, block_allocate, status_computed, status_failed, printable_utf8
    implicit none
    private
+
+   !> Warnings of a profile kept as text in its block (all are counted).
+   integer, parameter :: max_block_warnings = 5
 
    public :: batch_type, block_type, string_type, batch_setup, batch_prepare, batch_compute, &
       & journal_append, journal_close, block_pack, block_unpack, block_values, &
@@ -682,6 +685,7 @@ contains
       to%dx = from%dx
       to%viscous = from%viscous
       to%bearing = from%bearing
+      to%n_warnings = from%n_warnings
       call move_alloc(from%mu, to%mu)
       call move_alloc(from%wet, to%wet)
       call move_alloc(from%hydroplaning, to%hydroplaning)
@@ -704,7 +708,7 @@ contains
       allocate(values(nv))
       call block_pack(batch, blk, values)
       message = ""
-      if (allocated(blk%message)) message = replace_newlines(blk%message)
+      if (allocated(blk%message)) call escape_newlines(blk%message, message)
       allocate(character(len=digest_len + w * nv + 2 + len(message)) :: body)
       body(1:digest_len) = blk%digest
       do k = 1, nv
@@ -748,7 +752,7 @@ contains
       call block_allocate(batch, blk)
       call block_unpack(batch, values, blk, ok)
       if (.not. ok) return
-      blk%message = line(pos+2:)
+      call unescape_newlines(line(pos+2:), blk%message)
    end subroutine parse_line
 
    !> Append a finished profile to the journal: one line in one checked
@@ -791,16 +795,49 @@ contains
       if (err /= 0 .and. present(error)) call journal_error(batch, os_message(err), error)
    end subroutine journal_close
 
-   !> Line breaks (LF, CR) as blanks.
-   pure function replace_newlines(s) result(t)
+   !> A text on one journal line: a backslash doubled, a line feed as `\n`,
+   !> a carriage return as a blank (the inverse: unescape_newlines). A
+   !> subroutine, not a function: gfortran keeps the length of a
+   !> deferred-length function result in static storage (not thread-safe).
+   pure subroutine escape_newlines(s, t)
       character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
+      character(len=:), allocatable, intent(out) :: t
       integer :: i
-      t = s
-      do i = 1, len(t)
-         if (t(i:i) == achar(10) .or. t(i:i) == achar(13)) t(i:i) = " "
+      t = ""
+      do i = 1, len(s)
+         select case (iachar(s(i:i)))
+         case (92)
+            t = t // achar(92) // achar(92)
+         case (10)
+            t = t // achar(92) // "n"
+         case (13)
+            t = t // " "
+         case default
+            t = t // s(i:i)
+         end select
       end do
-   end function replace_newlines
+   end subroutine escape_newlines
+
+   pure subroutine unescape_newlines(s, t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable, intent(out) :: t
+      integer :: i
+      t = ""
+      i = 1
+      do while (i <= len(s))
+         if (s(i:i) == achar(92) .and. i < len(s)) then
+            if (s(i+1:i+1) == "n") then
+               t = t // achar(10)
+            else
+               t = t // s(i+1:i+1)
+            end if
+            i = i + 2
+         else
+            t = t // s(i:i)
+            i = i + 1
+         end if
+      end do
+   end subroutine unescape_newlines
 
    !> An estimate of profile i's cost for scheduling: its file's size in
    !> bytes (0 when unknown).
@@ -831,6 +868,8 @@ contains
       type(sim_result_type) :: res
       type(texture_type) :: tex
       type(error_type), allocatable :: error, texture_error
+      character(len=:), allocatable :: warnings
+      logical :: has_texture
       integer :: d, s
       blk%index = i
       blk%message = ""
@@ -858,6 +897,15 @@ contains
          blk%filtered = clean%report%filtered
          blk%dx_in = clean%report%dx_in
          blk%dx = clean%dx
+         ! the texture first: the wet model's regime warnings compare depth and MPD
+         call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., tex, &
+            & texture_error, dropout_fraction=clean%dropout_fraction, spike=clean%spike)
+         has_texture = .not. allocated(texture_error)
+         if (has_texture) has_texture = ieee_is_finite(tex%mpd) .and. &
+            & ieee_is_finite(tex%rms_height) .and. ieee_is_finite(tex%rms_slope)
+         ! the warnings a single scene of this profile records, at each depth
+         warnings = ""
+         call texture_warning(clean%z, warnings)
          do d = 1, batch%n_depths
             scene%model%depth = batch%depths(d)
             call simulate(scene%model, clean%z, clean%dx, scene%closed, batch%speeds, .false., &
@@ -870,6 +918,9 @@ contains
             blk%n_clamped(:, d) = real(res%n_clamped, wp)
             blk%viscous = blk%viscous .or. any(res%viscous_memory_ran)
             blk%bearing = blk%bearing .or. any(res%bearing_ran)
+            if (len(res%warnings) > 0) call add_warning(warnings, res%warnings)
+            call result_warnings(scene, res, has_texture, tex%mpd, " and water depth " // &
+               & to_str(batch%depths(d)) // " m", warnings)
             do s = 1, batch%n_speeds
                if (.not. (ieee_is_finite(res%mu(s)) .and. ieee_is_finite(res%wet_fraction(s)) &
                      & .and. ieee_is_finite(res%hydroplaning_fraction(s)) .and. &
@@ -892,17 +943,51 @@ contains
          return
       end if
       blk%status = status_computed
-      call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., tex, texture_error, &
-         & dropout_fraction=clean%dropout_fraction, spike=clean%spike)
-      blk%has_texture = .not. allocated(texture_error)
-      if (blk%has_texture) blk%has_texture = ieee_is_finite(tex%mpd) .and. &
-         & ieee_is_finite(tex%rms_height) .and. ieee_is_finite(tex%rms_slope)
+      call record_warnings(warnings, blk)
+      blk%has_texture = has_texture
       if (blk%has_texture) then
          blk%mpd = tex%mpd
          blk%rms_height = tex%rms_height
          blk%rms_slope = tex%rms_slope
       end if
    end subroutine batch_compute
+
+   !> A profile's warnings (lines) into its block: distinct lines, printable
+   !> UTF-8, counted; the first `max_block_warnings` kept as text, so that a
+   !> survey whose every profile warns at every depth and speed does not make
+   !> the output's warning_message column huge.
+   subroutine record_warnings(warnings, blk)
+      character(len=*), intent(in) :: warnings
+      type(block_type), intent(inout) :: blk
+      type(string_type), allocatable :: seen(:)
+      character(len=:), allocatable :: line
+      integer :: start, k, n, j
+      logical :: new
+      allocate(seen(0))
+      blk%n_warnings = 0
+      blk%message = ""
+      start = 1
+      n = len(warnings)
+      do while (start <= n)
+         k = index(warnings(start:), achar(10))
+         if (k == 0) k = n - start + 2
+         line = printable_utf8(warnings(start:start+k-2))
+         start = start + k
+         if (len_trim(line) == 0) cycle
+         new = .true.
+         do j = 1, size(seen)
+            if (seen(j)%s == line) new = .false.
+         end do
+         if (.not. new) cycle
+         seen = [seen, string_type(line)]
+         blk%n_warnings = blk%n_warnings + 1
+         if (blk%n_warnings > max_block_warnings) cycle
+         if (len(blk%message) > 0) blk%message = blk%message // achar(10)
+         blk%message = blk%message // line
+      end do
+      if (blk%n_warnings > max_block_warnings) blk%message = blk%message // achar(10) // &
+         & "... " // to_str(blk%n_warnings - max_block_warnings) // " more warnings (n_warnings)"
+   end subroutine record_warnings
 
    !> (files) Refuse a batch output or journal that is not a regular file, or
    !> that is the same file as an input: the scene, the profile list or any

@@ -39,13 +39,15 @@ contains
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      integer :: stat, d_p, d_d, d_s, d_name, d_msg, np, nd, ns, lname, lmsg, i, k
+      integer :: stat, d_p, d_d, d_s, d_name, d_msg, d_warn, np, nd, ns, lname, lmsg, lwarn, i, k
+      integer :: v_warn, v_nwarn
       integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
       integer, allocatable :: counts(:)
       logical, allocatable :: ok(:)
-      character(len=:), allocatable :: names(:), msgs(:)
+      character(len=:), allocatable :: names(:), msgs(:), warns(:)
+      logical :: failed
       character(len=:), allocatable :: effects, profile_coords, result_coords
       integer(i8), allocatable :: c(:,:,:)
       real(wp), parameter :: fill = nf90_fill_double
@@ -57,12 +59,20 @@ contains
       ns = batch%n_speeds
       lname = 1
       lmsg = 1
+      lwarn = 1
+      ! a block's message: why it failed, or the warnings of a computed profile
       do i = 1, np
          lname = max(lname, len(batch%names(i)%s))
-         if (allocated(blocks(i)%message)) lmsg = max(lmsg, len(blocks(i)%message))
+         if (.not. allocated(blocks(i)%message)) cycle
+         if (blocks(i)%status == status_failed) then
+            lmsg = max(lmsg, len(blocks(i)%message))
+         else
+            lwarn = max(lwarn, len(blocks(i)%message))
+         end if
       end do
       allocate(character(len=lname) :: names(np), stat=stat)
       if (stat == 0) allocate(character(len=lmsg) :: msgs(np), stat=stat)
+      if (stat == 0) allocate(character(len=lwarn) :: warns(np), stat=stat)
       if (stat /= 0) then                                    ! (files) stat_memory
          call fatal_error(error, "&output file: not enough memory to write '" // path // "'", &
             & stat_memory)
@@ -73,8 +83,12 @@ contains
          names(i) = repeat(achar(0), lname)
          names(i)(1:len(batch%names(i)%s)) = printable_utf8(batch%names(i)%s)
          msgs(i) = repeat(achar(0), lmsg)
-         if (allocated(blocks(i)%message)) msgs(i)(1:len(blocks(i)%message)) = &
-            & printable_utf8(blocks(i)%message)
+         warns(i) = repeat(achar(0), lwarn)
+         if (.not. allocated(blocks(i)%message)) cycle
+         failed = blocks(i)%status == status_failed
+         if (failed) msgs(i)(1:len(blocks(i)%message)) = printable_utf8(blocks(i)%message)
+         ! the warnings' line breaks are kept (printable_utf8 would blank them)
+         if (.not. failed) warns(i)(1:len(blocks(i)%message)) = blocks(i)%message
       end do
       ! profiles read (their preprocessing record is known), and computed
       ok = [(blocks(i)%status == status_computed, i = 1, np)]
@@ -92,6 +106,7 @@ contains
       call w%check(nf90_def_dim(w%ncid, "speed_kmh", ns, d_s), "dimension speed_kmh")
       call w%check(nf90_def_dim(w%ncid, "name_strlen", lname, d_name), "dimension name_strlen")
       call w%check(nf90_def_dim(w%ncid, "message_strlen", lmsg, d_msg), "dimension message_strlen")
+      call w%check(nf90_def_dim(w%ncid, "warning_strlen", lwarn, d_warn), "dimension warning_strlen")
       call w%def("profile", nf90_char, [d_name, d_p], "", "profile name: the file name " // &
          & "without directory and extension (the path below the profiles' common " // &
          & "directory when two files share a name)", v_name)
@@ -123,6 +138,14 @@ contains
       call w%check(nf90_put_att(w%ncid, v_status, "flag_meanings", "computed failed"), "flags")
       call w%def("error_message", nf90_char, [d_msg, d_p], "", "why a profile failed", v_err)
       call w%check(nf90_put_att(w%ncid, v_err, "_Encoding", "utf-8"), "encoding")
+      call w%def("n_warnings", nf90_int, [d_p], "1", "warnings about the profile and its " // &
+         & "results (distinct; those a scene of this profile alone records in its " // &
+         & "'warnings')", v_nwarn)
+      call w%def("warning_message", nf90_char, [d_warn, d_p], "", "the profile's warnings, " // &
+         & "one a line (the first 5; empty: none)", v_warn)
+      call w%check(nf90_put_att(w%ncid, v_warn, "_Encoding", "utf-8"), "encoding")
+      ! many profiles with the same warnings: compress their text
+      call w%check(nf90_def_var_deflate(w%ncid, v_warn, 0, 1, 1), "warning_message")
       ! the preprocessing record of each profile (as a scene file's preprocess_* attributes)
       call w%def("preprocess_points_read", nf90_int, [d_p], "1", "points read from the " // &
          & "profile file", v_pre(1))
@@ -169,6 +192,9 @@ contains
          do k = 1, 5
             call coordatt([v_mpd, v_rh, v_rs, v_status, v_err], k, profile_coords)
          end do
+         do k = 1, 2
+            call coordatt([v_nwarn, v_warn], k, profile_coords)
+         end do
       end if
       call w%gatt("Conventions", "CF-1.10")
       call w%gatt("title", "pavefric batch " // batch%scene%name)
@@ -179,9 +205,11 @@ contains
          & "Int. J. Pavement Eng., doi:10.1080/10298436.2017.1369776")
       call w%gatt("history", history)
       call w%gatt("effects", effects)
+      call w%gatt("warnings", batch%scene%warnings)
       call w%gatt("input_namelist", batch%scene%text)
       call w%gatt("profiles_computed", count(ok))
       call w%gatt("profiles_failed", count([(blocks(i)%status == status_failed, i = 1, np)]))
+      call w%gatt("profiles_with_warnings", count([(blocks(i)%n_warnings > 0, i = 1, np)]))
       if (allocated(w%error)) goto 99
       call w%check(nf90_enddef(w%ncid), "end of definitions")
       if (allocated(w%error)) goto 99
@@ -222,6 +250,9 @@ contains
       call w%check(nf90_put_var(w%ncid, v_rs, t), "rms_slope")
       call w%check(nf90_put_var(w%ncid, v_status, [(blocks(i)%status, i = 1, np)]), "status")
       call w%check(nf90_put_var(w%ncid, v_err, msgs), "error_message")
+      call w%check(nf90_put_var(w%ncid, v_warn, warns), "warning_message")
+      counts = [(blocks(i)%n_warnings, i = 1, np)]
+      call w%check(nf90_put_var(w%ncid, v_nwarn, counts), "n_warnings")
       ! the preprocessing record of the profiles that were read and run
       counts = [(merge(blocks(i)%points_read, ifill, ok(i)), i = 1, np)]
       call w%check(nf90_put_var(w%ncid, v_pre(1), counts), "preprocess_points_read")

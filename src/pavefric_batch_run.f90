@@ -31,6 +31,9 @@ module pavefric_batch_run
       !> Profiles in the batch, computed in this run, taken from the journal,
       !> still to compute, and failed (among all done).
       integer :: total = 0, computed = 0, from_journal = 0, left = 0, failed = 0
+      !> Computed profiles with warnings (recorded in the output's n_warnings
+      !> and warning_message), and those warnings counted.
+      integer :: warned = 0, warnings = 0
       !> Journal lines found damaged (recomputed), profiles changed since.
       integer :: damaged = 0, changed = 0
       !> Every profile is done and the output is written.
@@ -38,6 +41,8 @@ module pavefric_batch_run
       character(len=:), allocatable :: output
       !> "name: message" of the first failed profiles.
       type(string_type), allocatable :: failures(:)
+      !> "name: first warning" of the first profiles with warnings.
+      type(string_type), allocatable :: warned_profiles(:)
    end type batch_summary_type
 
 contains
@@ -126,7 +131,7 @@ contains
       integer, intent(in) :: computed
       logical, intent(in) :: finished
       type(batch_summary_type), intent(out) :: s
-      integer :: i, k
+      integer :: i, k, eol
       s%total = batch%n_profiles
       s%computed = computed
       s%from_journal = batch%journal_taken
@@ -143,6 +148,21 @@ contains
          if (blocks(i)%status /= status_failed) cycle
          k = k + 1
          s%failures(k)%s = batch%names(i)%s // ": " // blocks(i)%message
+      end do
+      s%warned = count([(blocks(i)%status /= status_failed .and. blocks(i)%n_warnings > 0, &
+         & i = 1, size(blocks))])
+      s%warnings = sum([(merge(blocks(i)%n_warnings, 0, blocks(i)%status /= status_failed), &
+         & i = 1, size(blocks))])
+      allocate(s%warned_profiles(min(s%warned, max_failures_listed)))
+      k = 0
+      do i = 1, size(blocks)
+         if (k == size(s%warned_profiles)) exit
+         if (blocks(i)%status == status_failed .or. blocks(i)%n_warnings == 0) cycle
+         k = k + 1
+         eol = index(blocks(i)%message // achar(10), achar(10))
+         s%warned_profiles(k)%s = batch%names(i)%s // ": " // blocks(i)%message(1:eol-1)
+         if (blocks(i)%n_warnings > 1) s%warned_profiles(k)%s = s%warned_profiles(k)%s // &
+            & " (and " // to_str(blocks(i)%n_warnings - 1) // " more)"
       end do
    end subroutine summarize
 

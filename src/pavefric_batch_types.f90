@@ -15,7 +15,7 @@ module pavefric_batch_types
    integer, parameter :: status_computed = 1, status_failed = 2
 
    !> Reals before the result arrays in a packed block (see block_pack).
-   integer, parameter :: n_head = 18
+   integer, parameter :: n_head = 19
 
    !> A string in an array of strings.
    type :: string_type
@@ -67,6 +67,11 @@ module pavefric_batch_types
       real(wp), allocatable :: mu(:,:), wet(:,:), hydroplaning(:,:), residual(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.
+      !> Warnings about the profile and its results (those a single scene of
+      !> it records), distinct lines counted.
+      integer :: n_warnings = 0
+      !> Failed: why. Computed: its warnings, one a line (the first
+      !> max_block_warnings of them), empty when there are none.
       character(len=:), allocatable :: message
    end type block_type
 
@@ -104,7 +109,8 @@ contains
          & blk%mpd, blk%rms_height, blk%rms_slope, flag(blk%viscous), flag(blk%bearing), &
          & real(blk%points_read, wp), real(blk%trimmed_start, wp), real(blk%trimmed_end, wp), &
          & real(blk%dropouts, wp), real(blk%spikes, wp), real(blk%points_used, wp), &
-         & flag(blk%resampled), flag(blk%filtered), blk%dx_in, blk%dx]
+         & flag(blk%resampled), flag(blk%filtered), blk%dx_in, blk%dx, &
+         & real(blk%n_warnings, wp)]
       k = n_head
       values(k+1:k+m) = reshape(blk%mu, [m]);           k = k + m
       values(k+1:k+m) = reshape(blk%wet, [m]);          k = k + m
@@ -136,7 +142,8 @@ contains
          & whole(values(2), 1.0_wp, 2.0_wp) .and. whole(values(3), 0.0_wp, 1.0_wp) .and. &
          & whole(values(7), 0.0_wp, 1.0_wp) .and. whole(values(8), 0.0_wp, 1.0_wp) .and. &
          & all([(whole(values(k), 0.0_wp, 2.0e9_wp), k = 9, 14)]) .and. &
-         & whole(values(15), 0.0_wp, 1.0_wp) .and. whole(values(16), 0.0_wp, 1.0_wp)
+         & whole(values(15), 0.0_wp, 1.0_wp) .and. whole(values(16), 0.0_wp, 1.0_wp) .and. &
+         & whole(values(19), 0.0_wp, 2.0e9_wp)
       if (present(valid)) valid = ok
       if (.not. ok) return
       blk%index = nint(values(1))
@@ -157,6 +164,7 @@ contains
       blk%filtered = values(16) > 0.5_wp
       blk%dx_in = values(17)
       blk%dx = values(18)
+      blk%n_warnings = nint(values(19))
       k = n_head
       blk%mu = reshape(values(k+1:k+m), [ns, nd]);           k = k + m
       blk%wet = reshape(values(k+1:k+m), [ns, nd]);          k = k + m

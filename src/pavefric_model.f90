@@ -26,6 +26,9 @@ module pavefric_model
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
    public :: n_parameters, n_groups
 
+   !> The smallest &numerics tolerance (> 0) a run can meet in double
+   !> precision: about 45 x machine epsilon, as mu's rounding is ~1e-15.
+   real(wp), parameter :: tolerance_floor = 1.0e-14_wp
    integer, parameter :: shape_flat = 0, shape_rounded = 1
 
    !> The values used, as a namelist that reproduces them (defaults
@@ -377,7 +380,8 @@ contains
          & "accuracy on demand: when > 0, the time step (substeps, from the value given) " // &
          & "is halved until every speed's estimated error (from its last two changes) is at " // &
          & "most this much; the output records the estimate (mu_error_estimate) and the " // &
-         & "substeps reached (substeps_used). 0: the knobs as given (docs/accuracy.md)", &
+         & "substeps reached (substeps_used). 0: the knobs as given; at least 1e-14 " // &
+         & "(below, double precision cannot meet it) (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
 
       ! &output
@@ -702,7 +706,7 @@ contains
          call fatal_error(error, label // tok%text // ": cannot be read as a number")
          return
       end if
-      call check_range(spec, v, label // to_str(v), error)
+      call check_range(spec, v, label // to_str(v), error, tok%text)
    end subroutine list_element
 
    !> The elements given for list `id` become its value; gaps are errors.
@@ -760,7 +764,7 @@ contains
                call fatal_error(error, label // shown // ": cannot be read as a number")
                return
             end if
-            call check_range(spec, r, label // to_str(r), error)
+            call check_range(spec, r, label // to_str(r), error, tok%text)
             if (allocated(error)) return
             if (spec%kind == kind_real) then
                value%r = r
@@ -825,12 +829,34 @@ contains
    end subroutine store_scalar
 
    !> Hard range check, with the message style of every range error.
-   pure subroutine check_range(spec, r, label, error)
+   pure subroutine check_range(spec, r, label, error, text)
       type(param_spec_type), intent(in) :: spec
       real(wp), intent(in) :: r
       character(len=*), intent(in) :: label
       type(error_type), allocatable, intent(out) :: error
+      !> The value as written: a nonzero number that underflowed is refused.
+      character(len=*), intent(in), optional :: text
       logical :: ok
+      integer :: k
+      if (present(text) .and. abs(r) < tiny(r)) then
+         ! 1e-400 reads as 0 (and 1e-310 as a subnormal, losing digits)
+         k = scan(text, "eEdD")
+         if (k == 0) k = len(text) + 1
+         if (scan(text(1:k-1), "123456789") > 0) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // " = " // &
+               & trim(text) // ": too small for double precision (it would be read as " // &
+               & to_str(r) // "; the smallest normal value is " // to_str(tiny(r)) // &
+               & "); write 0 or a larger value")
+            return
+         end if
+      end if
+      if (spec%group == "numerics" .and. spec%name == "tolerance" .and. r > 0.0_wp .and. &
+            & r < tolerance_floor) then
+         call fatal_error(error, label // ": below what double precision can meet (the " // &
+            & "rounding of mu alone is about 1e-15, and each halving of the time step " // &
+            & "doubles the run); use 0 (off) or a tolerance >= " // to_str(tolerance_floor))
+         return
+      end if
       ok = .not. ieee_is_nan(r) .and. abs(r) <= huge(r)
       if (ok) then
          if (spec%lower_strict) then

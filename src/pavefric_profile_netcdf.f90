@@ -12,15 +12,18 @@
 !> `chainage(profile)` (distance along the road). Units come from each
 !> variable's `units` (m, mm, um, km); a height or distance without units is
 !> in the scene's height_unit, like a text file. Packed heights
-!> (scale_factor, add_offset) are unpacked; _FillValue, missing_value, the
-!> netCDF default fill and NaN are dropouts; Inf is an error.
+!> (scale_factor, add_offset) of any numeric type are unpacked; _FillValue
+!> (else the type's netCDF default fill), every missing_value, values outside
+!> valid_min/valid_max/valid_range (all in packed units, as CF says) and NaN
+!> are dropouts; Inf is an error. Sizes and offsets are 64-bit (C calls
+!> where netcdf-fortran's are default integers).
 !>
 !> Every netCDF call is checked and its error names the file and what was
 !> read. A catalogue can stay open over many reads (a batch) or open and
 !> close the file on each.
 module pavefric_profile_netcdf
    use, intrinsic :: iso_c_binding, only: c_int, c_size_t, c_ptr, c_char, c_null_char, &
-      & c_f_pointer, c_associated
+      & c_f_pointer, c_associated, c_double
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use netcdf
    use pavefric_kinds, only: wp, i8
@@ -67,7 +70,13 @@ module pavefric_profile_netcdf
       !> Packing and missing values of `height`.
       real(wp) :: scale = 1.0_wp, offset = 0.0_wp
       logical :: has_fill = .false., has_missing = .false.
-      real(wp) :: fill = 0.0_wp, missing = 0.0_wp
+      real(wp) :: fill = 0.0_wp
+      !> Every value of `missing_value` (CF allows a vector).
+      real(wp), allocatable :: missing(:)
+      !> The valid range of the packed values (valid_min, valid_max or
+      !> valid_range); outside it a value is missing.
+      logical :: has_valid = .false.
+      real(wp) :: valid_min = -huge(1.0_wp), valid_max = huge(1.0_wp)
    end type profile_catalog_type
 
    interface
@@ -85,6 +94,21 @@ module pavefric_profile_netcdf
          type(c_ptr), intent(inout) :: strings(*)
          integer(c_int) :: status
       end function c_nc_free_string
+      function c_nc_inq_dimlen(ncid, dimid, length) bind(C, name="nc_inq_dimlen") &
+            & result(status)
+         import :: c_int, c_size_t
+         integer(c_int), value :: ncid, dimid
+         integer(c_size_t), intent(out) :: length
+         integer(c_int) :: status
+      end function c_nc_inq_dimlen
+      function c_nc_get_vara_double(ncid, varid, start, count, values) &
+            & bind(C, name="nc_get_vara_double") result(status)
+         import :: c_int, c_size_t, c_double
+         integer(c_int), value :: ncid, varid
+         integer(c_size_t), intent(in) :: start(*), count(*)
+         real(c_double), intent(out) :: values(*)
+         integer(c_int) :: status
+      end function c_nc_get_vara_double
       function c_strlen(s) bind(C, name="strlen") result(n)
          import :: c_ptr, c_size_t
          type(c_ptr), value :: s
@@ -95,6 +119,12 @@ module pavefric_profile_netcdf
    !> The netCDF library's default fill values (unwritten values).
    real(wp), parameter :: default_fill_double = 9.9692099683868690e36_wp
    real(wp), parameter :: default_fill_float = real(9.9692099683868690e36, wp)
+   !> ... of the integer types (netcdf.h NC_FILL_*); bytes have none that
+   !> readers must honour (the NetCDF User Guide: a byte's every value is data).
+   real(wp), parameter :: default_fill_short = -32767.0_wp, default_fill_int = -2147483647.0_wp, &
+      & default_fill_ushort = 65535.0_wp, default_fill_uint = 4294967295.0_wp, &
+      & default_fill_int64 = -9223372036854775806.0_wp, &
+      & default_fill_uint64 = 18446744073709551614.0_wp
 
 contains
 
@@ -243,18 +273,35 @@ contains
       if (cat%has_fill) call real_attribute(cat, cat%height_id, "_FillValue", cat%fill, error)
       if (allocated(error)) return
       if (.not. cat%has_fill) then
-         if (xtype == nf90_double) then
-            cat%has_fill = .true.
+         cat%has_fill = .true.
+         select case (xtype)
+         case (nf90_double)
             cat%fill = default_fill_double
-         else if (xtype == nf90_float) then
-            cat%has_fill = .true.
+         case (nf90_float)
             cat%fill = default_fill_float
-         end if
+         case (nf90_short)
+            cat%fill = default_fill_short
+         case (nf90_int)
+            cat%fill = default_fill_int
+         case (nf90_ushort)
+            cat%fill = default_fill_ushort
+         case (nf90_uint)
+            cat%fill = default_fill_uint
+         case (nf90_int64)
+            cat%fill = default_fill_int64
+         case (nf90_uint64)
+            cat%fill = default_fill_uint64
+         case default
+            cat%has_fill = .false.
+         end select
       end if
       cat%has_missing = nf90_inquire_attribute(ncid, cat%height_id, "missing_value") == &
          & nf90_noerr
       if (cat%has_missing) call real_attribute(cat, cat%height_id, "missing_value", &
-         & cat%missing, error)
+         & cat%fill, error, all_values=cat%missing)
+      if (allocated(error)) return
+      ! CF: values outside valid_min..valid_max (or valid_range) are missing
+      call valid_range(cat, error)
       if (allocated(error)) return
 
       ! spacing: distances, or dx
@@ -360,7 +407,8 @@ contains
       if (cat%has_chainage) raw%chainage = cat%chainage(i)
       n = cat%count(i)
       if (n > huge(1)) then
-         call fatal_error(error, where(cat, i) // ": more than " // to_str(huge(1)) // " points")
+         call fatal_error(error, where(cat, i) // ": holds " // to_str(n) // " points, more " // &
+            & "than " // to_str(huge(1)) // "; split the profile into shorter ones")
          call done()
          return
       end if
@@ -388,8 +436,10 @@ contains
       do k = 1, int(n)
          raw%line(k) = k
          v = z(k)
-         raw%valid(k) = .not. (ieee_is_nan(v) .or. (cat%has_fill .and. v == cat%fill) .or. &
-            & (cat%has_missing .and. v == cat%missing))
+         raw%valid(k) = .not. (ieee_is_nan(v) .or. (cat%has_fill .and. v == cat%fill))
+         if (raw%valid(k) .and. cat%has_missing) raw%valid(k) = .not. any(v == cat%missing)
+         if (raw%valid(k) .and. cat%has_valid) raw%valid(k) = v >= cat%valid_min .and. &
+            & v <= cat%valid_max
          if (.not. raw%valid(k)) then
             z(k) = 0.0_wp
             cycle
@@ -469,15 +519,21 @@ contains
       character(len=*), intent(in) :: what
       type(error_type), allocatable, intent(out) :: error
       integer :: status
+      integer(c_size_t) :: start(2), count(2)
+      ! the C call: 64-bit offsets (a ragged profile past 2^31 points); C's
+      ! dimension order is the reverse of Fortran's, ids count from 0
       if (ndims == 2) then
-         status = nf90_get_var(cat%ncid, varid, values, start=[1, i], &
-            & count=[size(values), 1])
+         start = [int(i - 1, c_size_t), 0_c_size_t]
+         count = [1_c_size_t, int(size(values), c_size_t)]
       else if (cat%layout == "ragged") then
-         status = nf90_get_var(cat%ncid, varid, values, start=[int(cat%first(i))], &
-            & count=[size(values)])
+         start(1) = int(cat%first(i) - 1, c_size_t)
+         count(1) = int(size(values), c_size_t)
       else
-         status = nf90_get_var(cat%ncid, varid, values, start=[1], count=[size(values)])
+         start(1) = 0
+         count(1) = int(size(values), c_size_t)
       end if
+      status = int(c_nc_get_vara_double(int(cat%ncid, c_int), int(varid - 1, c_int), start, &
+         & count, values))
       if (status /= nf90_noerr) call fatal_error(error, where(cat, i) // ": reading '" // &
          & what // "' failed (" // trim(nf90_strerror(status)) // ")", stat_io)
    end subroutine get_values
@@ -491,6 +547,10 @@ contains
       integer(i8), allocatable :: c(:)
       integer(i8) :: nsample, total
       integer :: k, st
+      character(len=nf90_max_name) :: name
+      call check(cat, nf90_inquire_variable(cat%ncid, count_id, name=name), "the count variable", &
+         & error)
+      if (allocated(error)) return
       call dim_length(cat, sample_dim, nsample, error)
       if (allocated(error)) return
       allocate(c(cat%n_profiles), cat%first(cat%n_profiles), cat%count(cat%n_profiles), stat=st)
@@ -508,13 +568,22 @@ contains
                & " (must be >= 0)", error)
             return
          end if
+         ! checked before adding: a sum past 2^63 would wrap and pass
+         if (c(k) > nsample - total) then
+            call fail(cat, "variable '" // trim(name) // "' (the ragged counts): profile " // &
+               & to_str(k) // " has count " // to_str(c(k)) // ", but only " // &
+               & to_str(nsample - total) // " of the " // to_str(nsample) // " points of " // &
+               & "'height' are left after profiles 1 to " // to_str(k - 1) // "; fix the " // &
+               & "counts so that they add up to the sample dimension", error)
+            return
+         end if
          cat%first(k) = total + 1
          cat%count(k) = c(k)
          total = total + c(k)
       end do
       if (total /= nsample) then
          call fail(cat, "the counts add up to " // to_str(total) // " points but 'height' has " &
-            & // to_str(nsample), error)
+            & // to_str(nsample) // " (variable '" // trim(name) // "')", error)
       end if
    end subroutine ragged_counts
 
@@ -566,7 +635,7 @@ contains
       integer, intent(in) :: profile_dim
       type(error_type), allocatable, intent(out) :: error
       integer :: nvars, k, varid, xtype, ndims, dimids(nf90_max_var_dims), st, len_chars
-      integer(i8) :: nchar
+      integer(i8) :: nchar, at
       character(len=:), allocatable :: text, chars
       type(c_ptr), allocatable :: ptrs(:)
       integer(c_size_t) :: start(1), count(1)
@@ -615,9 +684,15 @@ contains
          end block ok_char
          call dim_length(cat, dimids(1), nchar, error)
          if (allocated(error)) return
+         if (nchar > 65536) then
+            call fail(cat, "the profile names are " // to_str(nchar) // " characters " // &
+               & "long (at most 65536)", error)
+            return
+         end if
          len_chars = int(nchar)
-         ! all names in one read: (length, profile) in Fortran order
-         allocate(character(len=len_chars * cat%n_profiles) :: chars, stat=st)
+         ! all names in one read: (length, profile) in Fortran order; the
+         ! size in 64 bits (65,537 names of 32,768 characters pass 2^31)
+         allocate(character(len=int(len_chars, i8) * cat%n_profiles) :: chars, stat=st)
          if (st /= 0) then
             call fail(cat, "not enough memory for " // to_str(cat%n_profiles) // " names", &
                & error, stat_memory)
@@ -634,7 +709,8 @@ contains
          end if
          if (allocated(error)) return
          do k = 1, cat%n_profiles
-            text = chars((k - 1) * len_chars + 1:k * len_chars)
+            at = int(k - 1, i8) * len_chars
+            text = chars(at + 1:at + len_chars)
             m = index(text, c_null_char)
             if (m > 0) then
                cat%names(k)%s = trim(text(1:m-1))
@@ -764,12 +840,14 @@ contains
    end subroutine text_attribute
 
    !> A numeric attribute's (first) value, if present; else `value` stays.
-   subroutine real_attribute(cat, varid, name, value, error)
+   subroutine real_attribute(cat, varid, name, value, error, all_values)
       type(profile_catalog_type), intent(inout) :: cat
       integer, intent(in) :: varid
       character(len=*), intent(in) :: name
       real(wp), intent(inout) :: value
       type(error_type), allocatable, intent(out) :: error
+      !> Every value of the attribute (`value` is then left as it is).
+      real(wp), allocatable, intent(out), optional :: all_values(:)
       integer :: xtype, n
       real(wp), allocatable :: values(:)
       if (nf90_inquire_attribute(cat%ncid, varid, name, xtype=xtype, len=n) /= nf90_noerr) return
@@ -780,8 +858,47 @@ contains
       allocate(values(n))
       call check(cat, nf90_get_att(cat%ncid, varid, name, values), "attribute " // name, error)
       if (allocated(error)) return
+      if (present(all_values)) then
+         call move_alloc(values, all_values)
+         return
+      end if
       value = values(1)
    end subroutine real_attribute
+
+   !> The valid range of `height` (CF: valid_range, or valid_min and
+   !> valid_max, in the packed values' units).
+   subroutine valid_range(cat, error)
+      type(profile_catalog_type), intent(inout) :: cat
+      type(error_type), allocatable, intent(out) :: error
+      character(len=11), parameter :: names(3) = [character(len=11) :: "valid_range", &
+         & "valid_min", "valid_max"]
+      integer :: k
+      real(wp), allocatable :: values(:)
+      cat%has_valid = any([(nf90_inquire_attribute(cat%ncid, cat%height_id, trim(names(k))) == &
+         & nf90_noerr, k = 1, 3)])
+      if (nf90_inquire_attribute(cat%ncid, cat%height_id, "valid_range") == nf90_noerr) then
+         call real_attribute(cat, cat%height_id, "valid_range", cat%valid_min, error, &
+            & all_values=values)
+         if (allocated(error)) return
+         if (size(values) /= 2) then
+            call fail(cat, "variable 'height': valid_range has " // to_str(size(values)) // &
+               & " values (must be two: min and max)", error)
+            return
+         end if
+         cat%valid_min = values(1)
+         cat%valid_max = values(2)
+      else
+         call real_attribute(cat, cat%height_id, "valid_min", cat%valid_min, error)
+         if (allocated(error)) return
+         call real_attribute(cat, cat%height_id, "valid_max", cat%valid_max, error)
+         if (allocated(error)) return
+      end if
+      if (.not. cat%valid_min <= cat%valid_max) then
+         call fail(cat, "variable 'height': valid minimum " // to_str(cat%valid_min) // &
+            & " above valid maximum " // to_str(cat%valid_max) // "; fix valid_range " // &
+            & "(or valid_min, valid_max)", error)
+      end if
+   end subroutine valid_range
 
    !> Length of a dimension (profiles: sets n_profiles).
    subroutine dim_length(cat, dimid, n, error, profiles)
@@ -790,13 +907,28 @@ contains
       integer(i8), intent(out) :: n
       type(error_type), allocatable, intent(out) :: error
       logical, intent(in), optional :: profiles
-      integer :: length
+      integer(c_size_t) :: length
       n = 0
-      call check(cat, nf90_inquire_dimension(cat%ncid, dimid, len=length), "dimensions", error)
+      ! nc_inq_dimlen: nf90_inquire_dimension's default integer reads a
+      ! dimension of 2^32 + 2000 as 2000
+      call check(cat, int(c_nc_inq_dimlen(int(cat%ncid, c_int), int(dimid - 1, c_int), length)), &
+         & "dimensions", error)
       if (allocated(error)) return
-      n = length
+      if (length > int(huge(n), c_size_t)) then
+         call fail(cat, "a dimension of " // to_str(real(length, wp)) // " values is too " // &
+            & "long", error)
+         return
+      end if
+      n = int(length, i8)
       if (present(profiles)) then
-         if (profiles) cat%n_profiles = length
+         if (profiles) then
+            if (n > huge(1)) then
+               call fail(cat, "holds " // to_str(n) // " profiles, more than " // &
+                  & to_str(huge(1)) // " (split it into several files)", error)
+               return
+            end if
+            cat%n_profiles = int(n)
+         end if
       end if
    end subroutine dim_length
 

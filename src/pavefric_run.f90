@@ -25,6 +25,7 @@ module pavefric_run
    public :: run_scene, run_profile, load_scene_profile, ctm_dx, preprocess_summary, timestamp
    public :: scene_estimate, estimate_text, announce_interface
    public :: rms_plausible_low, rms_plausible_high, mu_plausible_high
+   public :: texture_warning, result_warnings
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
    real(wp), parameter :: ctm_dx = 0.87e-3_wp
@@ -255,7 +256,6 @@ contains
       type(output_metadata_type), intent(out) :: meta
       type(error_type), allocatable, intent(out) :: error
       type(error_type), allocatable :: texture_error
-      integer :: j
 
       call simulate(scene%model, clean%z, clean%dx, scene%closed, scene%speeds_kmh, &
          & scene%series, res, error)
@@ -289,17 +289,7 @@ contains
       if (allocated(texture_error)) meta%texture_note = texture_error%message
       ! What a road can be: the texture, and the results.
       call texture_warning(clean%z, meta%warnings)
-      do j = 1, size(res%mu)
-         if (res%max_compression(j) > res%thickness) call add_warning(meta%warnings, &
-            & "an element is compressed by " // to_str(res%max_compression(j)) // " m at " // &
-            & to_str(res%speed_kmh(j)) // " km/h, beyond the rubber thickness (&pad " // &
-            & "thickness = " // to_str(res%thickness) // " m); the linear model has no floor there")
-         if (res%mu(j) > mu_plausible_high) call add_warning(meta%warnings, "mu = " // &
-            & to_str(res%mu(j)) // " at " // to_str(res%speed_kmh(j)) // " km/h: above " // &
-            & "what any road gives (" // to_str(mu_plausible_high) // "); check &surface " // &
-            & "mu_loc and the profile's units")
-      end do
-      call bearing_regime_warning(scene, res, meta)
+      call result_warnings(scene, res, meta%has_texture, meta%texture%mpd, "", meta%warnings)
       if (meta%has_texture) then
          meta%ifi = ifi_from_sweep(res%speed_kmh, res%mu, meta%texture%mpd)
       else
@@ -307,34 +297,63 @@ contains
       end if
    end subroutine run_profile
 
+   !> The warnings about a run's results that every interface records (a
+   !> scene's `warnings`, a batch's `warning_message` per profile): an element
+   !> compressed beyond the rubber, a friction no road gives, the wet model
+   !> outside its regime. `where` follows the speed in the text (a batch's
+   !> water depth); `mpd` is used when `has_texture`.
+   subroutine result_warnings(scene, res, has_texture, mpd, where, warnings)
+      type(scene_type), intent(in) :: scene
+      type(sim_result_type), intent(in) :: res
+      logical, intent(in) :: has_texture
+      real(wp), intent(in) :: mpd
+      character(len=*), intent(in) :: where
+      character(len=:), allocatable, intent(inout) :: warnings
+      integer :: j
+      do j = 1, size(res%mu)
+         if (res%max_compression(j) > res%thickness) call add_warning(warnings, &
+            & "an element is compressed by " // to_str(res%max_compression(j)) // " m at " // &
+            & to_str(res%speed_kmh(j)) // " km/h" // where // ", beyond the rubber thickness " // &
+            & "(&pad thickness = " // to_str(res%thickness) // " m); the linear model has no " // &
+            & "floor there")
+         if (res%mu(j) > mu_plausible_high) call add_warning(warnings, "mu = " // &
+            & to_str(res%mu(j)) // " at " // to_str(res%speed_kmh(j)) // " km/h" // where // &
+            & ": above what any road gives (" // to_str(mu_plausible_high) // "); check " // &
+            & "&surface mu_loc and the profile's units")
+      end do
+      call bearing_regime_warning(scene, res, has_texture, mpd, warnings)
+   end subroutine result_warnings
+
    !> The paper's wet model (wet_model = 'kane2017') outside the regime where
    !> its answer means what it says (docs/model.md, "Where Eq. 15 misleads"):
    !> a film far thinner than the texture that still carries load (friction
    !> then jumps as depth -> 0 instead of returning to the dry value), and
    !> water deeper than twice the texture (Eq. 15's wedge load falls as the
    !> inlet film grows, so friction rises back toward dry with more water).
-   subroutine bearing_regime_warning(scene, res, meta)
+   subroutine bearing_regime_warning(scene, res, has_texture, mpd, warnings)
       type(scene_type), intent(in) :: scene
       type(sim_result_type), intent(in) :: res
-      type(output_metadata_type), intent(inout) :: meta
+      logical, intent(in) :: has_texture
+      real(wp), intent(in) :: mpd
+      character(len=:), allocatable, intent(inout) :: warnings
       real(wp) :: depth, texture
       depth = scene%model%depth
       if (.not. depth > 0.0_wp .or. scene%model%wet_model /= "kane2017") return
       if (.not. any(res%wet_fraction > 0.0_wp)) return
-      if (meta%has_texture) then
-         texture = meta%texture%mpd
+      if (has_texture) then
+         texture = mpd
       else
          texture = 0.0_wp
       end if
       if (.not. texture > 0.0_wp) return
       if (depth < thin_film_share * texture) then
-         call add_warning(meta%warnings, "&water depth = " // to_str(depth) // " m, under " // &
+         call add_warning(warnings, "&water depth = " // to_str(depth) // " m, under " // &
             & to_str(thin_film_share) // " of the texture depth (MPD " // to_str(texture) // &
             & " m), still carried load with wet_model = 'kane2017' (the film closes under " // &
             & "the pad, Eq. 15): the paper's model jumps as the depth goes to 0 instead of " // &
             & "returning to the dry friction (docs/model.md); wet_model = 'squeeze' does not")
       else if (depth > deep_water_ratio * texture) then
-         call add_warning(meta%warnings, "&water depth = " // to_str(depth) // " m is more " // &
+         call add_warning(warnings, "&water depth = " // to_str(depth) // " m is more " // &
             & "than " // to_str(deep_water_ratio) // " x the texture depth (MPD " // &
             & to_str(texture) // " m): with wet_model = 'kane2017' the bearing's load (Eq. 15)" // &
             & " falls as the water deepens, so friction rises back toward dry (docs/model.md);" // &

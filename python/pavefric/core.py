@@ -561,24 +561,39 @@ def _run_batch(path: str, output: str, command: str, progress: bool | None) -> P
 
 
 def _warn_failed_profiles(path: str, out: Path) -> None:
-    """A ProfilesFailedWarning naming the failed profiles, if any."""
+    """A ProfilesFailedWarning naming the failed profiles, if any; then a
+    PavefricWarning for each of the scene's own warnings and one naming the
+    profiles with warnings (n_warnings, warning_message), if any."""
     import warnings
 
     import xarray as xr
 
     with xr.open_dataset(out, engine="netcdf4") as ds:
-        if int(ds.attrs.get("profiles_failed", 0)) == 0:
-            return
-        bad = np.flatnonzero(ds["status"].values == 2)
-        names = [str(v) for v in ds["profile"].values[bad]]
-        messages = [str(v) for v in ds["error_message"].values[bad]]
         total = ds.sizes["profile"]
-    failed = dict(zip(names, messages))
-    shown = "; ".join(f"{n}: {m}" for n, m in list(failed.items())[:5])
-    more = f"; ... {len(failed) - 5} more" if len(failed) > 5 else ""
-    warnings.warn(ProfilesFailedWarning(
-        f"batch {path}: {len(failed)} of {total} profiles failed (status = 2 and "
-        f"error_message in {out}): {shown}{more}", out, failed), stacklevel=4)
+        bad = np.flatnonzero(ds["status"].values == 2)
+        failed = {str(ds["profile"].values[i]): str(ds["error_message"].values[i]) for i in bad}
+        scene_warnings = str(ds.attrs.get("warnings", "")).splitlines()
+        warned, first, n_all = np.zeros(0, dtype=int), [], 0
+        if "n_warnings" in ds.variables:
+            warned = np.flatnonzero(ds["n_warnings"].values > 0)
+            first = [f"{ds['profile'].values[i]}: "
+                     f"{str(ds['warning_message'].values[i]).splitlines()[0]}"
+                     for i in warned[:3]]
+            n_all = int(ds["n_warnings"].values.sum())
+    if failed:
+        shown = "; ".join(f"{n}: {m}" for n, m in list(failed.items())[:5])
+        more = f"; ... {len(failed) - 5} more" if len(failed) > 5 else ""
+        warnings.warn(ProfilesFailedWarning(
+            f"batch {path}: {len(failed)} of {total} profiles failed (status = 2 and "
+            f"error_message in {out}): {shown}{more}", out, failed), stacklevel=4)
+    for line in scene_warnings:
+        warnings.warn(PavefricWarning(line), stacklevel=4)
+    if warned.size:
+        more = f"; ... {warned.size - 3} more" if warned.size > 3 else ""
+        warnings.warn(PavefricWarning(
+            f"batch {path}: {warned.size} of {total} profiles have warnings ({n_all} in all; "
+            f"n_warnings and warning_message in {out}): {'; '.join(first)}{more}"),
+            stacklevel=4)
 
 
 class _ProgressBar:

@@ -236,11 +236,19 @@ def outputs_markdown() -> str:
         "| `preprocessing`, `preprocess_*` | what preprocessing did to the profile, in "
         "a sentence and as numbers (docs/profiles.md) |",
         "",
+        "A text attribute longer than 32 KiB (a scene with long comments, many "
+        "warnings) is stored as a character variable of the same name with the "
+        "attribute `pavefric_global_attribute`, since HDF5 cannot hold an attribute "
+        "over 64 KiB; `pavefric.open_dataset` returns it among the attributes, so "
+        "`ds.attrs[\"input_namelist\"]` is the scene whatever its size (batch "
+        "files alike).",
+        "",
         "## Batch files",
         "",
         "A batch scene (`&batch`) writes one file over many profiles with dimensions "
         "`(profile, water_depth, speed_kmh)`, per-profile `status` and "
-        "`error_message`, and `chainage` when the profile list gives it: "
+        "`error_message`, `n_warnings` and `warning_message` (the warnings a scene "
+        "of the profile alone records), and `chainage` when the profile list gives it: "
         "docs/cluster.md.",
         "",
         "Read a file with `pavefric.open(path)`, `xarray.open_dataset(path)` or "

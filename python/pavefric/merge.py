@@ -21,8 +21,8 @@ import numpy as np
 
 # global attributes that differ from part to part by nature
 _PER_PART = {"history", "title", "input_namelist", "profiles_computed", "profiles_failed",
-             "date_created"}
-_COUNTS = ("profiles_computed", "profiles_failed")
+             "profiles_with_warnings", "date_created"}
+_COUNTS = ("profiles_computed", "profiles_failed", "profiles_with_warnings")
 
 
 class MergeError(ValueError):
@@ -105,14 +105,15 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     except PavefricError as exc:
         raise MergeError(f"merge: {exc}") from None
 
-    sets = []
+    sets, opened = [], []
     try:
         for p in paths:
             try:
-                sets.append(restore_long_attributes(
-                    xr.open_dataset(p, mask_and_scale=False, decode_times=False)))
+                ds = xr.open_dataset(p, mask_and_scale=False, decode_times=False)
             except (OSError, ValueError) as exc:
                 raise MergeError(f"merge: cannot read '{p}' as NetCDF ({exc})") from None
+            opened.append(ds)
+            sets.append(restore_long_attributes(ds))  # a long scene is a variable, not an attribute
         first = sets[0]
         for p, ds in zip(paths, sets):
             if "profile" not in ds.dims:
@@ -177,7 +178,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
                 os.unlink(tmp)
             raise
     finally:
-        for ds in sets:
+        for ds in opened:
             ds.close()
     return out
 
