@@ -22,7 +22,7 @@ module pavefric_batch
    use pavefric_scene, only: scene_type, read_scene, read_text_file
    use pavefric_run, only: load_scene_profile, texture_warning, result_warnings
    use pavefric_profile, only: raw_profile_type, detect_format, open_profile_catalog, &
-      & read_catalog_profile, unit_factor
+      & read_catalog_profile, unit_factor, profile_label_type, first_duplicate_label
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_texture, only: texture_type, texture_metrics
@@ -436,50 +436,18 @@ contains
       if (dot > slash + 1) out = path(1:dot-1)
    end subroutine strip_extension_text
 
-   !> Indices of two equal strings (i = 0 when all differ): a merge sort of
-   !> the indices, then neighbours compared; n log n for long lists.
+   !> Indices of two equal names (i = 0 when all differ), as
+   !> `first_duplicate_label` finds them.
    subroutine first_duplicate(s, i, j)
       type(string_type), intent(in) :: s(:)
       integer, intent(out) :: i, j
-      integer, allocatable :: order(:), work(:)
-      integer :: k, n
-      n = size(s)
-      i = 0
-      j = 0
-      allocate(order(n), work(n))
-      order = [(k, k = 1, n)]
-      call sort(1, n)
-      do k = 1, n - 1
-         if (s(order(k))%s == s(order(k+1))%s .and. &
-               & len(s(order(k))%s) == len(s(order(k+1))%s)) then
-            i = order(k)
-            j = order(k+1)
-            return
-         end if
+      type(profile_label_type), allocatable :: labels(:)
+      integer :: k
+      allocate(labels(size(s)))
+      do k = 1, size(s)
+         labels(k)%s = s(k)%s
       end do
-   contains
-      recursive subroutine sort(lo, hi)
-         integer, intent(in) :: lo, hi
-         integer :: mid, a, b, k
-         if (hi <= lo) return
-         mid = (lo + hi) / 2
-         call sort(lo, mid)
-         call sort(mid + 1, hi)
-         a = lo
-         b = mid + 1
-         do k = lo, hi
-            if (b > hi) then
-               work(k) = order(a); a = a + 1
-            else if (a > mid) then
-               work(k) = order(b); b = b + 1
-            else if (.not. llt(s(order(b))%s, s(order(a))%s)) then
-               work(k) = order(a); a = a + 1
-            else
-               work(k) = order(b); b = b + 1
-            end if
-         end do
-         order(lo:hi) = work(lo:hi)
-      end subroutine sort
+      call first_duplicate_label(labels, i, j)
    end subroutine first_duplicate
 
    !> SHA-256 of what a journal must agree with besides the profiles'

@@ -14,6 +14,7 @@ module pavefric_fsys
       & join_path, is_absolute
    public :: output_guard_type, check_output_path, canonical_path, os_message
    public :: register_temporary, release_temporary, install_signal_cleanup, test_pause
+   public :: remove_stale_temporaries
 
    !> Kinds of file (pavefric_file_id in pavefric_posix.c).
    integer, parameter :: kind_missing = 0, kind_regular = 1
@@ -86,6 +87,12 @@ module pavefric_fsys
          import :: c_int
          integer(c_int) :: stat
       end function c_install_cleanup
+      function c_remove_stale(path) bind(C, name="pavefric_remove_stale_temporaries") &
+            & result(removed)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int) :: removed
+      end function c_remove_stale
       subroutine c_test_pause(point) bind(C, name="pavefric_test_pause")
          import :: c_char
          character(kind=c_char), intent(in) :: point(*)
@@ -333,6 +340,14 @@ contains
       integer(c_int) :: slot
       slot = c_temp_register(path // c_null_char)
    end subroutine register_temporary
+
+   !> Remove the temporaries (`path`.tmpPID) that writers killed outright
+   !> left beside `path` (their process is gone); how many were removed.
+   function remove_stale_temporaries(path) result(removed)
+      character(len=*), intent(in) :: path
+      integer :: removed
+      removed = int(c_remove_stale(path // c_null_char))
+   end function remove_stale_temporaries
 
    !> Forget the temporary file `path` once it is renamed into place or removed.
    subroutine release_temporary(path)

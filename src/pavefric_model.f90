@@ -1365,6 +1365,19 @@ contains
       if (set%v(p_rubber_model)%t == "maxwell" .and. set%v(p_viscosity)%set) &
          & call add_warning(warnings, "&rubber viscosity = " // to_str(set%v(p_viscosity)%r) // &
          & " is not used with &rubber model = 'maxwell' (the Prony arms carry the damping)")
+      ! variables given that the chosen wet model does not use
+      if (set%v(p_wet_model)%t == "squeeze") then
+         do k = p_alpha, p_beta
+            if (set%v(k)%given) call add_warning(warnings, "&water " // specs(k)%name // " = " // &
+               & to_str(set%v(k)%r) // " is not used with &water wet_model = 'squeeze' " // &
+               & "(the Eq. 15 bearing's coefficient; set wet_model = 'kane2017' to use it)")
+         end do
+      else if (set%v(p_microtexture_rms)%given) then
+         call add_warning(warnings, "&surface microtexture_rms = " // &
+            & to_str(set%v(p_microtexture_rms)%r) // " is not used with &water wet_model = '" // &
+            & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' pierces its film " // &
+            & "with the microtexture)")
+      end if
       if (set%v(p_rubber_model)%t == "kelvin_voigt") then
          do k = p_prony_stiffness, p_prony_times
             if (.not. set%v(k)%set) cycle

@@ -17,7 +17,8 @@ module pavefric_netcdf
    use pavefric_model, only: param_spec_type, parameter_table, kind_real, &
       & kind_integer, kind_logical, kind_text, kind_real_list
    use pavefric_fsys, only: rename_file, remove_file, process_id, register_temporary, &
-      & release_temporary, test_pause, output_guard_type, check_output_path
+      & release_temporary, test_pause, output_guard_type, check_output_path, &
+      & remove_stale_temporaries
    use pavefric_format, only: to_str
    implicit none
    private
@@ -219,10 +220,13 @@ contains
 
    !> The temporary name a final path is first written under. The name goes
    !> on the list of temporary files a fatal signal removes (in the
-   !> program); `commit_temporary` takes it off.
+   !> program); `commit_temporary` takes it off. Temporaries of `path` left
+   !> by writers killed outright (SIGKILL: no handler ran) are removed first.
    subroutine temporary_name(path, tmp)
       character(len=*), intent(in) :: path
       character(len=:), allocatable, intent(out) :: tmp
+      integer :: removed
+      removed = remove_stale_temporaries(path)
       tmp = path // ".tmp" // to_str(process_id())
       call register_temporary(tmp)
    end subroutine temporary_name

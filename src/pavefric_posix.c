@@ -15,9 +15,11 @@
  * from main.f90): the Python extension registers names too, but never
  * replaces the interpreter's handlers (SIGINT is KeyboardInterrupt there). */
 #define _XOPEN_SOURCE 700   /* realpath(3) is XSI */
+#include <dirent.h>
 #include <errno.h>
 #include <limits.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,6 +56,59 @@ int pavefric_file_id(const char *path, long long *dev, long long *ino, int *kind
     else if (S_ISSOCK(st.st_mode)) *kind = PF_SOCKET;
     else *kind = PF_OTHER;
     return 0;
+}
+
+/* ---- stale temporaries -------------------------------------------------- */
+
+/* Remove the temporaries `<path>.tmp<PID>` that a writer killed outright
+ * (SIGKILL, a node failure: no handler runs) left beside `path`: regular
+ * files of this user whose PID names no live process on this host, other
+ * than this process. Each writer calls it before it starts its own
+ * temporary, so a re-run cleans up after the run that was killed. On a
+ * file system shared between hosts a PID is only checked on this host: two
+ * hosts writing one output at once is refused nowhere else either.
+ * Returns how many were removed. */
+int pavefric_remove_stale_temporaries(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    size_t dirlen = slash ? (size_t)(slash - path) : 0;
+    size_t baselen = strlen(base);
+    char dir[PATH_MAX], full[PATH_MAX];
+    DIR *d;
+    struct dirent *e;
+    int removed = 0;
+    pid_t self = getpid();
+    if (baselen == 0) return 0;
+    if (slash) {
+        if (dirlen == 0) dirlen = 1;           /* "/name": the root */
+        if (dirlen >= sizeof dir) return 0;
+        memcpy(dir, path, dirlen);
+        dir[dirlen] = '\0';
+    } else {
+        strcpy(dir, ".");
+    }
+    d = opendir(dir);
+    if (!d) return 0;
+    while ((e = readdir(d)) != NULL) {
+        const char *n = e->d_name, *p;
+        long long pid = 0;
+        struct stat st;
+        if (strncmp(n, base, baselen) != 0 || strncmp(n + baselen, ".tmp", 4) != 0) continue;
+        p = n + baselen + 4;
+        if (*p == '\0' || strlen(p) > 9) continue;
+        for (; *p; ++p) {
+            if (*p < '0' || *p > '9') break;
+            pid = pid * 10 + (*p - '0');
+        }
+        if (*p != '\0' || pid <= 0 || (pid_t)pid == self) continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue;   /* alive, or not ours to ask */
+        if (snprintf(full, sizeof full, "%s/%s", dir, n) >= (int)sizeof full) continue;
+        if (lstat(full, &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != geteuid()) continue;
+        if (unlink(full) == 0) ++removed;
+    }
+    closedir(d);
+    return removed;
 }
 
 /* The canonical absolute path of an existing file (realpath(3)) into out

@@ -15,14 +15,15 @@ module pavefric_profile
    use pavefric_profile_text, only: detect_text_format, parse_plain, parse_table
    use pavefric_profile_netcdf, only: profile_catalog_type, profile_label_type, &
       & open_profile_catalog, close_profile_catalog, list_profiles, read_catalog_profile, &
-      & find_profile, read_netcdf_profile, is_netcdf_magic
+      & find_profile, read_netcdf_profile, is_netcdf_magic, first_duplicate_label
    implicit none
    private
 
    public :: profile_type, read_profile_text, unit_factor, refine_profile, check_heights
    public :: raw_profile_type, read_raw_profile, detect_format, point_location
    public :: profile_catalog_type, profile_label_type, open_profile_catalog, &
-      & close_profile_catalog, list_profiles, read_catalog_profile, find_profile
+      & close_profile_catalog, list_profiles, read_catalog_profile, find_profile, &
+      & first_duplicate_label
 
 contains
 

@@ -36,7 +36,7 @@ module pavefric_profile_netcdf
 
    public :: profile_catalog_type, profile_label_type
    public :: open_profile_catalog, close_profile_catalog, list_profiles, read_catalog_profile
-   public :: find_profile, read_netcdf_profile, is_netcdf_magic
+   public :: find_profile, read_netcdf_profile, is_netcdf_magic, first_duplicate_label
 
    !> A profile's name.
    type :: profile_label_type
@@ -309,8 +309,77 @@ contains
       if (allocated(error)) return
       call profile_names(cat, profile_dim, error)
       if (allocated(error)) return
+      call check_names(cat, error)
+      if (allocated(error)) return
       call chainage_variable(cat, profile_dim, error)
    end subroutine open_profile_catalog
+
+   !> Names index the profiles (find_profile, a batch's output): each must
+   !> be given and differ from every other.
+   subroutine check_names(cat, error)
+      type(profile_catalog_type), intent(inout) :: cat
+      type(error_type), allocatable, intent(out) :: error
+      integer :: k, i, j
+      do k = 1, cat%n_profiles
+         if (len_trim(cat%names(k)%s) == 0) then
+            call fail(cat, "profile " // to_str(k) // " of " // to_str(cat%n_profiles) // &
+               & " has an empty name; every profile needs a name of its own (or drop the " // &
+               & "names variable: the profiles are then named 1, 2, ...)", error)
+            return
+         end if
+      end do
+      call first_duplicate_label(cat%names, i, j)
+      if (i == 0) return
+      call fail(cat, "profiles " // to_str(min(i, j)) // " and " // to_str(max(i, j)) // &
+         & " are both named '" // cat%names(i)%s // "'; every profile needs a name of its " // &
+         & "own (names index the profiles and the output)", error)
+   end subroutine check_names
+
+   !> Indices of two equal names (i = 0 when all differ): a merge sort of
+   !> the indices, then neighbours compared; n log n for long lists.
+   subroutine first_duplicate_label(s, i, j)
+      type(profile_label_type), intent(in) :: s(:)
+      integer, intent(out) :: i, j
+      integer, allocatable :: order(:), work(:)
+      integer :: k, n
+      n = size(s)
+      i = 0
+      j = 0
+      allocate(order(n), work(n))
+      order = [(k, k = 1, n)]
+      call sort(1, n)
+      do k = 1, n - 1
+         if (s(order(k))%s == s(order(k+1))%s .and. &
+               & len(s(order(k))%s) == len(s(order(k+1))%s)) then
+            i = order(k)
+            j = order(k+1)
+            return
+         end if
+      end do
+   contains
+      recursive subroutine sort(lo, hi)
+         integer, intent(in) :: lo, hi
+         integer :: mid, a, b, k
+         if (hi <= lo) return
+         mid = (lo + hi) / 2
+         call sort(lo, mid)
+         call sort(mid + 1, hi)
+         a = lo
+         b = mid + 1
+         do k = lo, hi
+            if (b > hi) then
+               work(k) = order(a); a = a + 1
+            else if (a > mid) then
+               work(k) = order(b); b = b + 1
+            else if (.not. llt(s(order(b))%s, s(order(a))%s)) then
+               work(k) = order(a); a = a + 1
+            else
+               work(k) = order(b); b = b + 1
+            end if
+         end do
+         order(lo:hi) = work(lo:hi)
+      end subroutine sort
+   end subroutine first_duplicate_label
 
    !> Close the file of an open catalogue (its contents stay).
    subroutine close_profile_catalog(cat)
@@ -784,7 +853,21 @@ contains
       if (allocated(error)) return
       if (f <= 0.0_wp) f = 1.0_wp                   ! chainage without units: metres
       do k = 1, cat%n_profiles
+         if (.not. (abs(cat%chainage(k)) <= huge(f))) then
+            call fail(cat, "variable 'chainage': profile " // to_str(k) // " ('" // &
+               & cat%names(k)%s // "') has chainage " // to_str(cat%chainage(k)) // &
+               & "; chainage must be finite (a distance along the road)", error)
+            return
+         end if
          cat%chainage(k) = cat%chainage(k) * f
+         if (abs(cat%chainage(k)) > 1.0e9_wp) then
+            ! NetCDF's default fill value of doubles is 9.97e36
+            call fail(cat, "variable 'chainage': profile " // to_str(k) // " ('" // &
+               & cat%names(k)%s // "') has chainage " // to_str(cat%chainage(k)) // &
+               & " m, farther than any road (1e9 m); a fill value or missing datum? " // &
+               & "give every profile its distance along the road", error)
+            return
+         end if
       end do
       cat%has_chainage = .true.
    end subroutine chainage_variable

@@ -274,6 +274,17 @@ contains
       integer :: ns, k, j, level
       real(wp) :: change, est
       ns = size(speeds_kmh)
+      ! the error is estimated from two successive halvings of the step: a
+      ! start that leaves room for fewer would report no estimate (it was
+      ! written as 1.797e308)
+      if (4 * m%substeps > max_substeps) then
+         call fatal_error(error, "&numerics substeps = " // to_str(m%substeps) // &
+            & " with tolerance = " // to_str(m%tolerance) // ": accuracy on demand halves " // &
+            & "the step at least twice to estimate the error, and substeps may not pass " // &
+            & to_str(max_substeps) // "; give substeps <= " // to_str(max_substeps / 4) // &
+            & " (or tolerance = 0 to run substeps as given)")
+         return
+      end if
       mm = m
       call simulate_fixed(mm, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return

@@ -1,0 +1,188 @@
+"""Silent nonsense made loud (issue 19): knobs the chosen wet model ignores
+are warned about; an accuracy request that cannot estimate its error is
+refused (it wrote mu_error_estimate = 1.797e308); `prony` on a file without
+data rows fails; NetCDF surveys with empty or duplicate profile names or a
+non-finite chainage are refused; temporaries left by a SIGKILL are removed
+by the next run that writes the same output."""
+import os
+import signal
+import subprocess
+import sys
+
+import netCDF4
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import run_program, write_scene
+from test_files import program, wait_stopped
+
+WAVE = np.sin(np.arange(300) * 0.3) * 0.5
+
+
+# ---- knobs the chosen components do not use ----------------------------------------
+
+@pytest.mark.parametrize("water, surface, message", [
+    ("depth = 1e-3, wet_model = 'squeeze', alpha = 5.0", None,
+     "&water alpha = 5 is not used with &water wet_model = 'squeeze'"),
+    ("depth = 1e-3, wet_model = 'squeeze', beta = 2.0", None,
+     "&water beta = 2 is not used with &water wet_model = 'squeeze'"),
+    ("depth = 1e-3, wet_model = 'kane2017'",
+     "profile_file = 'scene_profile.txt', mu_loc = 0.5, microtexture_rms = 1e-5",
+     "&surface microtexture_rms = 0.00001 is not used with &water wet_model = 'kane2017'"),
+])
+def test_a_wet_knob_the_model_does_not_use_is_warned_about(tmp_path, water, surface, message):
+    groups = {"water": water}
+    if surface:
+        groups["surface"] = surface
+    scene = write_scene(tmp_path, groups=groups)
+    out = tmp_path / "o.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert message in r.stderr
+    with xr.open_dataset(out) as ds:                    # recorded in the output too
+        assert message in ds.attrs["warnings"]
+
+
+def test_the_used_knobs_give_no_such_warning(tmp_path):
+    scene = write_scene(tmp_path, groups={"water": "depth = 1e-3, wet_model = 'squeeze'",
+                                          "surface": "profile_file = 'scene_profile.txt', "
+                                                     "mu_loc = 0.5, microtexture_rms = 1e-5"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 0 and "is not used" not in r.stderr, r.stderr
+
+
+def test_python_warns_about_alpha_with_squeeze():
+    with pytest.warns(pavefric.PavefricWarning, match="alpha = 5 is not used"):
+        pavefric.simulate(WAVE * 1e-3, 1e-3, [20.0], depth=1e-3, wet_model="squeeze", alpha=5.0)
+
+
+# ---- accuracy on demand needs room for two halvings ---------------------------------
+
+def test_tolerance_with_substeps_too_large_for_an_estimate_is_an_error(tmp_path):
+    scene = write_scene(tmp_path, groups={"numerics": "tolerance = 1e-6, substeps = 2048"})
+    out = tmp_path / "o.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 1
+    assert "&numerics substeps = 2048 with tolerance = 1e-6" in r.stderr
+    assert "give substeps <= 1024" in r.stderr
+    assert not out.exists()
+
+
+def test_the_largest_start_that_can_estimate_writes_a_finite_estimate():
+    ds = pavefric.simulate(WAVE[:120] * 1e-3, 1e-3, [20.0], tolerance=1e-12, substeps=1024)
+    est = ds["mu_error_estimate"].values
+    assert np.all(np.isfinite(est)) and np.all(est < 1.0), est
+    assert ds["substeps_used"].values[0] == 4096
+
+
+# ---- prony -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("text, message", [
+    ("temperature_c,frequency_hz,storage_mpa,loss_mpa\n", "no data rows"),
+    ("temperature_c,frequency_hz,storage_mpa,loss_mpa\n# a comment only\n", "no data rows"),
+    ("", "no header and no data"),
+])
+def test_prony_without_data_rows_fails_and_writes_nothing(tmp_path, text, message):
+    data = tmp_path / "dma.csv"
+    data.write_text(text)
+    out = tmp_path / "rubber.nml"
+    r = subprocess.run([sys.executable, "-m", "pavefric", "prony", str(data), "-o", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode != 0
+    assert f"{data}: {message}" in r.stderr
+    assert not out.exists()
+
+
+# ---- NetCDF surveys: names and chainage ----------------------------------------------
+
+def _survey(path, names=("a", "b", "c"), chainage=(0.0, 10.0, 20.0)):
+    pavefric.write_profiles(path, [WAVE] * 3, dx=1e-3, names=["a", "b", "c"], units="mm",
+                            chainage=[0.0, 10.0, 20.0])
+    with netCDF4.Dataset(path, "a") as f:
+        width = f.dimensions["name_strlen"].size
+        for k, name in enumerate(names):
+            f["profile_name"][k] = netCDF4.stringtochar(np.array([name.ljust(width)], f"S{width}"))[0]
+        f["chainage"][:] = np.asarray(chainage, float)
+    return path
+
+
+@pytest.mark.parametrize("names, chainage, message", [
+    (("a", "b", "a"), (0.0, 10.0, 20.0), "profiles 1 and 3 are both named 'a'"),
+    (("a", "", "c"), (0.0, 10.0, 20.0), "profile 2 of 3 has an empty name"),
+    (("a", "b", "c"), (0.0, np.nan, 20.0), "profile 2 ('b') has chainage NaN"),
+    (("a", "b", "c"), (0.0, 10.0, np.inf), "profile 3 ('c') has chainage Infinity"),
+    (("a", "b", "c"), (0.0, 9.969209968386869e36, 20.0), "farther than any road"),
+])
+def test_a_survey_with_bad_names_or_chainage_is_refused(tmp_path, names, chainage, message):
+    nc = _survey(tmp_path / "survey.nc", names, chainage)
+    # as one profile of a scene
+    scene = write_scene(tmp_path, groups={"surface": f"profile_file = '{nc}', mu_loc = 0.5, "
+                                                     "profile_name = 'c'"})
+    r = run_program(scene, "-o", tmp_path / "one.nc")
+    assert r.returncode == 1 and message in r.stderr, r.stderr
+    assert f"&surface profile_file = '{nc}'" in r.stderr
+    # as a batch
+    batch = tmp_path / "batch.nml"
+    batch.write_text(scene.read_text().replace(f"profile_file = '{nc}', ", "")
+                     .replace(", profile_name = 'c'", "")
+                     + f"&batch\n  profiles = '{nc}'\n/\n")
+    out = tmp_path / "b.nc"
+    r = run_program(batch, "-o", out)
+    assert r.returncode == 1 and message in r.stderr, r.stderr
+    assert not out.exists()
+    # from Python
+    with pytest.raises(pavefric.PavefricError, match=message.split("(")[0].strip()):
+        pavefric.list_profiles(nc)
+
+
+def test_a_good_survey_still_reads(tmp_path):
+    nc = _survey(tmp_path / "survey.nc")
+    assert [e.name for e in pavefric.list_profiles(nc)] == ["a", "b", "c"]
+
+
+# ---- temporaries of a killed run ----------------------------------------------------
+
+def _dead_pid() -> int:
+    p = subprocess.Popen(["true"])
+    p.wait()
+    return p.pid
+
+
+def test_sigkill_while_writing_then_a_rerun_leaves_no_temporary(tmp_path):
+    scene = write_scene(tmp_path)
+    env = {**os.environ, "PAVEFRIC_TEST_PAUSE": "commit"}
+    proc = subprocess.Popen([program(), scene.name, "-o", "out.nc"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wait_stopped(proc)
+    temps = list(tmp_path.glob("out.nc.tmp*"))
+    assert temps == [tmp_path / f"out.nc.tmp{proc.pid}"]
+    proc.send_signal(signal.SIGKILL)                   # no handler runs
+    proc.communicate(timeout=60)
+    assert temps[0].exists()                           # what a SIGKILL leaves
+    # another process's live temporary and a look-alike of the user's stay
+    alive = tmp_path / f"out.nc.tmp{os.getpid()}"
+    alive.write_bytes(b"being written")
+    mine = tmp_path / "out.nc.tmpfile"
+    mine.write_bytes(b"the user's")
+    dead_other = tmp_path / f"other.nc.tmp{_dead_pid()}"
+    dead_other.write_bytes(b"not this output's")
+    r = run_program(scene, "-o", "out.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert not temps[0].exists()
+    assert alive.read_bytes() == b"being written"
+    assert mine.read_bytes() == b"the user's"
+    assert dead_other.exists()
+    assert sorted(p.name for p in tmp_path.glob("out.nc*")) == sorted(
+        ["out.nc", alive.name, mine.name])
+
+
+def test_a_dead_writers_temporary_of_a_batch_is_removed(tmp_path):
+    from test_batch import make_batch
+    scene = make_batch(tmp_path)
+    stale = tmp_path / f"b.nc.tmp{_dead_pid()}"
+    stale.write_bytes(b"half a file")
+    r = run_program(scene, "-o", "b.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert not stale.exists()
