@@ -29,20 +29,23 @@ contains
    !> Linear interpolation onto a spacing `factor` times finer. A closed
    !> profile of n points gives n*factor points (the last interval wraps); an
    !> open one gives (n-1)*factor + 1. The original samples are kept exactly.
-   pure subroutine refine_profile(z, closed, factor, zf)
+   !> `stat` (nonzero: zf could not be allocated, left unallocated).
+   pure subroutine refine_profile(z, closed, factor, zf, stat)
       real(wp), intent(in) :: z(:)
       logical, intent(in) :: closed
       integer, intent(in) :: factor
       real(wp), allocatable, intent(out) :: zf(:)
+      integer, intent(out) :: stat
       integer :: n, k, q, nxt
       real(wp) :: w
       n = size(z)
       if (closed) then
-         allocate(zf(n * factor))
+         allocate(zf(n * factor), stat=stat)
       else
-         allocate(zf((n - 1) * factor + 1))
-         zf(size(zf)) = z(n)
+         allocate(zf((n - 1) * factor + 1), stat=stat)
       end if
+      if (stat /= 0) return
+      if (.not. closed) zf(size(zf)) = z(n)
       do k = 1, n
          if (.not. closed .and. k == n) exit
          nxt = k + 1

@@ -381,7 +381,8 @@ contains
          & "is halved until every speed's estimated error (from its last two changes) is at " // &
          & "most this much; the output records the estimate (mu_error_estimate) and the " // &
          & "substeps reached (substeps_used). 0: the knobs as given; at least 1e-14 " // &
-         & "(below, double precision cannot meet it) (docs/accuracy.md)", &
+         & "(below, double precision cannot meet it); needs substeps <= 1024 (room for the " // &
+         & "two halvings the estimate is made of) (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
 
       ! &output

@@ -667,9 +667,13 @@ contains
       fine = m%elements_per_sample * m%substeps
       dxf = dx / real(fine, wp)
       if (fine > 1) then
-         call refine_profile(z, closed, fine, zf)
+         call refine_profile(z, closed, fine, zf, stat)
       else
-         zf = z
+         allocate(zf, source=z, stat=stat)
+      end if
+      if (stat /= 0) then
+         call no_memory(size(z), fine, error)
+         return
       end if
       geo%npf = size(zf)
       geo%closed = closed
@@ -699,13 +703,17 @@ contains
       end if
       call facet_friction(z, dx, closed, m%mu_loc, m%theta_max_deg, tf, cf, slopes=sf)
       if (fine > 1) then
-         call refine_profile(tf, closed, fine, t_fine)
+         call refine_profile(tf, closed, fine, t_fine, stat)
          call move_alloc(t_fine, tf)
-         if (with_slopes) then
-            call refine_profile(sf, closed, fine, t_fine)
+         if (with_slopes .and. stat == 0) then
+            call refine_profile(sf, closed, fine, t_fine, stat)
             call move_alloc(t_fine, sf)
          end if
-         allocate(c_fine(geo%npf))
+         if (stat == 0) allocate(c_fine(geo%npf), stat=stat)
+         if (stat /= 0) then
+            call no_memory(size(z), fine, error)
+            return
+         end if
          do k = 1, geo%npf
             c_fine(k) = cf(min(size(z), (k - 1 + fine / 2) / fine + 1))
             if (closed .and. (k - 1 + fine / 2) / fine + 1 > size(z)) c_fine(k) = cf(1)
@@ -743,7 +751,13 @@ contains
       geo%clamped_at = merge(1.0_wp, 0.0_wp, geo%clamped)
 
       ! Undeformed pad bottom h_i above the reference plane.
-      allocate(geo%h(geo%n_el))
+      allocate(geo%h(geo%n_el), stat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, "not enough memory for a pad of " // to_str(geo%n_el) // &
+            & " elements (&numerics elements_per_sample = " // to_str(m%elements_per_sample) // &
+            & ")", stat_memory)
+         return
+      end if
       geo%h = 0.0_wp
       if (shape_code(m%shape) == shape_rounded) then
          r = m%radius
@@ -1135,5 +1149,14 @@ contains
          end do
       end do
    end subroutine lane_contacts
+
+   !> The error of a refined profile that does not fit in memory.
+   pure subroutine no_memory(n, fine, error)
+      integer, intent(in) :: n, fine
+      type(error_type), allocatable, intent(out) :: error
+      call fatal_error(error, "not enough memory for a profile of " // to_str(n) // &
+         & " points refined " // to_str(fine) // " times (&numerics elements_per_sample x " // &
+         & "substeps); give smaller values, or a shorter profile", stat_memory)
+   end subroutine no_memory
 
 end module pavefric_simulate
