@@ -839,15 +839,15 @@ contains
       character(len=*), intent(in), optional :: text
       logical :: ok
       integer :: k
-      if (present(text) .and. abs(r) < tiny(r)) then
-         ! 1e-400 reads as 0 (and 1e-310 as a subnormal, losing digits)
+      if (present(text) .and. r == 0.0_wp) then
+         ! 1e-400 reads as 0: another value than the one written (a
+         ! subnormal such as 1e-310 keeps its value, to fewer digits)
          k = scan(text, "eEdD")
          if (k == 0) k = len(text) + 1
          if (scan(text(1:k-1), "123456789") > 0) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // " = " // &
-               & trim(text) // ": too small for double precision (it would be read as " // &
-               & to_str(r) // "; the smallest normal value is " // to_str(tiny(r)) // &
-               & "); write 0 or a larger value")
+               & trim(text) // ": too small for double precision (it would be read as 0; " // &
+               & "the smallest value is about 4.9e-324); write 0 or a larger value")
             return
          end if
       end if

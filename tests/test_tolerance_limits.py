@@ -9,8 +9,7 @@ from conftest import run_program, write_scene
 @pytest.mark.parametrize("value, message", [
     ("1e-400", "&numerics tolerance = 1e-400: too small for double precision (it would be "
                "read as 0;"),
-    ("1d-320", "&numerics tolerance = 1d-320: too small for double precision (it would be "
-               "read as 1e-320;"),
+    ("1d-320", "below what double precision can meet"),
     ("1e-15", "&numerics tolerance = 1e-15: below what double precision can meet"),
 ])
 def test_tolerance_below_double_precision_is_an_error(tmp_path, value, message):
@@ -31,3 +30,17 @@ def test_a_zero_written_small_and_an_underflowing_other_knob(tmp_path):
                                                      "mu_loc = 1e-999"})
     r = run_program(scene, "-o", tmp_path / "p.nc")
     assert r.returncode == 1 and "&surface mu_loc = 1e-999: too small for double" in r.stderr
+
+
+def test_a_subnormal_value_is_its_value_not_an_error():
+    """A subnormal keeps its value (to fewer digits), unlike 1e-400, which
+    would be read as 0: the property tests' speeds of 2.2e-313 km/h (the
+    static limit, in effect) run, as in 0.1.0."""
+    import numpy as np
+    import pavefric
+    z = np.sin(np.arange(200) * 0.3) * 0.5e-3
+    ds = pavefric.simulate(z, 1e-3, [2.2250738585e-313, 20.0], depth=1e-3)
+    static = pavefric.simulate(z, 1e-3, [0.0, 20.0], depth=1e-3)
+    assert np.all(np.isfinite(ds["mu"].values))
+    assert ds["mu"].values[0] == pytest.approx(static["mu"].values[0], rel=1e-9)
+    assert ds["speed_kmh"].values[0] == 2.2250738585e-313
