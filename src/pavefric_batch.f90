@@ -354,7 +354,7 @@ contains
       end if
       call parse_real(token, chainage, stat)
       if (stat /= 0) then
-         call fatal_error(error, "chainage '" // token // "' is not a number")
+         call fatal_error(error, "chainage '" // token // "' is not a finite number (m)")
          return
       end if
       if (.not. ieee_is_finite(chainage)) then

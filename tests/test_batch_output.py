@@ -135,7 +135,7 @@ def test_profile_list_format_errors_and_quoted_paths(tmp_path):
     assert r.returncode == 1 and "list.txt:2: no chainage, but line 1 gives one" in r.stderr
     lst.write_text("profiles/seg_0001.txt 10\nprofiles/seg_0002.txt 1-3\n")
     r = run_program(scene, "-o", tmp_path / "o.nc")
-    assert r.returncode == 1 and "list.txt:2: chainage '1-3' is not a number" in r.stderr
+    assert r.returncode == 1 and "list.txt:2: chainage '1-3' is not a finite number (m)" in r.stderr
     lst.write_text("profiles/seg_0001.txt 10 20\n")
     r = run_program(scene, "-o", tmp_path / "o.nc")
     assert r.returncode == 1 and "list.txt:1: '20' after the chainage" in r.stderr

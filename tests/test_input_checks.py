@@ -186,3 +186,17 @@ def test_a_dead_writers_temporary_of_a_batch_is_removed(tmp_path):
     r = run_program(scene, "-o", "b.nc", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert not stale.exists()
+
+
+@pytest.mark.parametrize("bad", ["nan", "inf", "-Infinity"])
+def test_a_profile_list_with_a_non_finite_chainage_is_refused(tmp_path, bad):
+    from test_batch_output import list_batch
+    scene = list_batch(tmp_path, n=3, broken=0)
+    lines = (tmp_path / "list.txt").read_text().splitlines()
+    lines[2] = lines[2].split()[0] + "  " + bad           # the second profile
+    (tmp_path / "list.txt").write_text("\n".join(lines) + "\n")
+    out = tmp_path / "b.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 1
+    assert f"list.txt:3: chainage '{bad}' is not a finite number (m)" in r.stderr, r.stderr
+    assert not out.exists()
