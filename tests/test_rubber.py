@@ -532,3 +532,19 @@ def test_a_rubber_variable_the_model_does_not_use_is_warned_about(tmp_path, mode
 def test_the_default_rubber_gives_no_such_warning(tmp_path):
     r = run_program(write_scene(tmp_path), "-o", tmp_path / "o.nc")
     assert r.returncode == 0 and "not used" not in r.stderr, r.stderr
+
+
+def test_python_shifts_data_with_the_cores_wlf():
+    """One WLF (issue 22): pavefric.rubber.wlf_log10_shift is the core's
+    (f2py), equal to the test's own formula to rounding, exactly 0 at Tref,
+    and refuses where the equation diverges or runs past 100 decades."""
+    from pavefric.rubber import wlf_log10_shift
+    t = np.array([-30.0, -10.0, 0.0, 20.0, 45.0, 80.0])
+    got = wlf_log10_shift(t, 20.0, 8.86, 101.6)
+    np.testing.assert_allclose(got, log10_at(t), rtol=1e-14, atol=0)
+    assert got[3] == 0.0 and got.shape == t.shape
+    assert isinstance(wlf_log10_shift(0.0), float)
+    with pytest.raises(ValueError, match="must be > -C2"):
+        wlf_log10_shift([-90.0], 20.0, 8.86, 101.6)
+    with pytest.raises(ValueError, match="more than 100 decades"):
+        wlf_log10_shift([-81.5], 20.0, 1000.0, 101.6)

@@ -63,13 +63,23 @@ REPRESENTATIVE_TEMPERATURES = (-20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 
 
 def wlf_log10_shift(temperature, reference: float = T_REF, c1: float = WLF_C1,
                     c2: float = WLF_C2):
-    """log10 a_T = -C1 (T - Tref) / (C2 + T - Tref) (the core's equation, for
-    shifting data; the core computes its own)."""
-    dt = np.asarray(temperature, dtype=float) - reference
-    if np.any(c2 + dt <= 0):
+    """log10 a_T = -C1 (T - Tref) / (C2 + T - Tref), computed by the core
+    (the equation the Maxwell rubber runs with, src/pavefric_maxwell.f90):
+    for shifting data onto the master curve. ValueError where the equation
+    diverges (T - Tref <= -C2) or shifts by more than 100 decades."""
+    from . import _core
+
+    t = np.asarray(temperature, dtype=float)
+    log_at, why = _core.pf_wlf_log10_shift(np.ascontiguousarray(t.ravel()), float(reference),
+                                            float(c1), float(c2))
+    if np.any(why == 1):
         raise ValueError(f"WLF shift: T - Tref must be > -C2 = {-c2} K (got "
-                         f"{np.min(dt)} K)")
-    return -c1 * dt / (c2 + dt)
+                         f"{np.min(t) - reference} K)")
+    if np.any(why == 2):
+        raise ValueError(f"WLF shift: C1 = {c1}, C2 = {c2} shift the data by more than 100 "
+                         f"decades between {np.min(t)} and {np.max(t)} C")
+    out = np.asarray(log_at, dtype=float).reshape(t.shape)
+    return out if out.ndim else float(out)
 
 
 @dataclass
@@ -254,7 +264,9 @@ def fit_prony(data: DMAData, reference: float = T_REF, c1: float = WLF_C1,
 
         def cost(q):
             c1_, c2_ = np.exp(q)
-            if np.any(c2_ + data.temperature - reference <= 0):
+            try:
+                wlf_log10_shift(data.temperature, reference, c1_, c2_)
+            except ValueError:                  # outside the WLF equation's domain
                 return 1e300
             return solve(c1_, c2_)[3]
 

@@ -379,6 +379,31 @@ end subroutine pf_scene_arrays
 
 
 !> The bearing load (Eq. 15) and its derivative for arrays of outlet films.
+!> The core's WLF shift log10 a_T of each temperature (maxwell.f90), for
+!> Python's shifting of DMA data onto a master curve. why(i): 0 usable,
+!> 1 T - Tref <= -C2 (the equation diverges), 2 more than 100 decades.
+subroutine pf_wlf_log10_shift(n, temperature, reference, c1, c2, log_at, why)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_maxwell, only: wlf_log10_shift, wlf_check
+   implicit none
+   integer(c_int), intent(in) :: n
+   real(c_double), intent(in) :: temperature(n), reference, c1, c2
+   real(c_double), intent(out) :: log_at(n)
+   integer(c_int), intent(out) :: why(n)
+   integer :: i
+   do i = 1, n
+      log_at(i) = wlf_log10_shift(temperature(i), reference, c1, c2)
+      select case (wlf_check(temperature(i), reference, c1, c2))
+      case ("")
+         why(i) = 0
+      case ("diverges")
+         why(i) = 1
+      case default
+         why(i) = 2
+      end select
+   end do
+end subroutine pf_wlf_log10_shift
+
 subroutine pf_hydro_load(n, prefactor, h_in, h_out, wh, dwh_dhout)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_bearing, only: hydro_load
