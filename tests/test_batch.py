@@ -223,3 +223,23 @@ def test_batch_unwritable_output_and_bad_max_profiles(tmp_path):
     assert r.returncode == 1 and "&output file = '/nonexistent-dir/b.nc'" in r.stderr
     r = run_program(scene, "-o", tmp_path / "o.nc", "--max-profiles", "many")
     assert r.returncode == 2 and "--max-profiles 'many'" in r.stderr     # bad usage
+
+
+def test_a_batch_output_plots_directly(tmp_path):
+    """Issue 24: `b.mu.sel(speed_kmh=60).plot()` on a batch of a glob (names,
+    no chainage) read by pavefric.open_dataset; the names still index."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    scene = make_batch(tmp_path, n=4)
+    out = tmp_path / "b.nc"
+    assert run_program(scene, "-o", out).returncode == 0
+    b = pavefric.open_dataset(out)
+    assert b["profile"].dtype.kind == "U"
+    mesh = b.mu.sel(speed_kmh=60).plot()                 # profile x water depth
+    assert mesh.get_array().size == 4 * 2
+    line, = b.mu.sel(speed_kmh=60, water_depth=0.0).plot()
+    np.testing.assert_array_equal(line.get_ydata(), b.mu.sel(speed_kmh=60, water_depth=0.0))
+    plt.close("all")
+    assert b.mu.sel(profile="seg_0002", speed_kmh=20, water_depth=0.0) == b.mu.values[1, 0, 0]

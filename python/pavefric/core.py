@@ -680,7 +680,17 @@ def open_dataset(path: str | os.PathLike):
     import xarray as xr
 
     with xr.open_dataset(path, engine="netcdf4") as ds:
-        return restore_long_attributes(ds.load())
+        return _text_coordinates(restore_long_attributes(ds.load()))
+
+
+def _text_coordinates(ds):
+    """Text coordinates (a batch's profile names) as NumPy unicode rather
+    than Python objects: xarray plots and indexes those (``ds.mu.sel(
+    speed_kmh=60).plot()`` refuses an object coordinate)."""
+    for name, coord in ds.coords.items():
+        if coord.dtype == object and all(isinstance(v, str) for v in coord.values.ravel()):
+            ds = ds.assign_coords({name: coord.copy(data=coord.values.astype(str))})
+    return ds
 
 
 @dataclass
