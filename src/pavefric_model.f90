@@ -1369,11 +1369,11 @@ contains
       ! variables given that the chosen wet model does not use
       if (set%v(p_wet_model)%t == "squeeze") then
          do k = p_alpha, p_beta
-            if (set%v(k)%given) call add_warning(warnings, "&water " // specs(k)%name // " = " // &
-               & to_str(set%v(k)%r) // " is not used with &water wet_model = 'squeeze' " // &
+            if (given_other(specs(k), set%v(k))) call add_warning(warnings, "&water " // &
+               & specs(k)%name // " = " // to_str(set%v(k)%r) // " is not used with &water wet_model = 'squeeze' " // &
                & "(the Eq. 15 bearing's coefficient; set wet_model = 'kane2017' to use it)")
          end do
-      else if (set%v(p_microtexture_rms)%given) then
+      else if (given_other(specs(p_microtexture_rms), set%v(p_microtexture_rms))) then
          call add_warning(warnings, "&surface microtexture_rms = " // &
             & to_str(set%v(p_microtexture_rms)%r) // " is not used with &water wet_model = '" // &
             & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' pierces its film " // &
@@ -1388,6 +1388,20 @@ contains
          end do
       end if
    end subroutine plausibility_warnings
+
+   !> Whether a real variable was given a value other than its default (a
+   !> value given equal to the default changes nothing: Python passes every
+   !> variable of a scene, the defaults among them).
+   pure logical function given_other(spec, value)
+      type(param_spec_type), intent(in) :: spec
+      type(param_value_type), intent(in) :: value
+      real(wp) :: d
+      integer :: ios
+      given_other = value%given
+      if (.not. given_other .or. len_trim(spec%default) == 0) return
+      read(spec%default, *, iostat=ios) d
+      if (ios == 0) given_other = value%r /= d
+   end function given_other
 
    pure logical function plausible(spec, r)
       type(param_spec_type), intent(in) :: spec

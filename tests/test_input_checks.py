@@ -200,3 +200,16 @@ def test_a_profile_list_with_a_non_finite_chainage_is_refused(tmp_path, bad):
     assert r.returncode == 1
     assert f"list.txt:3: chainage '{bad}' is not a finite number (m)" in r.stderr, r.stderr
     assert not out.exists()
+
+
+def test_a_default_given_again_is_no_reason_to_warn(tmp_path):
+    """Python passes every variable of a scene, defaults included: the value
+    decides, so the program and Python record the same warnings."""
+    scene = write_scene(tmp_path, groups={"water": "depth = 1e-3, wet_model = 'squeeze', "
+                                                   "alpha = 11.8, beta = 1.75"})
+    out = tmp_path / "o.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0 and "is not used" not in r.stderr, r.stderr
+    ds = pavefric.load_scene(scene).simulate()
+    with xr.open_dataset(out) as f:
+        assert f.attrs.get("warnings", "") == ds.attrs.get("warnings", "")
