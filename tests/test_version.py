@@ -44,3 +44,10 @@ def test_the_version_is_written_nowhere_else():
 def test_outputs_record_the_version(tmp_path):
     ds = pavefric.simulate([0.0, 1e-4, 0.0, -1e-4] * 64, 0.87e-3, [20.0])
     assert ds.attrs["pavefric_version"] == meson_version()
+
+
+def test_changelog_names_this_version():
+    """CHANGELOG.md's newest entry is the version being built."""
+    text = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    entries = re.findall(r"^## \[([^]]+)\]", text, re.M)
+    assert entries and entries[0] == meson_version(), entries
