@@ -16,11 +16,37 @@ Commands:
   rubber-report [--report docs/rubber.md]  Maxwell rubber: friction against speed and
                                            temperature, cost against Kelvin-Voigt
   merge PART.nc [PART.nc ...] -o SURVEY.nc  join batch outputs of one survey run in parts
+  example [DIR] [--force]                   write the default scenes into DIR (any directory)
+
+The report commands (bench, validate, docs, speed-gradient, rubber-report,
+surfaces) are the maintainers': they read and write the checkout's tests/,
+inputs/ and docs/, and refuse in one line (exit status 2) elsewhere.
 """
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
+
+#: The maintainers' commands, which need a checkout as the current directory.
+CHECKOUT_COMMANDS = ("bench", "validate", "docs", "speed-gradient", "rubber-report", "surfaces")
+
+
+def in_checkout(directory: Path | None = None) -> bool:
+    """Whether ``directory`` (default: the current one) is a pavefric
+    checkout: the NumPy reference tests/reference.py and inputs/ are there."""
+    root = Path.cwd() if directory is None else directory
+    return (root / "tests" / "reference.py").is_file() and (root / "inputs").is_dir()
+
+
+def needs_checkout(args: argparse.Namespace) -> bool:
+    """Whether this maintainer command reads or writes the checkout: always,
+    except docs and surfaces told where to read and write everything."""
+    if args.command == "docs":
+        return args.inputs == "docs/inputs.md" or args.outputs == "docs/outputs.md"
+    if args.command == "surfaces":
+        return args.outdir == "inputs/surfaces" or args.table is None
+    return args.command in CHECKOUT_COMMANDS
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -176,7 +202,23 @@ def main(argv: list[str] | None = None) -> int:
     p_merge.add_argument("parts", nargs="+", help="batch outputs (NetCDF)")
     p_merge.add_argument("-o", "--output", required=True, help="the merged file")
 
+    p_ex = sub.add_parser(
+        "example", help="write the default scenes and their profile into a directory",
+        description="Write the default scenes (ctm_dry.nml, ctm_wet.nml, ctm_squeeze.nml) "
+        "and the profile they read (profiles/ctm_medium.txt), shipped in the package, into "
+        "DIR, and print the commands to run next. Existing files are left alone unless "
+        "--force.",
+        epilog="example: python -m pavefric example my-run && cd my-run && pavefric ctm_dry.nml")
+    p_ex.add_argument("directory", nargs="?", default="pavefric-example",
+                      help="where to write (default ./pavefric-example; made if missing)")
+    p_ex.add_argument("--force", action="store_true", help="overwrite files already there")
+
     args = parser.parse_args(argv)
+    if args.command in CHECKOUT_COMMANDS and needs_checkout(args) and not in_checkout():
+        print(f"pavefric: error: 'python -m pavefric {args.command}' is a maintainer command "
+              "and needs a pavefric checkout (tests/reference.py and inputs/ in the current "
+              f"directory, {Path.cwd()}): run it from the repository's root", file=sys.stderr)
+        return 2
     from .core import PavefricError
     from .merge import MergeError
 
@@ -295,6 +337,17 @@ def main(argv: list[str] | None = None) -> int:
             from .merge import merge
 
             print(f"wrote {merge(args.parts, args.output)}")
+        elif args.command == "example":
+            from .example import next_steps, write_example
+
+            try:
+                written = write_example(args.directory, force=args.force)
+            except FileExistsError as exc:
+                print(f"pavefric: error: {exc}", file=sys.stderr)
+                return 1
+            for path in written:
+                print(f"wrote {path}")
+            print(next_steps(args.directory))
     except (PavefricError, MergeError) as exc:
         print(f"pavefric: error: {exc}", file=sys.stderr)
         return 1
