@@ -1,7 +1,7 @@
 """Command line of the Python layer: ``python -m pavefric COMMAND ...``.
 
 Commands:
-  run SCENE.nml [-o OUT.nc] [--plot PNG]   run a scene (same core as the program)
+  run SCENE.nml [-o OUT.nc] [--plot PNG] [-q]  run a scene (same core as the program)
   plot OUT.nc [OUT.nc ...] -o PNG           friction against speed
   surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
   accuracy SCENE.nml [...] [--report docs/accuracy.md]  accuracy-cost study
@@ -61,6 +61,8 @@ def main(argv: list[str] | None = None) -> int:
     p_run.add_argument("scene")
     p_run.add_argument("-o", "--output", default=None, help="NetCDF output path")
     p_run.add_argument("--plot", default=None, help="also write a PNG of mu against speed")
+    p_run.add_argument("-q", "--quiet", action="store_true",
+                       help="no progress bar for a batch (warnings and errors still on stderr)")
 
     p_plot = sub.add_parser("plot", help="plot mu against speed from NetCDF outputs")
     p_plot.add_argument("files", nargs="+")
@@ -231,7 +233,7 @@ def main(argv: list[str] | None = None) -> int:
 
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always", ProfilesFailedWarning)
-                out = run(args.scene, args.output)
+                out = run(args.scene, args.output, progress=False if args.quiet else None)
             failed = [w for w in caught if issubclass(w.category, ProfilesFailedWarning)]
             for w in caught:
                 if w not in failed:
