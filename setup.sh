@@ -79,10 +79,10 @@ install_python() {
   fi
   log "installing Python packages"
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
-    "numpy>=1.26" "meson>=1.1" "meson-python>=0.15" ninja \
-    "xarray>=2023.1" "netCDF4>=1.6" "matplotlib>=3.6" "f90nml>=1.4" \
+    "numpy>=1.26" "meson>=1.1" "meson-python>=0.17" ninja \
+    "xarray>=2023.1" "netCDF4>=1.6" "matplotlib>=3.6" \
     "pytest>=7" "hypothesis>=6" "pandas>=2.2" scipy "pydantic>=2,<3" psutil click parse unsync \
-    compliance-checker
+    compliance-checker pyyaml jsonschema
   # captif-slp (an established ISO 13473-1 implementation, a test reference)
   # and its reader pyrsona 1.x pin pandas<2.2 and numpy<2, which would break
   # xarray and the extension: install them without their pins (their other

@@ -16,7 +16,7 @@ module pavefric_batch_mpi
 #ifdef WITH_MPI
    use mpi
 #endif
-   use, intrinsic :: iso_fortran_env, only: output_unit, int64
+   use, intrinsic :: iso_fortran_env, only: int64
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type, fatal_error
    use pavefric_format, only: to_str
@@ -135,10 +135,14 @@ contains
 
    !> Run a batch scene; every rank returns the same error (or none) and the
    !> same summary's `finished` and `failed`, so that all exit alike.
-   subroutine run_batch_program(path, output_override, command, max_profiles, summary, error)
+   subroutine run_batch_program(path, output_override, command, max_profiles, log_unit, &
+         & summary, error)
       character(len=*), intent(in) :: path, output_override, command
       !> Stop after computing this many profiles (0: all).
       integer, intent(in) :: max_profiles
+      !> Where rank 0 writes progress lines (the program: stderr; none if
+      !> negative, --quiet).
+      integer, intent(in) :: log_unit
       type(batch_summary_type), intent(out) :: summary
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: out_path
@@ -154,7 +158,7 @@ contains
 #endif
       call rank_and_size(rank, nranks)
       if (nranks == 1) then
-         call run_batch_serial(path, output_override, command, output_unit, max_profiles, &
+         call run_batch_serial(path, output_override, command, log_unit, max_profiles, &
             & out_path, computed, finished, error, summary=summary)
          return
       end if
@@ -179,7 +183,8 @@ contains
 
       call cpu_time(cpu0)
       if (rank == 0) then
-         call serve_and_compute(batch, blocks, nranks, max_profiles, command, summary, error)
+         call serve_and_compute(batch, blocks, nranks, max_profiles, command, log_unit, summary, &
+            & error)
       else
          call work(batch)
       end if
@@ -190,9 +195,9 @@ contains
       cpu1 = cpu1 - cpu0
       call MPI_Gather(cpu1, 1, MPI_DOUBLE_PRECISION, cpu, 1, MPI_DOUBLE_PRECISION, 0, &
          & MPI_COMM_WORLD, ierr)
-      if (rank == 0 .and. .not. allocated(error)) then
-         write(output_unit, '(a, *(1x, f0.2))') "pavefric batch: CPU seconds per rank:", cpu
-         write(output_unit, '(a, f0.3, a)') "pavefric batch: the busiest rank ", &
+      if (rank == 0 .and. .not. allocated(error) .and. log_unit >= 0) then
+         write(log_unit, '(a, *(1x, f0.2))') "pavefric batch: CPU seconds per rank:", cpu
+         write(log_unit, '(a, f0.3, a)') "pavefric batch: the busiest rank ", &
             & maxval(cpu) / max(sum(cpu) / nranks, tiny(1.0_wp)), " x the mean"
       end if
       ! rank 0 tells every rank how it ended
@@ -213,10 +218,13 @@ contains
    !> Rank 0: hand out the pending profiles (largest first) to the other
    !> ranks as they become free, compute the next one itself between
    !> messages, record every result, and write the file when all are done.
-   subroutine serve_and_compute(batch, blocks, nranks, max_profiles, command, summary, error)
+   subroutine serve_and_compute(batch, blocks, nranks, max_profiles, command, log_unit, &
+         & summary, error)
       type(batch_type), intent(inout) :: batch
       type(block_type), intent(inout) :: blocks(:)
       integer, intent(in) :: nranks, max_profiles
+      !> Progress lines here (none if negative).
+      integer, intent(in) :: log_unit
       character(len=*), intent(in) :: command
       type(batch_summary_type), intent(out) :: summary
       type(error_type), allocatable, intent(out) :: error
@@ -245,12 +253,14 @@ contains
       computed = 0
 
       note = resume_note(batch)
-      if (len(note) > 0) write(output_unit, '(a)') note
-      write(output_unit, '(a, i0, a, i0, a)') "pavefric batch: ", size(order), &
-         & " profiles on ", nranks, " MPI ranks"
-      flush(output_unit)
+      if (log_unit >= 0) then
+         if (len(note) > 0) write(log_unit, '(a)') note
+         write(log_unit, '(a, i0, a, i0, a)') "pavefric batch: ", size(order), &
+            & " profiles on ", nranks, " MPI ranks"
+         flush(log_unit)
+      end if
       call progress_start(progress, batch%n_profiles, count([(blocks(i)%status == 0, &
-         & i = 1, batch%n_profiles)]), batch%scene%batch_progress_every, output_unit)
+         & i = 1, batch%n_profiles)]), batch%scene%batch_progress_every, log_unit)
 
       allocate(outstanding(nranks - 1), stopped(nranks - 1))
       outstanding = 0

@@ -1,4 +1,7 @@
-!> The pavefric program: `pavefric SCENE.nml [-o OUT.nc]`. No Python needed.
+!> The pavefric program: `pavefric SCENE.nml [-o OUT.nc] [-q]`. No Python needed.
+!>
+!> Results go to stdout; progress (the cost estimate, a batch's progress
+!> lines), warnings and errors to stderr. --quiet drops the progress only.
 !>
 !> Exit status: 0 success; 1 error (bad input, a failed run); 2 bad usage;
 !> 3 a batch stopped early (--max-profiles), resumable; 4 a batch finished
@@ -21,10 +24,13 @@ program pavefric_main
    type(error_type), allocatable :: error
    type(batch_summary_type) :: summary
    integer :: max_profiles, stat
+   !> --quiet: no progress lines and no estimate (warnings and errors stay).
+   logical :: quiet
    character(len=:), allocatable :: scene_path, out_override, out_path, arg, command, warnings
    integer :: i, nargs, j
 
    max_profiles = 0
+   quiet = .false.
    nargs = command_argument_count()
    scene_path = ""
    out_override = ""
@@ -40,6 +46,8 @@ program pavefric_main
       case ("-V", "--version")
          write(output_unit, '(a)') "pavefric " // pavefric_version
          stop
+      case ("-q", "--quiet")
+         quiet = .true.
       case ("--max-profiles")
          if (i == nargs) call usage_error("option " // arg // " needs a number")
          i = i + 1
@@ -76,7 +84,8 @@ program pavefric_main
    if (allocated(error)) call fail(error%message)
    if (scene%is_batch) then
       if (is_root()) call print_warnings(scene%warnings)   ! the scene's; profiles' at the end
-      call run_batch_program(scene_path, out_override, command, max_profiles, summary, error)
+      call run_batch_program(scene_path, out_override, command, max_profiles, &
+         & merge(-1, error_unit, quiet), summary, error)
       if (allocated(error)) call fail(error%message)
       if (is_root()) call report_batch()
       call parallel_finalize()
@@ -113,6 +122,14 @@ contains
             & to_str(max_profiles) // "); run it again to resume from its journal '" // &
             & summary%output // ".journal'"
       end if
+      if (quiet) then       ! the journal's news that are warnings (else in the progress)
+         if (summary%damaged > 0) write(error_unit, '(a)') "pavefric: warning: " // &
+            & to_str(summary%damaged) // " damaged journal line(s) ignored (their profiles " // &
+            & "are recomputed)"
+         if (summary%changed > 0) write(error_unit, '(a)') "pavefric: warning: " // &
+            & to_str(summary%changed) // " profile file(s) changed since the journal " // &
+            & "(recomputed)"
+      end if
       if (summary%warned > 0) then
          do k = 1, size(summary%warned_profiles)
             write(error_unit, '(a)') "pavefric: warning: profile " // summary%warned_profiles(k)%s
@@ -137,9 +154,11 @@ contains
       end if
    end subroutine report_batch
 
-   !> The cost estimate, on stderr before the model runs (progress, not results).
+   !> The cost estimate, on stderr before the model runs (progress, not
+   !> results; none with --quiet).
    subroutine print_estimate(text)
       character(len=*), intent(in) :: text
+      if (quiet) return
       write(error_unit, '(a)') "pavefric: " // text
       flush(error_unit)
    end subroutine print_estimate
@@ -200,7 +219,7 @@ contains
    subroutine usage(unit)
       integer, intent(in) :: unit
       write(unit, '(a)') &
-         & "usage: pavefric SCENE.nml [-o OUT.nc] [--max-profiles N]", &
+         & "usage: pavefric SCENE.nml [-o OUT.nc] [-q] [--max-profiles N]", &
          & "", &
          & "Predict tyre-rubber/pavement friction (Kane et al. 2017) from a texture", &
          & "profile, dry and wet, at the speeds of the scene's &operation speeds_kmh.", &
@@ -209,6 +228,8 @@ contains
          & "                     &operation &numerics &output; see docs/inputs.md)", &
          & "  -o, --output FILE  NetCDF output (default: &output file, else", &
          & "                     outputs/<scene name>.nc)", &
+         & "  -q, --quiet        no progress: neither the cost estimate nor a batch's", &
+         & "                     progress lines (warnings and errors still on stderr)", &
          & "  --max-profiles N   batch: stop after computing N profiles (resume later)", &
          & "  -h, --help         this help", &
          & "  -V, --version      the version", &
@@ -217,6 +238,10 @@ contains
          & "under mpirun the profiles are shared among the ranks (docs/cluster.md).", &
          & "A batch ends with a summary line: profiles computed, taken from the", &
          & "journal of an earlier run, failed, with warnings, and the output file.", &
+         & "", &
+         & "Results (the friction table, a batch's summary line) go to stdout;", &
+         & "progress (the cost estimate of a run of a second or more, a batch's", &
+         & "progress lines), warnings and errors to stderr.", &
          & "", &
          & "Exit status (every MPI rank exits with the same):", &
          & "  0  success (a batch: every profile computed)", &

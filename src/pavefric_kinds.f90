@@ -18,7 +18,8 @@ module pavefric_kinds
    !> loops over the lanes compile to whole vectors (two AVX2 vectors, four
    !> SSE2 ones) and the lanes' work arrays live on the stack.
    integer, parameter :: lanes = 8
-   !> Version of the code, written into every output file.
-   character(len=*), parameter :: pavefric_version = "0.1.0"
+   !> Version of the code, written into every output file: meson.build's
+   !> project(version:), through the generated pavefric_version.inc.
+   include "pavefric_version.inc"
 
 end module pavefric_kinds

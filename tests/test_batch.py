@@ -82,7 +82,7 @@ def test_mpi_two_ranks_same_as_serial(tmp_path, serial_demo):
     r = subprocess.run([mpirun, "--oversubscribe", "-n", "2", program(), str(DEMO), "-o",
                         str(out)], capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stderr + r.stdout
-    assert "on 2 MPI ranks" in r.stdout
+    assert "on 2 MPI ranks" in r.stderr
     same_contents(serial_demo, out)
 
 
@@ -106,7 +106,7 @@ def test_killed_batch_resumes_without_recomputing(tmp_path):
     assert 30 <= done < 400, done
     r = run_program(scene, "-o", out)
     assert r.returncode == 0, r.stderr
-    resumed = int(r.stdout.split("resuming: ")[1].split(" of ")[0])
+    resumed = int(r.stderr.split("resuming: ")[1].split(" of ")[0])
     assert resumed >= done - 1          # a line cut by the kill is recomputed, nothing else
     assert not journal.exists()
     same_contents(clean, out)
@@ -164,9 +164,13 @@ def test_journal_of_another_batch_is_refused(tmp_path):
 def test_progress_lines(tmp_path):
     scene = make_batch(tmp_path, n=20)
     r = run_program(scene, "-o", tmp_path / "o.nc")
-    lines = [l for l in r.stdout.splitlines() if l.startswith("pavefric batch: ")]
+    # progress on stderr; stdout holds the results only (the summary line)
+    lines = [l for l in r.stderr.splitlines() if l.startswith("pavefric batch: ")]
     assert len(lines) >= 2 and "20/20 profiles (100.0 %)" in lines[-1]
     assert "profiles/s" in lines[-1] and "s left" in lines[-1]
+    results = r.stdout.splitlines()
+    assert len(results) == 1 and ": batch " in results[0], r.stdout
+    assert "20 profiles: 20 computed in this run" in results[0]
 
 
 def test_batch_bad_input(tmp_path):
@@ -205,7 +209,7 @@ def test_profile_list_restart_off_and_progress_every(tmp_path):
     out = tmp_path / "l.nc"
     r = run_program(scene, "-o", out)
     assert r.returncode == 0, r.stderr
-    assert len([l for l in r.stdout.splitlines() if "profiles/s" in l]) == 4   # one a profile
+    assert len([l for l in r.stderr.splitlines() if "profiles/s" in l]) == 4   # one a profile
     with xr.open_dataset(out) as ds:
         assert list(ds["profile"].values) == [p.stem for p in names]
     # restart = .false.: an old journal is ignored and overwritten
@@ -213,8 +217,8 @@ def test_profile_list_restart_off_and_progress_every(tmp_path):
     scene.write_text(scene.read_text().replace("progress_every = 1",
                                                "progress_every = 1, restart = .false."))
     r = run_program(scene, "-o", out)
-    assert r.returncode == 0 and "resuming" not in r.stdout
-    assert len([l for l in r.stdout.splitlines() if "profiles/s" in l]) == 4   # all four again
+    assert r.returncode == 0 and "resuming" not in r.stderr + r.stdout
+    assert len([l for l in r.stderr.splitlines() if "profiles/s" in l]) == 4   # all four again
 
 
 def test_batch_unwritable_output_and_bad_max_profiles(tmp_path):

@@ -83,8 +83,8 @@ def test_profile_edited_between_stop_and_resume_is_recomputed(tmp_path):
     p.write_text("\n".join(lines) + "\n")
     r = run_program(scene, "-o", out)
     assert r.returncode == 0, r.stderr
-    assert "resuming: 5 of 10 profiles already done" in r.stdout
-    assert "1 profile file(s) changed since the journal (recomputed)" in r.stdout
+    assert "resuming: 5 of 10 profiles already done" in r.stderr
+    assert "1 profile file(s) changed since the journal (recomputed)" in r.stderr
     assert "5 computed in this run, 5 taken from the journal" in r.stdout
     clean = tmp_path / "clean.nc"
     assert run_program(scene, "-o", clean).returncode == 0
@@ -155,9 +155,9 @@ def test_damaged_journal_lines_are_recomputed_never_trusted(tmp_path):
     journal.write_text("\n".join([header] + rows) + "\n")
     r = run_program(scene, "-o", out)
     assert r.returncode == 0, r.stderr
-    assert "resuming: 1 of 10 profiles already done" in r.stdout
-    assert "7 damaged journal line(s) ignored" in r.stdout
-    assert "1 profile file(s) changed since the journal (recomputed)" in r.stdout
+    assert "resuming: 1 of 10 profiles already done" in r.stderr
+    assert "7 damaged journal line(s) ignored" in r.stderr
+    assert "1 profile file(s) changed since the journal (recomputed)" in r.stderr
     same_contents(clean, out)
     with xr.open_dataset(out) as ds:
         assert np.all(np.isfinite(ds["mu"].values))
@@ -174,7 +174,7 @@ def test_line_cut_by_a_kill_does_not_swallow_the_next(tmp_path):
     journal.write_text(text[:-300])                    # the 4th line cut short
     assert run_program(scene, "-o", out, "--max-profiles", "3").returncode == 3
     r = run_program(scene, "-o", out, "--max-profiles", "1")
-    assert "resuming: 6 of 10 profiles already done; 1 damaged journal line(s)" in r.stdout
+    assert "resuming: 6 of 10 profiles already done; 1 damaged journal line(s)" in r.stderr
 
 
 SHIM = r"""
@@ -237,7 +237,7 @@ def test_journal_write_failure_stops_the_batch(tmp_path, full_disk_shim):
     # once the disk has room, the same command resumes from what was kept
     r = run_program(scene, "-o", out)
     assert r.returncode == 0, r.stderr
-    assert f"resuming: {kept} of 40 profiles already done" in r.stdout
+    assert f"resuming: {kept} of 40 profiles already done" in r.stderr
     clean = tmp_path / "clean.nc"
     assert run_program(scene, "-o", clean).returncode == 0
     same_contents(clean, out)

@@ -89,7 +89,7 @@ def test_warnings_and_messages_survive_a_resume(tmp_path):
     part = tmp_path / "part.nc"
     assert run_program(scene, "-o", part, "--max-profiles", "4").returncode == 3
     r = run_program(scene, "-o", part)
-    assert r.returncode == 4 and "resuming: 4 of 6" in r.stdout, r.stderr
+    assert r.returncode == 4 and "resuming: 4 of 6" in r.stderr, r.stdout + r.stderr
     same_contents(whole, part)
     ds = pavefric.open_dataset(part)
     assert "a\\b" in str(ds["error_message"].sel(profile="seg_0004").values)

@@ -45,3 +45,22 @@ def test_every_written_variable_is_documented(tmp_path):
                            tolerance=3e-2)
     for name in ds.variables:
         assert f"`{name}`" in text, name
+
+
+def test_docs_index_lists_every_file():
+    """docs/index.md links every page and figure of docs/ (one line each),
+    and every link in it leads to a file that is there."""
+    import re
+
+    docs = ROOT / "docs"
+    index = (docs / "index.md").read_text(encoding="utf-8")
+    links = re.findall(r"\]\(([^)#\s]+)\)", index)
+    for target in links:
+        assert (docs / target).is_file(), f"docs/index.md links {target}, which is not there"
+    files = sorted(str(p.relative_to(docs)) for p in docs.rglob("*")
+                   if p.is_file() and p.name != "index.md")
+    assert any(f.endswith(".md") for f in files) and any(f.startswith("figures/") for f in files)
+    lines = index.splitlines()
+    for name in files:
+        hits = [line for line in lines if f"]({name})" in line]
+        assert len(hits) == 1, f"docs/{name} is linked from {len(hits)} lines of docs/index.md"

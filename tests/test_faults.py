@@ -72,7 +72,7 @@ def test_full_disk_leaves_a_batch_resumable(tmp_path):
     r = subprocess.run([program(), str(scene), "-o", "b.nc"], cwd=tmp_path, capture_output=True,
                        text=True, timeout=600)
     assert r.returncode == 0, r.stderr
-    assert "resuming: 3 of 3" in r.stdout
+    assert "resuming: 3 of 3" in r.stderr
 
 
 PY_RUN = textwrap.dedent("""

@@ -258,7 +258,7 @@ def test_signal_while_writing_a_batch(tmp_path):
     assert (tmp_path / "b.nc.journal").exists()
     r = run_program(scene, "-o", "b.nc", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
-    assert "resuming: 4 of 4" in r.stdout
+    assert "resuming: 4 of 4" in r.stderr
     assert (tmp_path / "b.nc").read_bytes()[:4] == b"\x89HDF"
 
 

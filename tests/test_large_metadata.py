@@ -35,7 +35,7 @@ def test_batch_with_a_200kb_scene_completes_and_resumes(tmp_path):
     assert r.returncode == 3, r.stderr
     r = run_program(scene, "-o", out)
     assert r.returncode == 0, r.stderr
-    assert "resuming: 3 of 8" in r.stdout
+    assert "resuming: 3 of 8" in r.stderr
     same_contents(whole, out)
     assert pavefric.open_dataset(out).attrs["input_namelist"] == text
 

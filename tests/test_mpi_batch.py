@@ -114,7 +114,7 @@ def test_uneven_batch_dynamic_scheduling_equals_serial(tmp_path):
         out = tmp_path / f"mpi{n}.nc"
         r = mpirun(scene, "-o", out, n=n)
         assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
-        assert f"60 profiles on {n} MPI ranks" in r.stdout
+        assert f"60 profiles on {n} MPI ranks" in r.stderr
         same_contents(serial, out)
 
 
@@ -141,7 +141,7 @@ def test_every_rank_exits_alike(tmp_path):
     assert journal.count("\nP ") == 15
     r = mpirun(scene, "-o", out, wrap_exit=True)
     assert rank_exits(r) == ["4", "4"], r.stdout + r.stderr
-    assert "resuming: 15 of 40 profiles already done" in r.stdout
+    assert "resuming: 15 of 40 profiles already done" in r.stderr
     assert "40 profiles: 25 computed in this run, 15 taken from the journal, 1 failed" in r.stdout
     same_contents(serial, out)
 

@@ -17,7 +17,7 @@ from .texture import ifi, texture
 
 open = open_dataset  # noqa: A001  - pavefric.open(path) reads an output file
 
-__version__ = "0.1.0"
+from ._version import __version__  # meson.build project(version:), at build time
 
 __all__ = ["CTM_DX", "PavefricError", "PavefricKeywordError", "PavefricWarning", "Profile",
            "ProfilesFailedWarning", "Scene", "load_scene", "defaults", "groups", "parameters",

@@ -1,7 +1,7 @@
 """Command line of the Python layer: ``python -m pavefric COMMAND ...``.
 
 Commands:
-  run SCENE.nml [-o OUT.nc] [--plot PNG]   run a scene (same core as the program)
+  run SCENE.nml [-o OUT.nc] [--plot PNG] [-q]  run a scene (same core as the program)
   plot OUT.nc [OUT.nc ...] -o PNG           friction against speed
   surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
   accuracy SCENE.nml [...] [--report docs/accuracy.md]  accuracy-cost study
@@ -16,11 +16,37 @@ Commands:
   rubber-report [--report docs/rubber.md]  Maxwell rubber: friction against speed and
                                            temperature, cost against Kelvin-Voigt
   merge PART.nc [PART.nc ...] -o SURVEY.nc  join batch outputs of one survey run in parts
+  example [DIR] [--force]                   write the default scenes into DIR (any directory)
+
+The report commands (bench, validate, docs, speed-gradient, rubber-report,
+surfaces) are the maintainers': they read and write the checkout's tests/,
+inputs/ and docs/, and refuse in one line (exit status 2) elsewhere.
 """
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
+
+#: The maintainers' commands, which need a checkout as the current directory.
+CHECKOUT_COMMANDS = ("bench", "validate", "docs", "speed-gradient", "rubber-report", "surfaces")
+
+
+def in_checkout(directory: Path | None = None) -> bool:
+    """Whether ``directory`` (default: the current one) is a pavefric
+    checkout: the NumPy reference tests/reference.py and inputs/ are there."""
+    root = Path.cwd() if directory is None else directory
+    return (root / "tests" / "reference.py").is_file() and (root / "inputs").is_dir()
+
+
+def needs_checkout(args: argparse.Namespace) -> bool:
+    """Whether this maintainer command reads or writes the checkout: always,
+    except docs and surfaces told where to read and write everything."""
+    if args.command == "docs":
+        return args.inputs == "docs/inputs.md" or args.outputs == "docs/outputs.md"
+    if args.command == "surfaces":
+        return args.outdir == "inputs/surfaces" or args.table is None
+    return args.command in CHECKOUT_COMMANDS
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -35,6 +61,8 @@ def main(argv: list[str] | None = None) -> int:
     p_run.add_argument("scene")
     p_run.add_argument("-o", "--output", default=None, help="NetCDF output path")
     p_run.add_argument("--plot", default=None, help="also write a PNG of mu against speed")
+    p_run.add_argument("-q", "--quiet", action="store_true",
+                       help="no progress bar for a batch (warnings and errors still on stderr)")
 
     p_plot = sub.add_parser("plot", help="plot mu against speed from NetCDF outputs")
     p_plot.add_argument("files", nargs="+")
@@ -176,7 +204,23 @@ def main(argv: list[str] | None = None) -> int:
     p_merge.add_argument("parts", nargs="+", help="batch outputs (NetCDF)")
     p_merge.add_argument("-o", "--output", required=True, help="the merged file")
 
+    p_ex = sub.add_parser(
+        "example", help="write the default scenes and their profile into a directory",
+        description="Write the default scenes (ctm_dry.nml, ctm_wet.nml, ctm_squeeze.nml) "
+        "and the profile they read (profiles/ctm_medium.txt), shipped in the package, into "
+        "DIR, and print the commands to run next. Existing files are left alone unless "
+        "--force.",
+        epilog="example: python -m pavefric example my-run && cd my-run && pavefric ctm_dry.nml")
+    p_ex.add_argument("directory", nargs="?", default="pavefric-example",
+                      help="where to write (default ./pavefric-example; made if missing)")
+    p_ex.add_argument("--force", action="store_true", help="overwrite files already there")
+
     args = parser.parse_args(argv)
+    if args.command in CHECKOUT_COMMANDS and needs_checkout(args) and not in_checkout():
+        print(f"pavefric: error: 'python -m pavefric {args.command}' is a maintainer command "
+              "and needs a pavefric checkout (tests/reference.py and inputs/ in the current "
+              f"directory, {Path.cwd()}): run it from the repository's root", file=sys.stderr)
+        return 2
     from .core import PavefricError
     from .merge import MergeError
 
@@ -189,7 +233,7 @@ def main(argv: list[str] | None = None) -> int:
 
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always", ProfilesFailedWarning)
-                out = run(args.scene, args.output)
+                out = run(args.scene, args.output, progress=False if args.quiet else None)
             failed = [w for w in caught if issubclass(w.category, ProfilesFailedWarning)]
             for w in caught:
                 if w not in failed:
@@ -295,6 +339,17 @@ def main(argv: list[str] | None = None) -> int:
             from .merge import merge
 
             print(f"wrote {merge(args.parts, args.output)}")
+        elif args.command == "example":
+            from .example import next_steps, write_example
+
+            try:
+                written = write_example(args.directory, force=args.force)
+            except FileExistsError as exc:
+                print(f"pavefric: error: {exc}", file=sys.stderr)
+                return 1
+            for path in written:
+                print(f"wrote {path}")
+            print(next_steps(args.directory))
     except (PavefricError, MergeError) as exc:
         print(f"pavefric: error: {exc}", file=sys.stderr)
         return 1

@@ -288,9 +288,9 @@ def mpi_batch(log, root: Path | None = None) -> dict:
                 best = min(best, time.perf_counter() - t0)
                 if r.returncode != 0:
                     raise RuntimeError(r.stderr)
-                # the batch's own throughput: its last progress line, timed from
+                # the batch's own throughput: its last progress line (stderr), timed from
                 # the first profile (after MPI start-up and reading the inputs)
-                last = [l for l in r.stdout.splitlines() if "profiles/s" in l][-1]
+                last = [l for l in r.stderr.splitlines() if "profiles/s" in l][-1]
                 rate = max(rate, float(last.split("%), ")[1].split(" profiles/s")[0]))
             times[ranks], rates[ranks] = best, rate
     n = len(list(demo_dir.glob("*.txt")))

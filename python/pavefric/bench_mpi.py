@@ -77,7 +77,7 @@ def mpi_uneven(log=print, repeats: int = 3, n_short: int = 240,
                 if r.returncode != 0:
                     raise RuntimeError(r.stdout[-2000:] + r.stderr[-2000:])
                 if ranks == 2:
-                    line = [x for x in r.stdout.splitlines() if "CPU seconds per rank" in x][0]
+                    line = [x for x in r.stderr.splitlines() if "CPU seconds per rank" in x][0]
                     cpu.append([float(v) for v in line.split(":")[-1].split()])
         with xr.open_dataset(Path(tmp) / "o1_0.nc") as a, \
                 xr.open_dataset(Path(tmp) / "o2_0.nc") as b:

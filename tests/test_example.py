@@ -1,0 +1,105 @@
+"""`python -m pavefric example DIR` writes the default scenes from the
+installed package, anywhere, and the program runs them there; the
+maintainers' commands refuse cleanly outside a checkout."""
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pavefric
+from conftest import ROOT, program, run_program
+
+
+def cli(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "pavefric", *map(str, args)], cwd=cwd,
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_example_runs_from_any_directory(tmp_path):
+    r = cli("example", "my-run", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    run_dir = tmp_path / "my-run"
+    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt"):
+        assert (run_dir / name).is_file(), name
+        assert f"wrote my-run/{name}" in r.stdout
+    # the commands to run next, with this environment's program
+    assert "cd my-run" in r.stdout
+    assert f"{program()} ctm_dry.nml" in r.stdout or "\n  pavefric ctm_dry.nml" in r.stdout
+
+    ran = run_program("ctm_dry.nml", cwd=run_dir)
+    assert ran.returncode == 0, ran.stderr
+    out = run_dir / "outputs" / "ctm_dry.nc"
+    with pavefric.open_dataset(out) as ds:
+        mu = ds["mu"].values
+        assert mu.size == 10 and np.all(np.isfinite(mu)) and np.all(mu > 0)
+    # the same numbers as the checkout's own default scene
+    reference = run_program(ROOT / "inputs" / "ctm_dry.nml", "-o", tmp_path / "ref.nc")
+    assert reference.returncode == 0, reference.stderr
+    with pavefric.open_dataset(tmp_path / "ref.nc") as ref:
+        assert np.array_equal(mu, ref["mu"].values)
+
+
+def test_example_files_are_the_checkouts(tmp_path):
+    """What the wheel ships is inputs/ as committed; only the header's Run:
+    line names the scene where it now lies."""
+    assert cli("example", tmp_path / "ex", cwd=tmp_path).returncode == 0
+    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt"):
+        original = (ROOT / "inputs" / name).read_text(encoding="utf-8")
+        if name.endswith(".nml"):
+            assert f"Run:  pavefric inputs/{name}" in original
+            original = original.replace(f"pavefric inputs/{name}", f"pavefric {name}")
+        assert (tmp_path / "ex" / name).read_text(encoding="utf-8") == original, name
+
+
+def test_example_default_directory_and_no_overwrite(tmp_path):
+    r = cli("example", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    scene = tmp_path / "pavefric-example" / "ctm_wet.nml"
+    assert scene.is_file()
+    scene.write_text("! my edits\n")
+    r = cli("example", cwd=tmp_path)
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "already there" in lines[0] and "--force" in lines[0], r.stderr
+    assert scene.read_text() == "! my edits\n"           # nothing written
+    r = cli("example", "--force", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert scene.read_text() == (ROOT / "inputs" / "ctm_wet.nml").read_text().replace(
+        "pavefric inputs/ctm_wet.nml", "pavefric ctm_wet.nml")
+
+
+def test_example_refuses_a_directory_in_the_way(tmp_path):
+    (tmp_path / "ex" / "ctm_dry.nml").mkdir(parents=True)
+    r = cli("example", "ex", "--force", cwd=tmp_path)
+    assert r.returncode == 1 and "Traceback" not in r.stderr, r.stderr
+    assert "ctm_dry.nml" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "ex" / "ctm_wet.nml").exists()    # nothing written
+
+
+@pytest.mark.parametrize("command", ["bench", "validate", "docs", "speed-gradient",
+                                     "rubber-report", "surfaces"])
+def test_maintainer_commands_need_a_checkout(tmp_path, command):
+    """Outside a checkout (no tests/reference.py, no inputs/): one line,
+    exit status 2, nothing written."""
+    r = cli(command, cwd=tmp_path)
+    assert r.returncode == 2, r.stdout + r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
+    assert f"'python -m pavefric {command}'" in lines[0] and "needs a pavefric checkout" \
+        in lines[0]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_docs_told_where_to_write_runs_anywhere(tmp_path):
+    r = cli("docs", "--inputs", "in.md", "--outputs", "out.md", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "in.md").read_text(encoding="utf-8") == \
+        (ROOT / "docs" / "inputs.md").read_text(encoding="utf-8")
+
+
+def test_the_checkout_is_recognised():
+    from pavefric.__main__ import in_checkout
+
+    assert in_checkout(ROOT)
+    assert not in_checkout(ROOT / "docs")
