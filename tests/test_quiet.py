@@ -32,7 +32,7 @@ def test_quiet_scene_drops_the_estimate_keeps_warnings_and_results(tmp_path, pro
     the same."""
     scene = write_scene(tmp_path, profile=profile_m,
                         groups={"surface": "profile_file = 'scene_profile.txt', mu_loc = 0.5, "
-                                           "microtexture_rms = 4e-5",
+                                           "microtexture_rms = 1e-5",
                                 "water": "depth = 1e-3",
                                 "numerics": "substeps = 1024",
                                 "operation": "speeds_kmh = 20, 40, 60"})
