@@ -16,7 +16,7 @@ module pavefric_batch
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning
+   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, stat_memory
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
@@ -145,7 +145,11 @@ contains
 
       call batch_setup(path, output_override, batch, error)
       if (allocated(error)) return
-      allocate(blocks(batch%n_profiles))
+      allocate(blocks(batch%n_profiles), stat=i)
+      if (i /= 0) then
+         call no_memory(batch%n_profiles, "profiles' results", error)
+         return
+      end if
       do i = 1, batch%n_profiles
          blocks(i)%index = i
       end do
@@ -185,7 +189,12 @@ contains
          return
       end if
       batch%from_netcdf = .true.
-      allocate(batch%paths(batch%catalog%n_profiles), batch%names(batch%catalog%n_profiles))
+      allocate(batch%paths(batch%catalog%n_profiles), batch%names(batch%catalog%n_profiles), &
+         & stat=i)
+      if (i /= 0) then
+         call no_memory(batch%catalog%n_profiles, "profile names", error)
+         return
+      end if
       do i = 1, batch%catalog%n_profiles
          batch%paths(i)%s = path
          batch%names(i)%s = batch%catalog%names(i)%s
@@ -223,7 +232,11 @@ contains
          do k = 1, len(text)
             if (text(k:k) == achar(10)) count = count + 1
          end do
-         allocate(paths(count), chain(count), line_of(count))
+         allocate(paths(count), chain(count), line_of(count), stat=n)
+         if (n /= 0) then
+            call no_memory(count, "lines of the profile list", error)
+            return
+         end if
          dir = dir_name(list)
          n = 0
          n_chain = 0
@@ -291,7 +304,11 @@ contains
             & "': matches no file")
          return
       end if
-      allocate(paths(count))
+      allocate(paths(count), stat=n)
+      if (n /= 0) then
+         call no_memory(count, "profile paths", error)
+         return
+      end if
       start = 1
       do n = 1, count
          k = index(text(start:need), achar(10))
@@ -987,5 +1004,15 @@ contains
          end do
       end do
    end subroutine check_batch_outputs
+
+   !> The error of a batch whose `n` somethings do not fit in memory.
+   pure subroutine no_memory(n, what, error)
+      integer, intent(in) :: n
+      character(len=*), intent(in) :: what
+      type(error_type), allocatable, intent(out) :: error
+      call fatal_error(error, "&batch: not enough memory for " // to_str(n) // " " // what // &
+         & "; split the batch into parts (python -m pavefric merge joins their outputs, " // &
+         & "docs/cluster.md)", stat_memory)
+   end subroutine no_memory
 
 end module pavefric_batch
