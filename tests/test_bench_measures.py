@@ -1,0 +1,22 @@
+"""The benchmark's own measurements: a run's peak memory is that run's,
+not the largest of every process the benchmark started before it (the
+survey plan reported 587 MB a rank inside `python -m pavefric bench`, where
+the 10,000,000-point run came first; 76 MB alone)."""
+import sys
+
+from pavefric.bench_mpi import _timed
+
+
+def test_peak_memory_is_the_runs_own(tmp_path):
+    big = [sys.executable, "-c", "b = bytearray(300 * 2**20); b[::4096] = b'x' * len(b[::4096])"]
+    small = [sys.executable, "-c", "pass"]
+    _, rss_big = _timed(big, None, tmp_path, 1)
+    _, rss_small = _timed(small, None, tmp_path, 1)
+    assert rss_big > 300 * 1024                    # kB: the 300 MiB were touched
+    assert rss_small < 100 * 1024, rss_small       # the interpreter alone, not the big run
+
+
+def test_a_failing_command_is_reported(tmp_path):
+    import pytest
+    with pytest.raises(RuntimeError, match="went wrong"):
+        _timed([sys.executable, "-c", "import sys; sys.exit('went wrong')"], None, tmp_path, 1)
