@@ -16,6 +16,18 @@ def test_peak_memory_is_the_runs_own(tmp_path):
     assert rss_small < 100 * 1024, rss_small       # the interpreter alone, not the big run
 
 
+def test_peak_memory_is_not_the_benchmarks_own(tmp_path):
+    """Linux counts what a child had before exec (the benchmark's own
+    resident pages, shared after fork) in its peak: the benchmark holding
+    300 MiB must not make a small run look large."""
+    held = bytearray(300 * 2**20)
+    held[::4096] = b"x" * len(held[::4096])
+    seconds, rss = _timed([sys.executable, "-c", "pass"], None, tmp_path, 1)
+    assert rss < 100 * 1024, rss
+    assert 0.0 < seconds < 30.0
+    del held
+
+
 def test_a_failing_command_is_reported(tmp_path):
     import pytest
     with pytest.raises(RuntimeError, match="went wrong"):

@@ -204,25 +204,37 @@ def _survey_scene(directory: Path, survey: Path, speeds: int, depths, tag: str) 
     return scene
 
 
+#: Runs argv[1:] and prints its wall time and peak RSS (kB, wait4). Started
+#: by `_timed` as a small process of its own: Linux counts in a child's peak
+#: the pages it held before exec, the whole benchmark's after its fork.
+_MEASURE_CHILD = """
+import os, subprocess, sys, time
+t0 = time.perf_counter()
+p = subprocess.Popen(sys.argv[1:], stdout=subprocess.DEVNULL)
+_, status, usage = os.wait4(p.pid, 0)
+seconds = time.perf_counter() - t0
+p.returncode = os.waitstatus_to_exitcode(status)
+print(seconds, usage.ru_maxrss)
+sys.exit(0 if p.returncode == 0 else 1)
+"""
+
+
 def _timed(cmd, env, cwd, repeats) -> tuple[float, float]:
     """Best wall time of `cmd` and the peak RSS (kB) of its last run: that
-    process's own (wait4), not RUSAGE_CHILDREN's, which is the largest of
-    every child this process ever waited for (inside `python -m pavefric
-    bench`, the 10,000,000-point run's 580 MB)."""
+    process's own, measured from a small intermediate process (not
+    RUSAGE_CHILDREN, the largest child this process ever had, nor wait4 on
+    a child of this process, which counts the benchmark's own pages: inside
+    `python -m pavefric bench` both reported about 500 MB for a 76 MB run)."""
     best = float("inf")
     rss = 0.0
     for _ in range(repeats):
-        with tempfile.TemporaryFile() as err:
-            t0 = time.perf_counter()
-            proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env=env, cwd=cwd)
-            _, status, usage = os.wait4(proc.pid, 0)
-            best = min(best, time.perf_counter() - t0)
-            proc.returncode = os.waitstatus_to_exitcode(status)
-            if proc.returncode != 0:
-                err.seek(0)
-                raise RuntimeError(f"{' '.join(map(str, cmd))}: "
-                                   f"{err.read().decode(errors='replace')[-400:]}")
-            rss = float(usage.ru_maxrss)
+        r = subprocess.run([sys.executable, "-c", _MEASURE_CHILD, *map(str, cmd)],
+                           capture_output=True, text=True, env=env, cwd=cwd)
+        if r.returncode != 0:
+            raise RuntimeError(f"{' '.join(map(str, cmd))}: {r.stderr[-400:]}")
+        seconds, kb = r.stdout.split()
+        best = min(best, float(seconds))
+        rss = float(kb)
     return best, rss
 
 
