@@ -29,6 +29,8 @@ module pavefric_model
    !> The smallest &numerics tolerance (> 0) a run can meet in double
    !> precision: about 45 x machine epsilon, as mu's rounding is ~1e-15.
    real(wp), parameter :: tolerance_floor = 1.0e-14_wp
+   !> The largest &numerics substeps, also where accuracy on demand stops halving.
+   integer, parameter, public :: max_substeps = 4096
    integer, parameter :: shape_flat = 0, shape_rounded = 1
 
    !> The values used, as a namelist that reproduces them (defaults
@@ -363,7 +365,8 @@ contains
          & upper=90.0_wp, upper_strict=.true.)
       s(p_substeps) = int_param("numerics", "substeps", "1", "model", &
          & "time steps per element spacing: the pad advances dx / substeps per step; " // &
-         & "heights and facet tangents are interpolated linearly between samples", 1, 4096)
+         & "heights and facet tangents are interpolated linearly between samples", 1, &
+         & max_substeps)
       s(p_elements_per_sample) = int_param("numerics", "elements_per_sample", "1", "model", &
          & "pad elements per profile spacing: element width dx / elements_per_sample; " // &
          & "heights and facet tangents interpolated linearly between samples", 1, 4096)
@@ -1143,6 +1146,17 @@ contains
                & ": must exceed half the pad length (" // to_str(0.5_wp*m%length) // " m)")
             return
          end if
+      end if
+      ! accuracy on demand estimates the error from two successive halvings
+      ! of the step: a start that leaves room for fewer would report no
+      ! estimate (it was written as 1.797e308)
+      if (m%tolerance > 0.0_wp .and. 4 * m%substeps > max_substeps) then
+         call fatal_error(error, "&numerics substeps = " // to_str(m%substeps) // &
+            & " with tolerance = " // to_str(m%tolerance) // ": accuracy on demand halves " // &
+            & "the step at least twice to estimate the error, and substeps may not pass " // &
+            & to_str(max_substeps) // "; give substeps <= " // to_str(max_substeps / 4) // &
+            & " (or tolerance = 0 to run substeps as given)")
+         return
       end if
       call validate_rubber(m, error)
    end subroutine validate_model

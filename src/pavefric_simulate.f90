@@ -9,7 +9,7 @@ module pavefric_simulate
    use pavefric_kinds, only: wp, i8, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
    use pavefric_format, only: to_str
-   use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded
+   use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded, max_substeps
    use pavefric_heights, only: refine_profile, check_heights
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
    use pavefric_maxwell, only: maxwell_rubber, wlf_shift
@@ -23,10 +23,6 @@ module pavefric_simulate
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components, cost_estimate_type, estimate_cost, check_memory
-
-
-   !> Finest time step the tolerance refinement may reach (&numerics substeps' bound).
-   integer, parameter :: max_substeps = 4096
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -274,18 +270,8 @@ contains
       integer :: ns, k, j, level
       real(wp) :: change, est
       ns = size(speeds_kmh)
-      ! the error is estimated from two successive halvings of the step: a
-      ! start that leaves room for fewer would report no estimate (it was
-      ! written as 1.797e308)
-      if (4 * m%substeps > max_substeps) then
-         call fatal_error(error, "&numerics substeps = " // to_str(m%substeps) // &
-            & " with tolerance = " // to_str(m%tolerance) // ": accuracy on demand halves " // &
-            & "the step at least twice to estimate the error, and substeps may not pass " // &
-            & to_str(max_substeps) // "; give substeps <= " // to_str(max_substeps / 4) // &
-            & " (or tolerance = 0 to run substeps as given)")
-         return
-      end if
       mm = m
+      mm%tolerance = 0.0_wp            ! each pass runs its substeps as given
       call simulate_fixed(mm, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
       allocate(res%mu_error(ns), res%substeps_used(ns), active(ns))

@@ -1,13 +1,11 @@
 """Silent nonsense made loud (issue 19): knobs the chosen wet model ignores
 are warned about; an accuracy request that cannot estimate its error is
-refused (it wrote mu_error_estimate = 1.797e308); `prony` on a file without
-data rows fails; NetCDF surveys with empty or duplicate profile names or a
-non-finite chainage are refused; temporaries left by a SIGKILL are removed
+refused (it wrote mu_error_estimate = 1.797e308); NetCDF surveys with empty
+or duplicate profile names or a non-finite chainage are refused; temporaries left by a SIGKILL are removed
 by the next run that writes the same output."""
 import os
 import signal
 import subprocess
-import sys
 
 import netCDF4
 import numpy as np
@@ -75,24 +73,6 @@ def test_the_largest_start_that_can_estimate_writes_a_finite_estimate():
     est = ds["mu_error_estimate"].values
     assert np.all(np.isfinite(est)) and np.all(est < 1.0), est
     assert ds["substeps_used"].values[0] == 4096
-
-
-# ---- prony -------------------------------------------------------------------------
-
-@pytest.mark.parametrize("text, message", [
-    ("temperature_c,frequency_hz,storage_mpa,loss_mpa\n", "no data rows"),
-    ("temperature_c,frequency_hz,storage_mpa,loss_mpa\n# a comment only\n", "no data rows"),
-    ("", "no header and no data"),
-])
-def test_prony_without_data_rows_fails_and_writes_nothing(tmp_path, text, message):
-    data = tmp_path / "dma.csv"
-    data.write_text(text)
-    out = tmp_path / "rubber.nml"
-    r = subprocess.run([sys.executable, "-m", "pavefric", "prony", str(data), "-o", str(out)],
-                       capture_output=True, text=True)
-    assert r.returncode != 0
-    assert f"{data}: {message}" in r.stderr
-    assert not out.exists()
 
 
 # ---- NetCDF surveys: names and chainage ----------------------------------------------

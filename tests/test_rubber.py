@@ -458,14 +458,22 @@ def test_prony_reads_shear_moduli_as_three_times_young(tmp_path):
     ("frequency_hz,storage_pa,loss_pa\n1,2,3\n1,x,3\n", "dma.csv:3: '1,x,3' is not a row"),
     ("frequency_hz,storage_pa,loss_pa\n1,2,3\n1,2\n", "dma.csv:3: 2 values, the header has 3"),
     ("frequency_hz,storage_pa,loss_pa\n1,2,-3\n", "dma.csv:2: the loss modulus must be > 0"),
+    # no data rows (issue 19: it wrote an empty group and exited 0)
+    ("temperature_c,frequency_hz,storage_mpa,loss_mpa\n", "dma.csv: no data rows"),
+    ("temperature_c,frequency_hz,storage_mpa,loss_mpa\n# a comment only\n",
+     "dma.csv: no data rows"),
+    ("", "dma.csv: no header and no data"),
 ])
 def test_prony_names_the_bad_line(tmp_path, text, message):
+    """A bad DMA file fails naming its line, and writes no output."""
     path = tmp_path / "dma.csv"
     path.write_text(text)
-    r = subprocess.run([sys.executable, "-m", "pavefric", "prony", str(path)],
+    out = tmp_path / "rubber.nml"
+    r = subprocess.run([sys.executable, "-m", "pavefric", "prony", str(path), "-o", str(out)],
                        capture_output=True, text=True)
     assert r.returncode == 1
     assert message in r.stderr
+    assert not out.exists()
 
 
 def test_the_shipped_compound_is_the_fit_of_the_shipped_data():
