@@ -676,6 +676,8 @@ contains
       call move_alloc(from%hydroplaning, to%hydroplaning)
       call move_alloc(from%residual, to%residual)
       call move_alloc(from%n_clamped, to%n_clamped)
+      call move_alloc(from%mu_hysteresis, to%mu_hysteresis)
+      call move_alloc(from%mu_adhesion, to%mu_adhesion)
       call move_alloc(from%message, to%message)
    end subroutine move_alloc_block
 
@@ -897,6 +899,8 @@ contains
                & res, error)
             if (allocated(error)) exit
             blk%mu(:, d) = res%mu
+            blk%mu_hysteresis(:, d) = res%mu_hysteresis
+            blk%mu_adhesion(:, d) = res%mu_adhesion
             blk%wet(:, d) = res%wet_fraction
             blk%hydroplaning(:, d) = res%hydroplaning_fraction
             blk%residual(:, d) = res%max_balance_residual
@@ -923,6 +927,7 @@ contains
          blk%status = status_failed
          blk%message = printable_utf8(error%message)
          blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
+         blk%mu_hysteresis = 0; blk%mu_adhesion = 0
          blk%viscous = .false.
          blk%bearing = .false.
          return

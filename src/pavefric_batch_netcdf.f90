@@ -41,6 +41,7 @@ contains
       type(nc_writer_type) :: w
       integer :: stat, d_p, d_d, d_s, d_name, d_msg, d_warn, np, nd, ns, lname, lmsg, lwarn, i, k
       integer :: v_warn, v_nwarn
+      integer :: v_muh, v_mua
       integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -121,6 +122,11 @@ contains
       end if
       call w%def("mu", nf90_double, [d_s, d_d, d_p], "1", &
          & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
+      call w%def("mu_hysteresis", nf90_double, [d_s, d_d, d_p], "1", &
+         & "the rubber's part of mu: its dissipation per unit load and distance slid", v_muh)
+      call w%def("mu_adhesion", nf90_double, [d_s, d_d, d_p], "1", &
+         & "the local friction's part of mu: mu_loc's work on the facets per unit load " // &
+         & "and distance slid (mu = mu_hysteresis + mu_adhesion)", v_mua)
       call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
          & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
       call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
@@ -182,11 +188,11 @@ contains
          if (len(profile_coords) > 0) call w%check(nf90_put_att(w%ncid, v_pre(k), &
             & "coordinates", profile_coords), "coordinates")
       end do
-      do k = 1, 7
-         call fillatt([v_mu, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
+      do k = 1, 9
+         call fillatt([v_mu, v_muh, v_mua, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
       end do
-      do k = 1, 5
-         call coordatt([v_mu, v_wet, v_hyd, v_res, v_ncl], k, result_coords)
+      do k = 1, 7
+         call coordatt([v_mu, v_muh, v_mua, v_wet, v_hyd, v_res, v_ncl], k, result_coords)
       end do
       if (len(profile_coords) > 0) then
          do k = 1, 5
@@ -228,6 +234,14 @@ contains
          a(:, :, i) = merge(blocks(i)%mu, fill, ok(i))
       end do
       call w%check(nf90_put_var(w%ncid, v_mu, a), "mu")
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%mu_hysteresis, fill, ok(i))
+      end do
+      call w%check(nf90_put_var(w%ncid, v_muh, a), "mu_hysteresis")
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%mu_adhesion, fill, ok(i))
+      end do
+      call w%check(nf90_put_var(w%ncid, v_mua, a), "mu_adhesion")
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%wet, fill, ok(i))
       end do

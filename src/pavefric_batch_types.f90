@@ -65,6 +65,8 @@ module pavefric_batch_types
       logical :: resampled = .false., filtered = .false.
       real(wp) :: dx_in = 0, dx = 0
       real(wp), allocatable :: mu(:,:), wet(:,:), hydroplaning(:,:), residual(:,:)
+      !> mu's parts: the rubber's (hysteresis) and the local friction's (adhesion).
+      real(wp), allocatable :: mu_hysteresis(:,:), mu_adhesion(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.
       !> Warnings about the profile and its results (those a single scene of
@@ -80,7 +82,7 @@ contains
    !> Number of reals in a packed block.
    pure integer function block_values(batch)
       type(batch_type), intent(in) :: batch
-      block_values = n_head + 5 * batch%n_speeds * batch%n_depths
+      block_values = n_head + 7 * batch%n_speeds * batch%n_depths
    end function block_values
 
    !> Result arrays of the batch's shape, zero.
@@ -92,9 +94,11 @@ contains
       nd = batch%n_depths
       if (allocated(blk%mu)) deallocate(blk%mu, blk%wet, blk%hydroplaning, blk%residual, &
          & blk%n_clamped)
+      if (allocated(blk%mu_hysteresis)) deallocate(blk%mu_hysteresis, blk%mu_adhesion)
       allocate(blk%mu(ns, nd), blk%wet(ns, nd), blk%hydroplaning(ns, nd), blk%residual(ns, nd), &
-         & blk%n_clamped(ns, nd))
+         & blk%n_clamped(ns, nd), blk%mu_hysteresis(ns, nd), blk%mu_adhesion(ns, nd))
       blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
+      blk%mu_hysteresis = 0; blk%mu_adhesion = 0
    end subroutine block_allocate
 
    !> A block as reals (for the journal and for MPI); the digest and the
@@ -116,7 +120,9 @@ contains
       values(k+1:k+m) = reshape(blk%wet, [m]);          k = k + m
       values(k+1:k+m) = reshape(blk%hydroplaning, [m]); k = k + m
       values(k+1:k+m) = reshape(blk%residual, [m]);     k = k + m
-      values(k+1:k+m) = reshape(blk%n_clamped, [m])
+      values(k+1:k+m) = reshape(blk%n_clamped, [m]);    k = k + m
+      values(k+1:k+m) = reshape(blk%mu_hysteresis, [m]); k = k + m
+      values(k+1:k+m) = reshape(blk%mu_adhesion, [m])
    contains
       pure real(wp) function flag(yes)
          logical, intent(in) :: yes
@@ -170,7 +176,9 @@ contains
       blk%wet = reshape(values(k+1:k+m), [ns, nd]);          k = k + m
       blk%hydroplaning = reshape(values(k+1:k+m), [ns, nd]); k = k + m
       blk%residual = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
-      blk%n_clamped = reshape(values(k+1:k+m), [ns, nd])
+      blk%n_clamped = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
+      blk%mu_hysteresis = reshape(values(k+1:k+m), [ns, nd]); k = k + m
+      blk%mu_adhesion = reshape(values(k+1:k+m), [ns, nd])
       if (.not. allocated(blk%message)) blk%message = ""
    contains
       !> Whether v is a whole number in [lo, hi] (NaN is not).

@@ -50,23 +50,20 @@ module pavefric_model
    integer, parameter, public :: &
       & p_profile_file = 1, p_profile_name = 2, p_format = 3, p_height_unit = 4, &
       & p_x_column = 5, p_z_column = 6, p_dx = 7, p_closed = 8, p_mu_loc = 9, &
-      & p_microtexture_rms = 10, &
-      & p_dropouts = 11, p_trim_plates = 12, p_plate_threshold = 13, &
-      & p_plate_min_length = 14, p_plate_buffer = 15, p_spike_slope = 16, &
-      & p_resample_dx = 17, p_lowpass_wavelength = 18, &
-      & p_length = 19, p_width = 20, p_thickness = 21, p_load = 22, p_shape = 23, &
-      & p_radius = 24, &
-      & p_rubber_model = 25, p_stiffness = 26, p_viscosity = 27, p_prony_stiffness = 28, &
-      & p_prony_times = 29, p_temperature = 30, p_reference_temperature = 31, p_wlf_c1 = 32, &
-      & p_wlf_c2 = 33, &
-      & p_wet_model = 34, p_depth = 35, p_water_viscosity = 36, p_alpha = 37, p_beta = 38, &
-      & p_speeds_kmh = 39, &
-      & p_theta_max_deg = 40, p_substeps = 41, p_elements_per_sample = 42, &
-      & p_position_stride = 43, p_wet_tolerance = 44, p_tolerance = 45, &
-      & p_output_file = 46, p_series = 47, &
-      & p_batch_profiles = 48, p_batch_profile_list = 49, p_batch_depths = 50, &
-      & p_batch_restart = 51, p_batch_progress_every = 52
-   integer, parameter :: n_parameters = 52
+      & p_microtexture_rms = 10, p_dropouts = 11, p_trim_plates = 12, &
+      & p_plate_threshold = 13, p_plate_min_length = 14, p_plate_buffer = 15, &
+      & p_spike_slope = 16, p_resample_dx = 17, p_lowpass_wavelength = 18, p_length = 19, &
+      & p_width = 20, p_thickness = 21, p_load = 22, p_shape = 23, p_radius = 24, &
+      & p_element_length = 25, p_rubber_model = 26, p_stiffness = 27, p_viscosity = 28, &
+      & p_prony_stiffness = 29, p_prony_times = 30, p_temperature = 31, &
+      & p_reference_temperature = 32, p_wlf_c1 = 33, p_wlf_c2 = 34, p_wet_model = 35, &
+      & p_depth = 36, p_water_viscosity = 37, p_alpha = 38, p_beta = 39, p_speeds_kmh = 40, &
+      & p_theta_max_deg = 41, p_substeps = 42, p_elements_per_sample = 43, &
+      & p_position_stride = 44, p_wet_tolerance = 45, p_tolerance = 46, &
+      & p_friction_scheme = 47, p_output_file = 48, p_series = 49, p_batch_profiles = 50, &
+      & p_batch_profile_list = 51, p_batch_depths = 52, p_batch_restart = 53, &
+      & p_batch_progress_every = 54
+   integer, parameter :: n_parameters = 54
    integer, parameter :: n_groups = 9
    !> Most arms of a generalised Maxwell element.
    integer, parameter, public :: max_arms = 100
@@ -132,6 +129,9 @@ module pavefric_model
       real(wp) :: length = 0.0_wp, width = 0.0_wp, thickness = 0.0_wp, load = 0.0_wp
       character(len=:), allocatable :: shape
       real(wp) :: radius = 0.0_wp
+      !> The pad element's length (m): the profile is low-pass filtered and
+      !> resampled to it (0: the profile's own spacing, as the paper).
+      real(wp) :: element_length = 0.0_wp
       !> &rubber: 'kelvin_voigt' or 'maxwell'; K (K_inf of a Maxwell element), C;
       !> the Prony arms K_k (N m-3) and tau_k (s, at the reference temperature);
       !> the temperatures (degC) and WLF constants C1 (1), C2 (K).
@@ -145,6 +145,10 @@ module pavefric_model
       real(wp) :: theta_max_deg = 0.0_wp
       integer :: substeps = 1, elements_per_sample = 1, position_stride = 1
       real(wp) :: wet_tolerance = 0.0_wp, tolerance = 0.0_wp
+      !> How the facet friction is computed: 'energy' (the work of the facet
+      !> forces balances the elements' stored energy and dissipation) or
+      !> 'paper' (Eq. 10 on central-difference slopes).
+      character(len=:), allocatable :: friction_scheme
    end type model_type
 
 contains
@@ -272,6 +276,16 @@ contains
       s(p_radius) = real_param("pad", "radius", "0.05", "m", "model", &
          & "arc radius of a rounded pad; must exceed length / 2", lower=0.0_wp, &
          & lower_strict=.true., upper=1.0e12_wp)
+      s(p_element_length) = real_param("pad", "element_length", "0.87e-3", "m", "model", &
+         & "length of a pad element along the sliding direction, a property of the pad, " // &
+         & "not of the instrument: the profile is low-pass filtered (the mean height over " // &
+         & "one element length) and resampled to this spacing before the pad slides over " // &
+         & "it, so mu_loc stands for the texture finer than element_length (default: the " // &
+         & "paper's CTM spacing, for which its mu_loc values hold; docs/model.md). A closed " // &
+         & "profile is resampled to a whole number of elements round its circumference. " // &
+         & "0 = the profile's own spacing (the paper's discretisation).", &
+         & lower=0.0_wp, upper=1.0_wp, plausible_lower=0.0_wp, plausible_upper=5.0e-3_wp, &
+         & plausible_note="the paper's elements are 0.87 mm (its CTM's spacing)")
 
       ! &rubber
       s(p_rubber_model) = text("rubber", "model", "kelvin_voigt", "", "model", &
@@ -387,6 +401,12 @@ contains
          & "(below, double precision cannot meet it); needs substeps <= 1024 (room for the " // &
          & "two halvings the estimate is made of) (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
+      s(p_friction_scheme) = text("numerics", "friction_scheme", "energy", "", "model", &
+         & "'energy': the friction of a step is the work the facet forces do, the " // &
+         & "elements' stored energy change plus their dissipation (trapezoidal in time), " // &
+         & "plus the facets' local friction; an elastic pad with mu_loc = 0 then has no " // &
+         & "friction on a closed profile. 'paper': Eq. 10 on central-difference slopes, " // &
+         & "the paper's scheme (docs/model.md)", choices="energy paper")
 
       ! &output
       s(p_output_file) = text("output", "file", "", "path", "output", &
@@ -1079,6 +1099,7 @@ contains
       m%load = set%v(p_load)%r
       m%shape = set%v(p_shape)%t
       m%radius = set%v(p_radius)%r
+      m%element_length = set%v(p_element_length)%r
       m%rubber_model = set%v(p_rubber_model)%t
       m%stiffness = set%v(p_stiffness)%r
       m%viscosity = set%v(p_viscosity)%r
@@ -1099,6 +1120,7 @@ contains
       m%position_stride = set%v(p_position_stride)%i
       m%wet_tolerance = set%v(p_wet_tolerance)%r
       m%tolerance = set%v(p_tolerance)%r
+      m%friction_scheme = set%v(p_friction_scheme)%t
    end function model_from_parameters
 
    !> A list's values (none when it has no value).

@@ -386,6 +386,7 @@ contains
       call w%gatt("profile_dx", meta%dx)
       call w%gatt("profile_closed", merge(1, 0, meta%closed))
       call w%gatt("pad_elements", res%n_elements)
+      call w%gatt("pad_element_spacing", res%element_spacing)
       call w%gatt("averaged_positions", res%n_positions)
       call w%gatt("spinup_positions", res%n_spinup)
       call w%gatt("estimated_element_steps", real(res%estimate%total_element_steps, wp))

@@ -26,7 +26,7 @@ module pavefric_outputs
    !> Dimensions: per speed, or per position and speed (series).
    integer, parameter :: dim_speed = 1, dim_position_speed = 2
 
-   integer, parameter :: n_outputs = 22
+   integer, parameter :: n_outputs = 24
 
    !> One result variable.
    type :: output_var_type
@@ -101,6 +101,13 @@ contains
          & "tolerance)")
       t(22) = var("substeps_used", "1", "time steps per element spacing the tolerance " // &
          & "reached (&numerics tolerance)", out_int64)
+      t(23) = var("mu_hysteresis", "1", "the rubber's part of mu: the work of the facet " // &
+         & "forces on the rubber (its stored energy returned over a closed profile, its " // &
+         & "dissipation kept) per unit load and distance slid; 0 for an elastic pad on " // &
+         & "a closed profile (docs/model.md)")
+      t(24) = var("mu_adhesion", "1", "the local friction's part of mu: the work of " // &
+         & "mu_loc on the facets per unit load and distance slid (0 with mu_loc = 0); " // &
+         & "mu = mu_hysteresis + mu_adhesion")
       t(15) = var("mu_inst", "1", "instantaneous friction coefficient (Kane et al. 2017, " // &
          & "Eq. 11)", dims=dim_position_speed)
       t(16) = var("hydro_load", "N", "load carried by the water film (Eq. 15)", &
@@ -250,6 +257,10 @@ contains
          values(1:ns) = res%mu_error
       case (22)
          values(1:ns) = real(res%substeps_used, wp)
+      case (23)
+         values(1:ns) = res%mu_hysteresis
+      case (24)
+         values(1:ns) = res%mu_adhesion
       end select
    end subroutine output_values
 

@@ -8,6 +8,7 @@ module pavefric_run
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
+      & element_grid, &
       & cost_estimate_type, check_memory
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
@@ -59,10 +60,13 @@ contains
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
       logical :: friction_film
+      integer :: npe
+      real(wp) :: dxe
       call make_components(scene%model, rubber, film)
       friction_film = .false.
       if (allocated(film)) friction_film = film%changes_friction()
-      c = estimate_cost(scene%model, size(clean%z), clean%dx, scene%closed, &
+      call element_grid(scene%model, size(clean%z), clean%dx, scene%closed, npe, dxe)
+      c = estimate_cost(scene%model, npe, dxe, scene%closed, &
          & size(scene%speeds_kmh), scene%series, friction_film, rubber%state_size())
    end function scene_estimate
 

@@ -10,7 +10,7 @@ module pavefric_simulate
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
    use pavefric_format, only: to_str
    use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded, max_substeps
-   use pavefric_heights, only: refine_profile, check_heights
+   use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
    use pavefric_maxwell, only: maxwell_rubber, wlf_shift
    use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
@@ -22,7 +22,7 @@ module pavefric_simulate
    private
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
-   public :: make_components, cost_estimate_type, estimate_cost, check_memory
+   public :: make_components, cost_estimate_type, estimate_cost, check_memory, element_grid
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -83,8 +83,15 @@ module pavefric_simulate
       type(cost_estimate_type) :: estimate
       !> Speeds (m s-1) and (km h-1).
       real(wp), allocatable :: speed(:), speed_kmh(:)
+      !> The spacing of the profile the pad slid over (m): &pad
+      !> element_length (adjusted to a whole number round a closed profile),
+      !> or the profile's own.
+      real(wp) :: element_spacing = 0.0_wp
       !> Mean friction coefficient over the profile (Eq. 12).
       real(wp), allocatable :: mu(:)
+      !> Its parts: the rubber's dissipation (hysteresis) and the facets'
+      !> local friction (adhesion), each per unit load and distance slid.
+      real(wp), allocatable :: mu_hysteresis(:), mu_adhesion(:)
       !> Share of averaged positions where no element touched.
       real(wp), allocatable :: hydroplaning_fraction(:)
       !> Share of averaged positions where the film carried load.
@@ -131,7 +138,7 @@ module pavefric_simulate
 
    !> One speed's averaged results (see sim_result_type for their meaning).
    type :: speed_summary_type
-      real(wp) :: mu = 0, hydroplaning_fraction = 0, wet_fraction = 0
+      real(wp) :: mu = 0, mu_hysteresis = 0, mu_adhesion = 0, hydroplaning_fraction = 0, wet_fraction = 0
       real(wp) :: max_balance_residual = 0, mean_hydro_load = 0, max_compression = 0
       real(wp) :: mean_local_friction = 0, mean_film_thickness = 0
       integer(i8) :: n_clamped = 0, bearing_evaluations = 0, memory_updates = 0
@@ -144,6 +151,9 @@ module pavefric_simulate
    !> Everything about the profile and pad that does not depend on speed.
    type :: geometry_type
       real(wp), allocatable :: z(:), tan_theta(:), h(:)
+      !> tan(theta) - tan(alpha) (both clamped): the local friction's part of
+      !> a facet's tangent (Eq. 10 split into slope and local friction).
+      real(wp), allocatable :: adhesion(:)
       !> Facet slopes tan(alpha), for films that change the local friction.
       real(wp), allocatable :: slope(:)
       logical, allocatable :: clamped(:)
@@ -195,6 +205,34 @@ contains
       end if
    end function averaged_positions
 
+   !> The profile the pad slides over: np points at spacing dx become npe at
+   !> dxe with &pad element_length (resample_to_length), else stay.
+   pure subroutine element_grid(m, np, dx, closed, npe, dxe)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: np
+      real(wp), intent(in) :: dx
+      logical, intent(in) :: closed
+      integer, intent(out) :: npe
+      real(wp), intent(out) :: dxe
+      npe = np
+      dxe = dx
+      if (.not. resamples(m, dx)) return
+      npe = resampled_points(np, dx, closed, m%element_length)
+      if (closed) then
+         dxe = real(np, wp) * dx / real(max(npe, 1), wp)
+      else
+         dxe = m%element_length
+      end if
+   end subroutine element_grid
+
+   !> Whether the profile of spacing dx is resampled to &pad element_length.
+   pure logical function resamples(m, dx)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: dx
+      resamples = m%element_length > 0.0_wp .and. dx > 0.0_wp .and. dx <= huge(dx)
+      if (resamples) resamples = abs(dx - m%element_length) > 1.0e-9_wp * m%element_length
+   end function resamples
+
    !> The rubber and film components a model calls for: a film only with
    !> water (depth > 0), so a dry scene simulates no film at all.
    subroutine make_components(m, rubber, film)
@@ -236,11 +274,45 @@ contains
       logical, intent(in) :: closed, want_series
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
-      if (m%tolerance > 0.0_wp) then
-         call simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error)
-      else
-         call simulate_fixed(m, z, dx, closed, speeds_kmh, want_series, res, error)
+      type(model_type) :: me
+      real(wp), allocatable :: ze(:)
+      real(wp) :: dxe
+      integer :: stat
+      if (.not. resamples(m, dx)) then
+         call simulate_spaced(m, z, dx)
+         return
       end if
+      ! the pad's own elements: the profile filtered and resampled to them
+      call validate_model(m, error)
+      if (allocated(error)) return
+      call check_heights(z, error)
+      if (allocated(error)) return
+      if (resampled_points(size(z), dx, closed, m%element_length) < 1) then
+         call fatal_error(error, "&pad element_length = " // to_str(m%element_length) // &
+            & ": the profile resampled to it would have more than 2e9 points", stat_memory)
+         return
+      end if
+      call resample_to_length(z, dx, closed, m%element_length, ze, dxe, stat)
+      if (stat /= 0) then
+         call fatal_error(error, "not enough memory to resample a profile of " // &
+            & to_str(size(z)) // " points to &pad element_length = " // &
+            & to_str(m%element_length) // " m", stat_memory)
+         return
+      end if
+      me = m
+      me%element_length = 0.0_wp
+      call simulate_spaced(me, ze, dxe)
+   contains
+      subroutine simulate_spaced(mm, zz, dd)
+         type(model_type), intent(in) :: mm
+         real(wp), intent(in) :: zz(:), dd
+         if (mm%tolerance > 0.0_wp) then
+            call simulate_to_tolerance(mm, zz, dd, closed, speeds_kmh, want_series, res, error)
+         else
+            call simulate_fixed(mm, zz, dd, closed, speeds_kmh, want_series, res, error)
+         end if
+         res%element_spacing = dd
+      end subroutine simulate_spaced
    end subroutine simulate
 
    !> Accuracy on demand: the time step (substeps) halved until, for every
@@ -328,6 +400,8 @@ contains
       integer, intent(in) :: k, j
       type(sim_result_type), intent(inout) :: to
       to%mu(j) = from%mu(k)
+      to%mu_hysteresis(j) = from%mu_hysteresis(k)
+      to%mu_adhesion(j) = from%mu_adhesion(k)
       to%hydroplaning_fraction(j) = from%hydroplaning_fraction(k)
       to%wet_fraction(j) = from%wet_fraction(k)
       to%max_balance_residual(j) = from%max_balance_residual(k)
@@ -396,7 +470,8 @@ contains
       res%thickness = m%thickness
       res%speed_kmh = speeds_kmh
       res%speed = speeds_kmh * kmh_to_ms
-      allocate(res%mu(ns), res%hydroplaning_fraction(ns), res%wet_fraction(ns), &
+      allocate(res%mu(ns), res%mu_hysteresis(ns), res%mu_adhesion(ns), &
+         & res%hydroplaning_fraction(ns), res%wet_fraction(ns), &
          & res%max_balance_residual(ns), res%mean_hydro_load(ns), res%max_compression(ns), &
          & res%n_clamped(ns), res%bearing_evaluations(ns), res%memory_updates(ns), &
          & res%viscous_memory_ran(ns), res%bearing_ran(ns), res%friction_film_ran(ns), &
@@ -452,6 +527,8 @@ contains
          do j = j0, j1
             associate(summary => summaries(j - j0 + 1))
                res%mu(j) = summary%mu
+               res%mu_hysteresis(j) = summary%mu_hysteresis
+               res%mu_adhesion(j) = summary%mu_adhesion
                res%hydroplaning_fraction(j) = summary%hydroplaning_fraction
                res%wet_fraction(j) = summary%wet_fraction
                res%max_balance_residual(j) = summary%max_balance_residual
@@ -645,9 +722,9 @@ contains
       logical, intent(in) :: closed, with_slopes
       type(geometry_type), intent(out) :: geo
       type(error_type), allocatable, intent(out) :: error
-      real(wp), allocatable :: zf(:), tf(:), t_fine(:), sf(:)
+      real(wp), allocatable :: zf(:), tf(:), t_fine(:), sf(:), af(:)
       logical, allocatable :: cf(:), c_fine(:)
-      real(wp) :: dxf, xc, r
+      real(wp) :: dxf, xc, r, tan_max
       integer :: fine, n_ext, k, i, stat
 
       fine = m%elements_per_sample * m%substeps
@@ -681,16 +758,24 @@ contains
       ! them on a refined grid (a refined point counts as clamped when its
       ! nearest sample is). Refinement then changes the discretisation, not
       ! the surface's facet geometry.
-      allocate(tf(size(z)), cf(size(z)), sf(size(z)), stat=stat)
+      allocate(tf(size(z)), cf(size(z)), sf(size(z)), af(size(z)), stat=stat)
       if (stat /= 0) then
          call fatal_error(error, "not enough memory for the facets of " // to_str(size(z)) // &
             & " points", stat_memory)
          return
       end if
       call facet_friction(z, dx, closed, m%mu_loc, m%theta_max_deg, tf, cf, slopes=sf)
+      ! the local friction's part of each tangent: tan(theta) - tan(alpha),
+      ! both clamped at theta_max (>= 0 for mu_loc >= 0: the clamp is monotone)
+      tan_max = tan(m%theta_max_deg * acos(-1.0_wp) / 180.0_wp)
+      do k = 1, size(z)
+         af(k) = adhesion_tangent(sf(k), tf(k), cf(k), m%mu_loc, tan_max)
+      end do
       if (fine > 1) then
          call refine_profile(tf, closed, fine, t_fine, stat)
          call move_alloc(t_fine, tf)
+         if (stat == 0) call refine_profile(af, closed, fine, t_fine, stat)
+         if (stat == 0) call move_alloc(t_fine, af)
          if (with_slopes .and. stat == 0) then
             call refine_profile(sf, closed, fine, t_fine, stat)
             call move_alloc(t_fine, sf)
@@ -708,7 +793,8 @@ contains
       end if
       if (closed) then
          n_ext = geo%npf + (geo%n_el - 1) * geo%spacing
-         allocate(geo%z(n_ext), geo%tan_theta(n_ext), geo%clamped(n_ext), stat=stat)
+         allocate(geo%z(n_ext), geo%tan_theta(n_ext), geo%clamped(n_ext), geo%adhesion(n_ext), &
+            & stat=stat)
          if (stat == 0 .and. with_slopes) allocate(geo%slope(n_ext), stat=stat)
          if (stat /= 0) then
             call fatal_error(error, "not enough memory for a profile of " // to_str(n_ext) // &
@@ -719,12 +805,14 @@ contains
             i = modulo(k - 1, geo%npf) + 1
             geo%z(k) = zf(i)
             geo%tan_theta(k) = tf(i)
+            geo%adhesion(k) = af(i)
             geo%clamped(k) = cf(i)
             if (with_slopes) geo%slope(k) = sf(i)
          end do
       else
          call move_alloc(zf, geo%z)
          call move_alloc(tf, geo%tan_theta)
+         call move_alloc(af, geo%adhesion)
          call move_alloc(cf, geo%clamped)
          if (with_slopes) call move_alloc(sf, geo%slope)
       end if
@@ -783,17 +871,18 @@ contains
       type(film_step_type), allocatable :: fstep(:)
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
-      real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:)
+      real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:), u_prev(:,:), push_prev(:,:)
       integer, allocatable :: samples(:)
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
+      real(wp), dimension(lanes) :: sum_fa, hyst, hyst_sum, adh_sum, delta_last
       integer(i8), dimension(lanes) :: n_clamped, n_eval
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
-      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum
+      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j
       integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
-      logical :: series, clamped, any_memory, any_load, any_friction
+      logical :: series, clamped, any_memory, any_load, any_friction, energy, have_prev
 
       n = geo%n_el
       nl = size(speeds)
@@ -826,8 +915,11 @@ contains
       ns_state = rubber%state_size()
       ! the lane count as a run-time value: the lane loops then compile to
       ! vector loops (a constant count is unrolled into scalar code)
+      energy = .true.
+      if (allocated(m%friction_scheme)) energy = m%friction_scheme /= "paper"
       allocate(c(nl, n), d(nl, n), push(nl, n), u_free(nl, n), work(n), &
          & dl(n), gap(n), stat=stat)
+      if (stat == 0 .and. energy) allocate(u_prev(nl, n), push_prev(nl, n), stat=stat)
       if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
       if (stat == 0 .and. any_load) allocate(gaps(nl, n), stat=stat)
       if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
@@ -846,6 +938,10 @@ contains
       end if
 
       delta_prev = -huge(1.0_wp)
+      have_prev = .false.
+      hyst = 0.0_wp
+      hyst_sum = 0.0_wp
+      adh_sum = 0.0_wp
       mu_sum = 0.0_wp
       wh_sum = 0.0_wp
       resid_max = 0.0_wp
@@ -889,8 +985,9 @@ contains
          sum_f = 0.0_wp
          call lane_contacts(nl, n, x, d, u_free, &
             & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
-            & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), push, sum_f, &
-            & contacts, sum_ft, clamps, u_max)
+            & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+            & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), push, sum_f, &
+            & contacts, sum_ft, clamps, u_max, sum_fa)
          n_contact = nint(contacts)
          n_clamp_j = nint(clamps)
 
@@ -915,6 +1012,7 @@ contains
                   & geo%dx_el, share)
                film_sum = 0.0_wp
                sum_ft(j) = 0.0_wp
+               sum_fa(j) = 0.0_wp
                n_clamp_j(j) = 0
                do i = 1, n
                   k = k1 + (i-1) * geo%spacing
@@ -927,6 +1025,12 @@ contains
                      call facet_tangent(geo%slope(k), mu_eff, tan_max, tan_el(i), clamped)
                   end if
                   sum_ft(j) = sum_ft(j) + pl(i) * tan_el(i)
+                  if (share(i) >= 1.0_wp) then
+                     sum_fa(j) = sum_fa(j) + pl(i) * geo%adhesion(k)
+                  else
+                     sum_fa(j) = sum_fa(j) + pl(i) * adhesion_tangent(geo%slope(k), &
+                        & tan_el(i), clamped, mu_eff, tan_max)
+                  end if
                   n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, pl(i) > 0.0_wp .and. clamped)
                   if (t >= 0) local_sum(j) = local_sum(j) + pl(i) * mu_eff
                   film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing &
@@ -953,13 +1057,35 @@ contains
                local_friction(t+1, j) = merge(m%mu_loc, 0.0_wp, sum_f(j) > 0.0_wp)
             end do
          end if
+         if (energy) then
+            ! the work of the step on the elements beyond the pad's own
+            ! descent: what the facets did (lane_work)
+            if (have_prev) then
+               call lane_work(nl, n, u_free, push, u_prev, push_prev, cmin + x - delta_last, hyst)
+            else
+               hyst = 0.0_wp
+            end if
+            call lane_remember(nl, n, u_free, push, u_prev, push_prev)
+            delta_last = cmin + x
+            have_prev = .true.
+         end if
          if (any_memory) call rubber%update(rstep, state, u_free, push)
          delta_prev = cmin + x
          if (t < 0) cycle                                    ! spin-up
 
          do j = 1, nl
             sum_f(j) = kel(j) * sum_f(j)
-            mu_j = kel(j) * sum_ft(j) / m%load               ! Eq. 11: divided by W
+            ! Eq. 11 (divided by W), as the facets' work per distance: the
+            ! rubber's part and the local friction's part
+            adh_j = kel(j) * sum_fa(j) / m%load
+            if (energy) then
+               hyst_j = kel(j) * hyst(j) / (m%load * geo%advance)
+            else
+               hyst_j = kel(j) * (sum_ft(j) - sum_fa(j)) / m%load
+            end if
+            mu_j = hyst_j + adh_j
+            hyst_sum(j) = hyst_sum(j) + hyst_j
+            adh_sum(j) = adh_sum(j) + adh_j
             resid = abs(sum_f(j) + wh(j) - m%load) / m%load
             mu_sum(j) = mu_sum(j) + mu_j
             wh_sum(j) = wh_sum(j) + wh(j)
@@ -978,6 +1104,17 @@ contains
 
       do j = 1, nl
          out(j)%mu = mu_sum(j) / real(geo%n_avg, wp)                   ! Eq. 12
+         out(j)%mu_hysteresis = hyst_sum(j) / real(geo%n_avg, wp)
+         out(j)%mu_adhesion = adh_sum(j) / real(geo%n_avg, wp)
+         if (energy .and. geo%closed .and. .not. rstep%memory(j) .and. n_wet(j) == 0) then
+            ! An elastic rubber dissipates nothing: round a closed profile
+            ! with no film carrying load the facets' work returns to them
+            ! exactly, and the sum of the steps' work differs from 0 by
+            ! rounding only (~1e-19). (A load-carrying film's own work round
+            ! the profile, which need not vanish, stays in the sum.)
+            out(j)%mu_hysteresis = 0.0_wp
+            out(j)%mu = out(j)%mu_adhesion
+         end if
          out(j)%hydroplaning_fraction = real(n_nocontact(j), wp) / real(geo%n_avg, wp)
          out(j)%wet_fraction = real(n_wet(j), wp) / real(geo%n_avg, wp)
          out(j)%max_balance_residual = resid_max(j)
@@ -1007,6 +1144,24 @@ contains
          end if
       end function physical
    end subroutine slide
+
+   !> The local friction's part of a facet's tangent, tan(theta) - tan(alpha)
+   !> for a facet of slope s = tan(alpha), tangent t = tan(theta) (clamped
+   !> when `clamped`) and local friction mu >= 0: unclamped, the addition
+   !> formula's mu (1 + s^2) / (1 - s mu), exactly 0 for mu = 0 and never
+   !> negative; clamped, t less the slope clamped at the same angle (>= 0: the
+   !> clamp is monotone).
+   elemental real(wp) function adhesion_tangent(s, t, clamped, mu, tan_max) result(a)
+      real(wp), intent(in) :: s, t, mu, tan_max
+      logical, intent(in) :: clamped
+      if (.not. mu > 0.0_wp) then
+         a = 0.0_wp
+      else if (clamped) then
+         a = max(0.0_wp, t - max(-tan_max, min(tan_max, s)))
+      else
+         a = mu * (1.0_wp + s * s) / (1.0_wp - s * mu)
+      end if
+   end function adhesion_tangent
 
    !> sum_i push_i mu_eff_i at one position (mu_eff = mu_loc times the share).
    pure real(wp) function local_partial(push, share, mu_loc)
@@ -1086,18 +1241,21 @@ contains
    !> by the facet tangents (Eq. 10), the contacts on clamped facets and the
    !> largest compression max(g_i, u_free_i). Counts in reals (exact): one
    !> type in the vector loop.
-   pure subroutine lane_contacts(nl, n, x, d, u_free, tan_t, clamped, push, sum_f, contacts, &
-      & sum_ft, clamps, u_max)
+   pure subroutine lane_contacts(nl, n, x, d, u_free, tan_t, clamped, adhesion, push, sum_f, &
+      & contacts, sum_ft, clamps, u_max, sum_fa)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n)
+      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n), adhesion(n)
       real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl)
       real(wp), intent(inout) :: u_max(nl)
-      real(wp) :: p, in_contact, sf, sft, nc, ncl, um
+      !> sum of push x (tan(theta) - tan(alpha)): the local friction's part
+      real(wp), intent(out) :: sum_fa(nl)
+      real(wp) :: p, in_contact, sf, sft, nc, ncl, um, sfa
       integer :: i, j
       if (nl == 1) then
          ! one lane: plain loops, the same operations in the same order
          sf = 0.0_wp
          sft = 0.0_wp
+         sfa = 0.0_wp
          nc = 0.0_wp
          ncl = 0.0_wp
          um = u_max(1)
@@ -1108,12 +1266,14 @@ contains
             sf = sf + p
             nc = nc + in_contact
             sft = sft + p * tan_t(i)
+            sfa = sfa + p * adhesion(i)
             ncl = ncl + in_contact * clamped(i)
             um = max(um, u_free(1, i) + p)
          end do
          sum_f(1) = sf
          contacts(1) = nc
          sum_ft(1) = sft
+         sum_fa(1) = sfa
          clamps(1) = ncl
          u_max(1) = um
          return
@@ -1121,6 +1281,7 @@ contains
       sum_f = 0.0_wp
       contacts = 0.0_wp
       sum_ft = 0.0_wp
+      sum_fa = 0.0_wp
       clamps = 0.0_wp
       do i = 1, n
          do j = 1, nl
@@ -1130,11 +1291,52 @@ contains
             sum_f(j) = sum_f(j) + p
             contacts(j) = contacts(j) + in_contact
             sum_ft(j) = sum_ft(j) + p * tan_t(i)
+            sum_fa(j) = sum_fa(j) + p * adhesion(i)
             clamps(j) = clamps(j) + in_contact * clamped(i)
             u_max(j) = max(u_max(j), u_free(j, i) + p)
          end do
       end do
    end subroutine lane_contacts
+
+   !> Per lane: the work of one step on the elements, in units of kel (the
+   !> element force per unit push), less the work of the pad's own descent:
+   !> sum_i (push_i' + push_i) / 2 x ((u_i - u_i') - (delta - delta')), primes
+   !> the previous step (trapezoidal in time: exact for an elastic element,
+   !> whose work is then the change of its stored energy K u^2 / 2; for an
+   !> element in contact at both steps (u - u') - (delta - delta') is the
+   !> rise of the road under it). This is the facets' work: the rubber's
+   !> stored energy change plus its dissipation, whatever the rubber model,
+   !> and its sum over a closed profile is the rubber's dissipation
+   !> (docs/model.md, "Energy").
+   pure subroutine lane_work(nl, n, u_free, push, u_prev, push_prev, ddelta, w)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: u_free(nl, n), push(nl, n), u_prev(nl, n), push_prev(nl, n)
+      real(wp), intent(in) :: ddelta(nl)
+      real(wp), intent(out) :: w(nl)
+      integer :: i, j
+      w = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            w(j) = w(j) + (push_prev(j, i) + push(j, i)) * &
+               & ((u_free(j, i) + push(j, i) - u_prev(j, i)) - ddelta(j))
+         end do
+      end do
+      w = 0.5_wp * w
+   end subroutine lane_work
+
+   !> The step's compressions and pushes, for the next step's lane_work.
+   pure subroutine lane_remember(nl, n, u_free, push, u_prev, push_prev)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: u_free(nl, n), push(nl, n)
+      real(wp), intent(out) :: u_prev(nl, n), push_prev(nl, n)
+      integer :: i, j
+      do i = 1, n
+         do j = 1, nl
+            u_prev(j, i) = u_free(j, i) + push(j, i)
+            push_prev(j, i) = push(j, i)
+         end do
+      end do
+   end subroutine lane_remember
 
    !> The error of a refined profile that does not fit in memory.
    pure subroutine no_memory(n, fine, error)

@@ -64,9 +64,14 @@ SCENE_VARS = ["speed", "speed_kmh", "mu", "n_clamped", "hydroplaning_fraction", 
               "penetration", "contact_elements",
               # written since 0.1.0
               "squeeze_film_ran", "mean_local_friction", "mean_film_thickness",
-              "film_thickness", "local_friction", "mu_error_estimate", "substeps_used"]
+              "film_thickness", "local_friction", "mu_error_estimate", "substeps_used",
+              "mu_hysteresis", "mu_adhesion"]
 BATCH_VARS = ["depth", "speed", "speed_kmh", "mu", "wet_fraction", "hydroplaning_fraction",
-              "max_balance_residual", "n_clamped", "mpd", "rms_height", "rms_slope", "status"]
+              "max_balance_residual", "n_clamped", "mpd", "rms_height", "rms_slope", "status",
+              "mu_hysteresis", "mu_adhesion"]
+# 0.1.0 computed the paper's scheme on the profile's own spacing; the same
+# settings now reproduce it (tests/test_regression.py's 0.1.0 comparisons)
+PAPER = {"numerics": ("friction_scheme", "'paper'"), "pad": ("element_length", "0.0")}
 NUMERIC_ATTRS = ["pad_elements", "averaged_positions", "spinup_positions", "profile_points",
                  "profile_dx"]
 
@@ -181,7 +186,10 @@ def mismatch(name: str, got, entry: dict) -> str | None:
 def largest_change(got, entry: dict) -> float:
     """max |got - want| / max |want| (for --diff)."""
     _, want, _ = decode(entry)
-    got = np.asarray(got, dtype=float).ravel()[: want.size]
+    want = np.asarray(want, dtype=float).ravel()
+    got = np.asarray(got, dtype=float).ravel()
+    if got.size != want.size:
+        return float("inf")                 # the shape changed
     scale = max(float(np.max(np.abs(want))) if want.size else 0.0, 1e-300)
     return float(np.max(np.abs(got - want))) / scale if want.size else 0.0
 
@@ -193,12 +201,41 @@ def scene_paths() -> list[Path]:
             sorted((ROOT / "inputs").glob("*/*.nml")) if p.parent.name != "rubber"]
 
 
-def run_scene(scene: Path, exe: str) -> dict:
+def paper_scene(scene: Path, directory: Path) -> Path:
+    """A copy of `scene` in `directory` that runs the paper's discretisation
+    (PAPER), its file names made absolute so that it reads the same files."""
+    import re
+
+    text = scene.read_text(encoding="utf-8")
+
+    def absolute(m):
+        value = m.group(3)
+        if value and not Path(value).is_absolute():
+            value = str((scene.parent / value).resolve())
+        return f"{m.group(1)}{m.group(2)}{value}{m.group(2)}"
+
+    text = re.sub(r"(\b(?:profile_file|profiles|profile_list)\s*=\s*)(['\"])(.*?)\2", absolute,
+                  text)
+    for group, (name, value) in PAPER.items():
+        pattern = re.compile(rf"^(\s*&{group}\b[^\n]*)$", re.M | re.I)
+        if pattern.search(text):
+            text = pattern.sub(lambda m: f"{m.group(1)}\n  {name} = {value}", text, count=1)
+        else:
+            text += f"\n&{group}\n  {name} = {value}\n/\n"
+    copy = directory / scene.name
+    copy.write_text(text, encoding="utf-8")
+    return copy
+
+
+def run_scene(scene: Path, exe: str, paper: bool = False) -> dict:
     """The record of one scene through the program (batch files under
-    0.1.0's name of the water depth, `depth`)."""
+    0.1.0's name of the water depth, `depth`); `paper`: with PAPER's
+    settings."""
     import xarray as xr
 
     with tempfile.TemporaryDirectory() as tmp:
+        if paper:
+            scene = paper_scene(scene, Path(tmp))
         out = Path(tmp) / (scene.stem + ".nc")
         r = subprocess.run([exe, str(scene), "-o", str(out)], capture_output=True, text=True,
                            cwd=ROOT)
@@ -211,14 +248,16 @@ def run_scene(scene: Path, exe: str) -> dict:
             return record_dataset(ds, BATCH_VARS if batch else SCENE_VARS)
 
 
-def run_case(case) -> dict:
-    """The record of one simulate case."""
+def run_case(case, paper: bool = False) -> dict:
+    """The record of one simulate case (`paper`: with PAPER's settings)."""
     import warnings
 
     import pavefric
 
     name, z, dx, speeds, kw = case
     kw = dict(kw)
+    if paper:
+        kw.update(friction_scheme="paper", element_length=0.0)
     closed = kw.pop("closed", True)
     series = kw.pop("series", False)
     with warnings.catch_warnings():
@@ -301,7 +340,9 @@ def main(argv=None) -> int:
                         print(f"{kind}/{case}/{name}: new")
                         continue
                     ch = largest_change(decode(entry)[1], want)
-                    if ch > 0:
+                    if ch == float("inf"):
+                        print(f"{kind}/{case}/{name}: shape changed")
+                    elif ch > 0:
                         print(f"{kind}/{case}/{name}: largest change {ch:.3g} of its scale")
         return 0
     record = {"meta": meta(), **new}

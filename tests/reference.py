@@ -4,7 +4,12 @@ balance sorts the c_i, the wet balance bisects in absolute penetration, the
 bearing uses the closed form with the MODEL.md series near a = 1.
 
 Default numerics only (one element per sample, one step per sample, every
-position averaged).
+position averaged), on the profile's own spacing (&pad element_length = 0).
+
+Two friction schemes (MODEL.md §3 and §10): 'paper', Eq. 10 on
+central-difference slopes; 'energy', the facets' work: the rubber's part from
+the elements' work over each step (trapezoidal in time) less the pad's
+descent, the local friction's part mu (1 + s^2) / (1 - mu s) per unit force.
 """
 from __future__ import annotations
 
@@ -37,7 +42,20 @@ def facet_tangent(z, dx, closed, mu_loc, theta_max_deg):
     theta = np.arctan(slope) + np.arctan(mu_loc)
     tmax = np.radians(theta_max_deg)
     clamped = np.abs(theta) > tmax
-    return np.tan(np.clip(theta, -tmax, tmax)), clamped
+    return np.tan(np.clip(theta, -tmax, tmax)), clamped, slope
+
+
+def local_friction_tangent(slope, tan_t, clamped, mu_loc, theta_max_deg):
+    """tan(theta) - tan(alpha): the friction force per unit normal element
+    force that mu_loc adds on a facet of slope s (unclamped: mu (1 + s^2) /
+    (1 - mu s), from N = F / (cos a - mu sin a) sliding 1 / cos a per unit
+    distance)."""
+    if mu_loc == 0:
+        return np.zeros_like(slope)
+    tmax = np.tan(np.radians(theta_max_deg))
+    free = mu_loc * (1 + slope**2) / (1 - mu_loc * slope)
+    walls = np.maximum(0.0, tan_t - np.clip(slope, -tmax, tmax))
+    return np.where(clamped, walls, free)
 
 
 def dry_delta(c, s):
@@ -52,13 +70,15 @@ def dry_delta(c, s):
 
 def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=0.016,
              load=11.8, stiffness=1.4e8, viscosity=1e2, depth=0.0, water_viscosity=1e-3,
-             alpha=1.0, beta=1.75, theta_max_deg=85.0, h=None, series=False):
+             alpha=1.0, beta=1.75, theta_max_deg=85.0, h=None, series=False,
+             friction_scheme="energy"):
     """Mean friction per speed (and, with series, per-position mu and delta)."""
     z = np.asarray(z, dtype=float)
     n_p = z.size
     n = int(np.floor(length / dx + 0.5))
     h = np.zeros(n) if h is None else np.asarray(h, dtype=float)
-    tan_t, clamped = facet_tangent(z, dx, closed, mu_loc, theta_max_deg)
+    tan_t, clamped, slope = facet_tangent(z, dx, closed, mu_loc, theta_max_deg)
+    adh = local_friction_tangent(slope, tan_t, clamped, mu_loc, theta_max_deg)
     i = np.arange(1, n + 1)
     if closed:
         steps = range(1 - n, n_p + 1)
@@ -76,6 +96,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
         pref = alpha * 6 * water_viscosity * v**beta * width * length**2
         u = np.zeros(n)
         mus, deltas, whs = [], [], []
+        prev = None
         for j in steps:
             k = (j + i - 1) % n_p if closed else j + i - 1
             u_free = decay * u
@@ -101,10 +122,20 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                     delta = 0.5 * (lo + hi)
                     wh = bearing(depth, np.mean(np.maximum(0.0, c - delta)), pref)
             force = kel * np.maximum(0.0, delta - c)
+            u_old = u
             u = np.maximum(delta - h + z[k], u_free)
+            if friction_scheme == "paper":
+                mu_j = (force * tan_t[k]).sum() / load
+            else:
+                work = 0.0
+                if prev is not None:
+                    f_old, d_old = prev
+                    work = (0.5 * (f_old + force) * ((u - u_old) - (delta - d_old))).sum()
+                mu_j = work / (load * dx) + (force * adh[k]).sum() / load
+            prev = (force, delta)
             if closed and j < 1:
                 continue
-            mus.append((force * tan_t[k]).sum() / load)
+            mus.append(mu_j)
             deltas.append(delta)
             whs.append(wh)
         out_mu.append(np.mean(mus))

@@ -31,12 +31,25 @@ def test_refinement_converges(profile_m, knob, values, scene):
 
 
 def test_position_stride_is_sampling_for_elastic_dry(profile_m):
-    full = pavefric.simulate(profile_m, DX, [20.0], viscosity=0.0, series=True)
-    every4 = pavefric.simulate(profile_m, DX, [20.0], viscosity=0.0, position_stride=4,
-                               series=True)
-    # elastic and dry: no memory, so a strided run samples the same positions
+    # the paper's scheme: friction at a position is the facets' at that
+    # position, so elastic and dry (no memory) a strided run samples the same
+    # positions
+    paper = dict(viscosity=0.0, series=True, friction_scheme="paper")
+    full = pavefric.simulate(profile_m, DX, [20.0], **paper)
+    every4 = pavefric.simulate(profile_m, DX, [20.0], position_stride=4, **paper)
     np.testing.assert_array_equal(every4["mu_inst"].values[0], full["mu_inst"].values[0][::4])
     assert every4.attrs["averaged_positions"] == 256
+    # the energy scheme: a step's friction is the work over it, so a longer
+    # step is another step, but the facets' work still returns round the
+    # circle (mu_loc = 0: no friction) and the adhesion is sampled alike
+    energy = pavefric.simulate(profile_m, DX, [20.0], viscosity=0.0, mu_loc=0.0,
+                               position_stride=4, series=True)
+    assert abs(energy["mu_inst"].values[0].mean()) <= 1e-12
+    full_e = pavefric.simulate(profile_m, DX, [20.0], viscosity=0.0)
+    every4_e = pavefric.simulate(profile_m, DX, [20.0], viscosity=0.0, position_stride=4)
+    assert every4_e["mu_hysteresis"].values[0] == full_e["mu_hysteresis"].values[0] == 0.0
+    assert every4_e["mu_adhesion"].values[0] == pytest.approx(
+        full_e["mu_adhesion"].values[0], rel=0.01)
 
 
 def test_wet_tolerance_controls_the_residual(profile_m):

@@ -32,7 +32,8 @@ def test_real_profiles_run_through_the_program(tmp_path, station, variant):
         assert ds.attrs["preprocess_dropouts"] > 1000            # ~5 % of the points
         assert ds.attrs["preprocess_trimmed_start"] > 0 and ds.attrs["preprocess_trimmed_end"] > 0
         assert "dropouts interpolated" in ds.attrs["preprocessing"]
-        assert ds.attrs["pad_elements"] == (533 if variant == "" else 23)
+        # the pad's own 0.87 mm elements whatever the spacing (&pad element_length)
+        assert ds.attrs["pad_elements"] == 23
         assert float(ds["mpd"]) > 1e-3
         # dry at the same profile: water lowers friction
     dry = tmp_path / "dry.nml"
@@ -184,7 +185,8 @@ def test_preprocess_bad_input(tmp_path):
 
 def test_native_spacing_pad_has_hundreds_of_elements():
     p = pavefric.read_profile(captif(STATIONS[1]), dropouts="interpolate")
-    ds = pavefric.simulate(p.heights, p.dx, [60.0], closed=False, depth=1e-3)
+    ds = pavefric.simulate(p.heights, p.dx, [60.0], closed=False, depth=1e-3,
+                           element_length=0.0)
     assert ds.attrs["pad_elements"] == 533
     assert np.isfinite(ds["mu"].values[0])
     assert ds["max_balance_residual"].values[0] <= 1e-12

@@ -169,7 +169,7 @@ def test_the_arms_matter_between_the_limits(profile_m):
 # --- must-show 3: the closed form on a sinusoid ---------------------------------
 
 def sinusoid_case(per_wave: int, pad_waves: int = 16, waves: int = 64, speed_kmh: float = 20.0,
-                  amplitude: float = 1e-4, wavelength: float = 0.0278):
+                  amplitude: float = 1e-4, wavelength: float = 0.0278, scheme: str = "energy"):
     """Every element always in contact: K_inf delta = 8 K_inf A > A |E*|."""
     dx = wavelength / per_wave
     k = 2 * np.pi / wavelength
@@ -185,13 +185,17 @@ def sinusoid_case(per_wave: int, pad_waves: int = 16, waves: int = 64, speed_kmh
     load = n * width * dx * k_inf * 8 * amplitude
     ds = pavefric.simulate(z, dx, [speed_kmh], series=True, mu_loc=0.0, length=length,
                            width=width, load=load, rubber_model="maxwell", stiffness=k_inf,
-                           prony_stiffness=list(arms), prony_times=list(taus))
+                           prony_stiffness=list(arms), prony_times=list(taus),
+                           element_length=0.0, friction_scheme=scheme)
     assert ds.attrs["pad_elements"] == n
     # continuous: E''(w) per unit length, mu = N l dx k A^2 E'' / (2W)
     loss = np.sum(arms * w * taus / (1 + (w * taus) ** 2))
     mu_cont = n * width * dx * k * amplitude**2 * loss / (2 * load)
     # the scheme's own: exact step on the sampled (piecewise-linear) sinusoid,
     # E*_d(theta) = K_inf + sum K G (1 - e^-i theta)/(1 - E e^-i theta), central slopes
+    # ('paper'); the energy scheme's trapezoid of the force over the step's
+    # compression, (p' + p)/2 (u - u'), averages to the same A^2 sin(theta)
+    # E''_d / 2 per element: (1 + e^-i theta)(1 - e^i theta) = -2i sin(theta)
     dt = dx / v
     r = dt / taus
     e = np.exp(-r)
@@ -202,10 +206,11 @@ def sinusoid_case(per_wave: int, pad_waves: int = 16, waves: int = 64, speed_kmh
     return ds, mu_cont, mu_disc, n
 
 
+@pytest.mark.parametrize("scheme", ["energy", "paper"])
 @pytest.mark.parametrize("per_wave", [8, 32])
-def test_sinusoid_friction_is_the_schemes_closed_form_to_rounding(per_wave):
+def test_sinusoid_friction_is_the_schemes_closed_form_to_rounding(per_wave, scheme):
     """dt/tau spans 0.07-2.6 here: both branches of the arm's weights."""
-    ds, _, mu_disc, n = sinusoid_case(per_wave)
+    ds, _, mu_disc, n = sinusoid_case(per_wave, scheme=scheme)
     assert np.all(ds["contact_elements"].values == n)        # always every element
     mu = float(ds["mu"].values[0])
     assert mu == pytest.approx(mu_disc, rel=1e-12)

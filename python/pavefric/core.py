@@ -452,6 +452,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         "parameters": parameters_text,
         "pavefric_version": _version(),
         "pad_elements": n_el,
+        "pad_element_spacing": float(estimate[3]),
         "averaged_positions": n_pos,
         "spinup_positions": n_spin,
         "profile_points": int(z.size),

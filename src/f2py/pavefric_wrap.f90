@@ -124,8 +124,9 @@ end subroutine pf_output_info
 subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_scene, only: scene_type, scene_from_text
-   use pavefric_simulate, only: pad_elements, averaged_positions
+   use pavefric_simulate, only: pad_elements, averaged_positions, element_grid
    use pavefric_outputs, only: series_count
+   use pavefric_kinds, only: wp
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: settings
@@ -134,6 +135,8 @@ subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, me
    character(len=2048), intent(out) :: message
    type(scene_type) :: scene
    type(error_type), allocatable :: error
+   integer :: npe
+   real(wp) :: dxe
    n_elements = 0; n_positions = 0; n_series = 0; status = 0; message = ""
    call scene_from_text(settings, "", scene, error, arrays=.true.)
    if (allocated(error)) then
@@ -141,8 +144,9 @@ subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, me
       message = error%message
       return
    end if
-   n_elements = pad_elements(scene%model, scene%dx)
-   n_positions = averaged_positions(scene%model, np, scene%dx, scene%closed)
+   call element_grid(scene%model, np, scene%dx, scene%closed, npe, dxe)
+   n_elements = pad_elements(scene%model, dxe)
+   n_positions = averaged_positions(scene%model, npe, dxe, scene%closed)
    n_series = series_count(scene%model)
 end subroutine pf_layout
 
@@ -176,8 +180,9 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    real(c_double), intent(out) :: speed(ns), speed_kmh(ns), values(ns, nout)
    real(c_double), intent(out) :: series(npos, ns, nser), position(npos), texture(3)
    !> The cost estimated before the run: element-steps (all speeds, first
-   !> pass), bytes, seconds on one thread.
-   real(c_double), intent(out) :: estimate(3)
+   !> pass), bytes, seconds on one thread; and the spacing of the pad's
+   !> elements (m, &pad element_length as resampled).
+   real(c_double), intent(out) :: estimate(4)
    !> ASTM E1960: has F60 (1/0), F60, Sp from MPD (km/h), has the model's
    !> speed constant (1/0), that constant (km/h).
    real(c_double), intent(out) :: ifi(5)
@@ -246,7 +251,7 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    counts = [res%n_elements, res%n_positions, res%n_spinup, merge(1, 0, meta%has_texture), &
       & meta%texture%n_segments, meta%texture%n_valid]
    estimate = [real(res%estimate%total_element_steps, c_double), res%estimate%bytes, &
-      & res%estimate%seconds]
+      & res%estimate%seconds, real(res%element_spacing, c_double)]
    ifi = [merge(1.0_c_double, 0.0_c_double, meta%ifi%has_f60), meta%ifi%f60, &
       & meta%ifi%sp_texture, merge(1.0_c_double, 0.0_c_double, meta%ifi%has_speed_constant), &
       & meta%ifi%speed_constant]

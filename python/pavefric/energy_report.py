@@ -1,0 +1,104 @@
+"""The figures of docs/model.md's "Friction", "The pad's own scale" and
+"Temperature" paragraphs (issue 20), printed as text:
+
+    python -m pavefric.energy_report
+
+Runs only the core (pavefric.simulate); nothing is fitted here.
+"""
+from __future__ import annotations
+
+import re
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import pavefric
+
+ROOT = Path(__file__).resolve().parents[2]
+DX = 0.87e-3
+
+
+def _repo_file(*parts: str) -> Path:
+    """A file of the checkout: from the working directory, else beside the
+    package's source tree."""
+    for base in (Path.cwd(), ROOT):
+        path = base.joinpath(*parts)
+        if path.exists():
+            return path
+    print(f"pavefric.energy_report: {Path(*parts)} not found: run it in a checkout")
+    raise SystemExit(2)
+
+
+def compound() -> dict:
+    """The shipped tread compound's &rubber values as simulate() keywords."""
+    text = re.sub(r"!.*", "", _repo_file("inputs", "rubber", "tread_compound.nml").read_text())
+
+    def values(name):
+        body = re.split(r"\n\s*[a-z_0-9]+\s*=", text.split(f"{name} =")[1])[0]
+        return [float(v) for v in re.findall(r"[-+]?[0-9.]+(?:e[-+]?[0-9]+)?", body)]
+
+    return dict(rubber_model="maxwell", stiffness=values("stiffness")[0],
+                prony_stiffness=values("prony_stiffness"), prony_times=values("prony_times"),
+                reference_temperature=values("reference_temperature")[0],
+                wlf_c1=values("wlf_c1")[0], wlf_c2=values("wlf_c2")[0])
+
+
+def medium_profile() -> np.ndarray:
+    lines = _repo_file("inputs", "profiles", "ctm_medium.txt").read_text().splitlines()
+    return np.array([float(v) for v in lines if v and not v.startswith(("#", "h"))]) * 1e-3
+
+
+def main() -> None:
+    warnings.simplefilter("ignore", pavefric.PavefricWarning)
+    z = medium_profile()
+    print("Friction schemes, inputs/profiles/ctm_medium.txt, paper rubber, dry")
+    for kw in (dict(mu_loc=0.5), dict(mu_loc=0.0, viscosity=0.0)):
+        for scheme in ("energy", "paper"):
+            ds = pavefric.simulate(z, DX, [20.0, 80.0], friction_scheme=scheme, **kw)
+            print(f"  {kw} {scheme}: mu {ds['mu'].values}, mu_hysteresis "
+                  f"{ds['mu_hysteresis'].values}")
+    print("Temperature, shipped compound, mu_loc = 0, dry (mu at 20 and 60 km/h)")
+    rubber = compound()
+    for t in (-20, 0, 20, 40, 50, 60):
+        ds = pavefric.simulate(z, DX, [20.0, 60.0], mu_loc=0.0, temperature=float(t), **rubber)
+        print(f"  {t:4d} C: {np.round(ds['mu'].values, 4)}")
+    ds = pavefric.simulate(z, DX, [1.0], mu_loc=0.0, temperature=200.0, **rubber)
+    print(f"   200 C, 1 km/h: {ds['mu'].values[0]:.4f}")
+    print("Peaks of tan delta and of the loss compliance E''/|E*|^2 (shipped compound)")
+    k_inf = rubber["stiffness"]
+    arms = np.array(rubber["prony_stiffness"])
+    times = np.array(rubber["prony_times"])
+    temps = np.arange(-40.0, 121.0, 1.0)
+    for f in (10.0, 600.0, 3000.0):
+        w = 2 * np.pi * f
+        tand, comp = [], []
+        for t in temps:
+            shift = 10 ** (-rubber["wlf_c1"] * (t - 20) / (rubber["wlf_c2"] + t - 20))
+            wt = w * times * shift
+            e = k_inf + np.sum(arms * 1j * wt / (1 + 1j * wt))
+            tand.append(e.imag / e.real)
+            comp.append(e.imag / abs(e) ** 2)
+        print(f"  {f:6.0f} Hz: tan delta peaks at {temps[np.argmax(tand)]:.0f} C, "
+              f"loss compliance at {temps[np.argmax(comp)]:.0f} C")
+    print("Instrument spacing, CAPTIF station 0 (dry, mu_loc = 0.6, 20 km/h)")
+    profile = pavefric.read_profile(
+        _repo_file("inputs", "data", "captif", "20211011_aylesbury_dec_station_0.dat"),
+        dropouts="interpolate", trim_plates=True, spike_slope=0.0)
+    zc, dxc = np.asarray(profile.heights), profile.dx
+    for length in (0.87e-3, 0.0):
+        row = {"raw": pavefric.simulate(zc, dxc, [20.0], closed=False, mu_loc=0.6,
+                                        element_length=length)["mu"].values[0]}
+        for target in (1e-4, 2.5e-4, 5e-4, 1.5e-3):
+            k = int(round(target / dxc))
+            m = zc.size // k
+            for how, zk in (("dec", zc[::k]), ("bin", zc[:m * k].reshape(m, k).mean(axis=1))):
+                row[f"{how} {target * 1e3:g} mm"] = pavefric.simulate(
+                    zk, k * dxc, [20.0], closed=False, mu_loc=0.6,
+                    element_length=length)["mu"].values[0]
+        print(f"  element_length = {length}: " +
+              ", ".join(f"{k} {v:.3f}" for k, v in row.items()))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,207 @@
+"""Issue 20: friction that obeys energy and resolution.
+
+The energy scheme (&numerics friction_scheme = 'energy', the default) makes
+the facets' work per step the elements' stored-energy change plus their
+dissipation, so that over a closed profile an elastic pad with mu_loc = 0 has
+no friction; mu splits into mu_hysteresis (the rubber) and mu_adhesion
+(mu_loc on the facets). &pad element_length resamples the profile to the
+pad's own elements, so the instrument's spacing does not set the friction.
+"""
+from __future__ import annotations
+
+import re
+import warnings
+
+import numpy as np
+import pytest
+
+import pavefric
+import reference
+from conftest import CAPTIF, DX, ROOT
+
+SPEEDS = [0.0, 1.0, 20.0, 60.0, 80.0, 200.0]
+
+
+def compound():
+    """The shipped tread compound (inputs/rubber/tread_compound.nml)."""
+    text = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
+    text = re.sub(r"!.*", "", text)
+
+    def values(name):
+        body = re.split(r"\n\s*[a-z_0-9]+\s*=", text.split(f"{name} =")[1])[0]
+        return [float(v) for v in re.findall(r"[-+]?[0-9.]+(?:e[-+]?[0-9]+)?", body)]
+
+    return dict(rubber_model="maxwell", stiffness=values("stiffness")[0],
+                prony_stiffness=values("prony_stiffness"), prony_times=values("prony_times"),
+                reference_temperature=values("reference_temperature")[0],
+                wlf_c1=values("wlf_c1")[0], wlf_c2=values("wlf_c2")[0])
+
+
+def run(z, speeds, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pavefric.PavefricWarning)
+        return pavefric.simulate(z, DX, speeds, **kw)
+
+
+def surface(name):
+    from make_regression import read_heights
+    return read_heights(name)
+
+
+@pytest.fixture(scope="module", params=["synthetic_1024.txt", "GSP", "MCA"])
+def closed_profile(request):
+    if request.param.endswith(".txt"):
+        return surface(request.param)
+    path = ROOT / "inputs" / "surfaces" / f"{request.param}.txt"
+    lines = [ln for ln in path.read_text().splitlines() if ln and not ln.startswith("#")]
+    assert lines[0] == "height_mm"
+    return np.array([float(v) for v in lines[1:]]) * 1e-3
+
+
+def test_elastic_pad_without_local_friction_has_no_friction(closed_profile):
+    """Must-show 1: Kelvin-Voigt with viscosity = 0 and mu_loc = 0, every speed."""
+    ds = run(closed_profile, SPEEDS, viscosity=0.0, mu_loc=0.0, series=True)
+    assert np.all(np.abs(ds["mu"].values) <= 1e-9)
+    assert np.all(ds["mu_adhesion"].values == 0.0)
+    # the energy identity itself: the facets' work per step, averaged over
+    # the circle, returns (the mean reports the rubber's dissipation, 0)
+    np.testing.assert_allclose(ds["mu_inst"].values.mean(axis=1), 0.0, rtol=0, atol=1e-12)
+    # the per-position friction is not zero: the facets push and pull, and
+    # their work returns over the circle
+    assert np.abs(ds["mu_inst"].values).max() > 1e-3
+    # the paper's central differences make friction out of nothing here
+    paper = run(closed_profile, [20.0], viscosity=0.0, mu_loc=0.0, friction_scheme="paper")
+    assert abs(float(paper["mu"][0])) > 1e-7
+
+
+def test_maxwell_far_from_its_transition_is_elastic(profile_m):
+    """Must-show 1: the shipped compound glassy (cold) and rubbery (hot) has
+    almost no hysteresis; near its transition it has some."""
+    rubber = compound()
+    mus = {t: run(profile_m, [1.0], mu_loc=0.0, temperature=t, **rubber)["mu"].values[0]
+           for t in (-60.0, -40.0, 30.0, 200.0, 400.0, 1000.0)}
+    assert mus[30.0] > 0.02
+    assert 0 <= mus[-60.0] <= 1e-9 and 0 <= mus[-40.0] < 1e-8
+    assert mus[30.0] > mus[200.0] > mus[400.0] > mus[1000.0] >= 0
+    assert mus[1000.0] < 1e-3 * mus[30.0]
+
+
+@pytest.mark.parametrize("rubber", [
+    dict(viscosity=1e2), dict(viscosity=3e4), dict(viscosity=1e7), "compound"],
+    ids=["kv-paper", "kv-viscous", "kv-very-viscous", "maxwell"])
+@pytest.mark.parametrize("temperature", [-20.0, 20.0, 60.0])
+def test_no_local_friction_never_negative(profile_m, rubber, temperature):
+    """Must-show 2: mu >= 0, mu_adhesion = 0, parts sum to mu."""
+    kw = compound() if rubber == "compound" else dict(rubber)
+    ds = run(profile_m, SPEEDS, mu_loc=0.0, temperature=temperature, **kw)
+    mu = ds["mu"].values
+    assert np.all(mu >= 0.0)
+    assert np.all(ds["mu_adhesion"].values == 0.0)
+    np.testing.assert_allclose(ds["mu_hysteresis"].values, mu, rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(depth=1e-3), dict(depth=1e-3, wet_model="squeeze"),
+                                dict(theta_max_deg=30.0, mu_loc=0.8), dict(substeps=3),
+                                dict(elements_per_sample=2, position_stride=3)],
+                         ids=["dry", "wet", "squeeze", "clamped", "substeps", "knobs"])
+def test_parts_add_up_to_mu(profile_m, kw):
+    ds = run(profile_m, [20.0, 60.0], **kw)
+    total = ds["mu_hysteresis"].values + ds["mu_adhesion"].values
+    np.testing.assert_allclose(total, ds["mu"].values, rtol=1e-14, atol=1e-15)
+    assert np.all(ds["mu_adhesion"].values > 0)
+
+
+def test_adhesion_is_mu_loc_times_the_facet_factor(profile_m):
+    """An elastic pad's friction is all adhesion: mu_loc (1 + s^2) / (1 - mu s)
+    per unit element force, s the facet slope (independent reference)."""
+    ref = reference.simulate(profile_m, DX, [20.0], viscosity=0.0, mu_loc=0.5)
+    ds = run(profile_m, [20.0], viscosity=0.0, mu_loc=0.5)
+    np.testing.assert_allclose(ds["mu"].values, ref, rtol=0, atol=1e-10)
+    assert abs(float(ds["mu_hysteresis"][0])) <= 1e-9
+    assert float(ds["mu_adhesion"][0]) > 0.5          # facets steepen the local friction
+
+
+def test_temperature_sweep_is_one_bell(profile_m):
+    """Must-show 3, as far as it holds (docs/rubber.md): with the shipped
+    compound and mu_loc = 0, mu against temperature rises to one maximum
+    and falls beyond it."""
+    rubber = compound()
+    temps = np.arange(-30.0, 151.0, 15.0)
+    mu = np.array([run(profile_m, [20.0], mu_loc=0.0, temperature=t, **rubber)["mu"].values[0]
+                   for t in temps])
+    peak = int(np.argmax(mu))
+    assert 0 < peak < len(temps) - 1
+    assert np.all(np.diff(mu[:peak + 1]) > 0)
+    assert np.all(np.diff(mu[peak:]) < 0)
+
+
+def captif_heights():
+    profile = pavefric.read_profile(CAPTIF / "20211011_aylesbury_dec_station_0.dat",
+                                    dropouts="interpolate", trim_plates=True, spike_slope=0.0)
+    return np.asarray(profile.heights), profile.dx
+
+
+@pytest.mark.parametrize("how", ["decimated", "bin-averaged"])
+def test_friction_does_not_depend_on_the_instrument_spacing(how):
+    """Must-show 4: a real profile at 0.037 mm (raw), 0.1, 0.25, 0.5 mm,
+    all else default (dry): mu within 3 % of each other."""
+    z, dx = captif_heights()
+    mus = [pavefric.simulate(z, dx, [20.0, 60.0], closed=False)["mu"].values]
+    for target in (1e-4, 2.5e-4, 5e-4):
+        k = int(round(target / dx))
+        if how == "decimated":
+            zk = z[::k]
+        else:
+            m = z.size // k
+            zk = z[:m * k].reshape(m, k).mean(axis=1)
+        mus.append(pavefric.simulate(zk, k * dx, [20.0, 60.0], closed=False)["mu"].values)
+    mus = np.array(mus)
+    assert np.all(mus.max(axis=0) / mus.min(axis=0) - 1 <= 0.03), mus
+    # the paper's discretisation (elements at the instrument's spacing) is not
+    raw = pavefric.simulate(z, dx, [20.0], closed=False, element_length=0.0)["mu"].values[0]
+    coarse = pavefric.simulate(z[::13], 13 * dx, [20.0], closed=False,
+                               element_length=0.0)["mu"].values[0]
+    assert abs(raw / coarse - 1) > 0.1
+
+
+def test_element_length_resamples_a_closed_profile_whole(profile_m):
+    """A closed profile is resampled to a whole number of elements round its
+    circumference; its spacing and element count are recorded."""
+    ds = run(profile_m, [20.0], element_length=1.0e-3)
+    n = round(profile_m.size * DX / 1.0e-3)
+    assert ds.attrs["pad_element_spacing"] == pytest.approx(profile_m.size * DX / n, rel=1e-14)
+    assert ds.attrs["pad_elements"] == round(0.020 / ds.attrs["pad_element_spacing"])
+    assert ds.attrs["averaged_positions"] == n
+    # at the profile's own spacing nothing is resampled
+    same = run(profile_m, [20.0], element_length=DX)
+    own = run(profile_m, [20.0], element_length=0.0)
+    assert same["mu"].values[0] == own["mu"].values[0]
+
+
+def test_element_length_resampling_is_shift_invariant_and_averages(profile_m):
+    """A vertical shift passes through the filter; a profile given at half the
+    spacing by linear interpolation gives nearly the same friction."""
+    base = run(profile_m, [20.0], element_length=1.3e-3)["mu"].values[0]
+    shifted = run(profile_m + 0.25, [20.0], element_length=1.3e-3)["mu"].values[0]
+    assert shifted == pytest.approx(base, rel=1e-9)
+    fine = np.empty(2 * profile_m.size)
+    fine[0::2] = profile_m
+    fine[1::2] = 0.5 * (profile_m + np.roll(profile_m, -1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pavefric.PavefricWarning)
+        half = pavefric.simulate(fine, DX / 2, [20.0], element_length=1.3e-3)["mu"].values[0]
+    assert half == pytest.approx(base, rel=0.01)
+
+
+def test_energy_scheme_matches_the_reference(short_profile_m):
+    """The core's energy scheme against the independent NumPy reference,
+    series included (closed and open, dry and wet, viscous)."""
+    for closed in (True, False):
+        for kw in (dict(viscosity=3e4), dict(depth=1e-3, alpha=3.0, viscosity=3e4),
+                   dict(theta_max_deg=30.0, mu_loc=0.8)):
+            ref_mu, series = reference.simulate(short_profile_m, DX, [20.0, 60.0], closed=closed,
+                                                series=True, **kw)
+            ds = run(short_profile_m, [20.0, 60.0], closed=closed, series=True, **kw)
+            np.testing.assert_allclose(ds["mu"].values, ref_mu, rtol=0, atol=1e-10)
+            np.testing.assert_allclose(ds["mu_inst"].values, [s[0] for s in series],
+                                       rtol=0, atol=1e-9)
