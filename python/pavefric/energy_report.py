@@ -58,6 +58,25 @@ def main() -> None:
             ds = pavefric.simulate(z, DX, [20.0, 80.0], friction_scheme=scheme, **kw)
             print(f"  {kw} {scheme}: mu {ds['mu'].values}, mu_hysteresis "
                   f"{ds['mu_hysteresis'].values}")
+    print("The paper's Table 2 surfaces (inputs/surfaces/*.nml, their mu_loc; wet: their "
+          "1 mm): mu at 20 and 60 km/h, energy against paper")
+    from .core import load_scene
+    for name in ("GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"):
+        scene = load_scene(_repo_file("inputs", "surfaces", f"{name}.nml"))
+        row = []
+        for water in ("dry", "wet"):
+            kw = dict(scene.parameters)
+            if water == "dry":
+                kw["depth"] = 0.0
+            mus = {}
+            for scheme in ("energy", "paper"):
+                kw["friction_scheme"] = scheme
+                mus[scheme] = pavefric.simulate(scene.heights, scene.dx, [20.0, 60.0],
+                                                closed=scene.closed, **kw)["mu"].values
+            change = 100 * (mus["energy"] / mus["paper"] - 1)
+            row.append(f"{water} {np.round(mus['energy'], 3)} vs {np.round(mus['paper'], 3)} "
+                       f"({change[0]:+.2f} %, {change[1]:+.2f} %)")
+        print(f"  {name}: " + "; ".join(row))
     print("Temperature, shipped compound, mu_loc = 0, dry (mu at 20 and 60 km/h)")
     rubber = compound()
     for t in (-20, 0, 20, 40, 50, 60):
