@@ -14,7 +14,7 @@ import pavefric
 from conftest import ROOT, program, run_program
 
 DEMO = ROOT / "inputs" / "batch_demo.nml"
-VARS = ("mu", "wet_fraction", "hydroplaning_fraction", "max_balance_residual", "n_clamped",
+VARS = ("mu", "mu_hysteresis", "mu_adhesion", "wet_fraction", "hydroplaning_fraction", "max_balance_residual", "n_clamped",
         "mpd", "rms_height", "rms_slope", "status", "profile", "error_message")
 
 
@@ -70,6 +70,29 @@ def test_demo_batch_output(serial_demo):
                       ds["mu"].isel(water_depth=2).values[:, -1])
         assert np.all(ds["mpd"].values > 0) and ds["mpd"].attrs["units"] == "m"
         assert ds.attrs["profiles_failed"] == 0
+
+
+def test_batch_splits_mu_as_a_single_scene_does(tmp_path):
+    """Issue 20: mu_hysteresis and mu_adhesion per profile, depth and speed,
+    adding up to mu, and equal to a single scene's of the same profile; a
+    failed profile has neither."""
+    scene = make_batch(tmp_path, n=4, broken=True)
+    out = tmp_path / "b.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 4, r.stderr
+    with xr.open_dataset(out) as ds:
+        ok = ds["status"].values == 1
+        mu, hyst, adh = (ds[v].values for v in ("mu", "mu_hysteresis", "mu_adhesion"))
+        assert ds["mu_hysteresis"].dims == ("profile", "water_depth", "speed_kmh")
+        np.testing.assert_allclose((hyst + adh)[ok], mu[ok], rtol=1e-14, atol=1e-15)
+        assert np.all(adh[ok] > 0) and np.all(np.isnan(hyst[~ok])) and np.all(np.isnan(adh[~ok]))
+        name = str(ds["profile"].values[0])
+        z = pavefric.read_profile(tmp_path / "profiles" / f"{name}.txt").heights
+        for d, depth in enumerate(ds["water_depth"].values):
+            one = pavefric.simulate(z, 0.87e-3, [20.0, 60.0], closed=False, mu_loc=0.6,
+                                    depth=float(depth))
+            for v in ("mu", "mu_hysteresis", "mu_adhesion"):
+                np.testing.assert_allclose(ds[v].values[0, d], one[v].values, rtol=1e-13)
 
 
 def test_mpi_two_ranks_same_as_serial(tmp_path, serial_demo):
