@@ -877,6 +877,7 @@ contains
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
       real(wp), dimension(lanes) :: sum_fa, hyst, hyst_sum, adh_sum, delta_last
+      real(wp), dimension(lanes) :: film_work, push_total_prev
       integer(i8), dimension(lanes) :: n_clamped, n_eval
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
@@ -940,6 +941,8 @@ contains
       delta_prev = -huge(1.0_wp)
       have_prev = .false.
       hyst = 0.0_wp
+      film_work = 0.0_wp
+      push_total_prev = 0.0_wp
       hyst_sum = 0.0_wp
       adh_sum = 0.0_wp
       mu_sum = 0.0_wp
@@ -1062,9 +1065,18 @@ contains
             ! descent: what the facets did (lane_work)
             if (have_prev) then
                call lane_work(nl, n, u_free, push, u_prev, push_prev, cmin + x - delta_last, hyst)
+               ! what the pad's descent did against the film: the load the
+               ! elements did not carry (W - their mean force, the film's
+               ! lift to rounding) times the descent (0 on a dry road)
+               do j = 1, nl
+                  film_work(j) = (m%load - 0.5_wp * kel(j) * (push_total_prev(j) + sum_f(j))) &
+                     & * (cmin(j) + x(j) - delta_last(j))
+               end do
             else
                hyst = 0.0_wp
+               film_work = 0.0_wp
             end if
+            push_total_prev(1:nl) = sum_f(1:nl)
             call lane_remember(nl, n, u_free, push, u_prev, push_prev)
             delta_last = cmin + x
             have_prev = .true.
@@ -1084,6 +1096,10 @@ contains
                hyst_j = kel(j) * (sum_ft(j) - sum_fa(j)) / m%load
             end if
             mu_j = hyst_j + adh_j
+            ! the rubber's part of the mean: the facets' work less the film's
+            ! (Eq. 15's lift is a function of the gap, not a dissipation: what
+            ! it takes and gives back round the profile is not friction)
+            if (energy) hyst_j = hyst_j - film_work(j) / (m%load * geo%advance)
             hyst_sum(j) = hyst_sum(j) + hyst_j
             adh_sum(j) = adh_sum(j) + adh_j
             resid = abs(sum_f(j) + wh(j) - m%load) / m%load
@@ -1106,14 +1122,17 @@ contains
          out(j)%mu = mu_sum(j) / real(geo%n_avg, wp)                   ! Eq. 12
          out(j)%mu_hysteresis = hyst_sum(j) / real(geo%n_avg, wp)
          out(j)%mu_adhesion = adh_sum(j) / real(geo%n_avg, wp)
-         if (energy .and. geo%closed .and. .not. rstep%memory(j) .and. n_wet(j) == 0) then
-            ! An elastic rubber dissipates nothing: round a closed profile
-            ! with no film carrying load the facets' work returns to them
-            ! exactly, and the sum of the steps' work differs from 0 by
-            ! rounding only (~1e-19). (A load-carrying film's own work round
-            ! the profile, which need not vanish, stays in the sum.)
-            out(j)%mu_hysteresis = 0.0_wp
-            out(j)%mu = out(j)%mu_adhesion
+         if (energy) then
+            ! mu is the dissipation: the rubber's and the local friction's
+            ! (the mean of mu_inst, the facets' work, differs from it by the
+            ! film's work round the profile over W and the distance)
+            if (geo%closed .and. .not. rstep%memory(j)) then
+               ! An elastic rubber dissipates nothing: round a closed profile
+               ! its work returns exactly, and the sum of the steps' work
+               ! differs from 0 by rounding only (~1e-19).
+               out(j)%mu_hysteresis = 0.0_wp
+            end if
+            out(j)%mu = out(j)%mu_hysteresis + out(j)%mu_adhesion
          end if
          out(j)%hydroplaning_fraction = real(n_nocontact(j), wp) / real(geo%n_avg, wp)
          out(j)%wet_fraction = real(n_wet(j), wp) / real(geo%n_avg, wp)

@@ -9,7 +9,10 @@ position averaged), on the profile's own spacing (&pad element_length = 0).
 Two friction schemes (MODEL.md §3 and §10): 'paper', Eq. 10 on
 central-difference slopes; 'energy', the facets' work: the rubber's part from
 the elements' work over each step (trapezoidal in time) less the pad's
-descent, the local friction's part mu (1 + s^2) / (1 - mu s) per unit force.
+descent, the local friction's part mu (1 + s^2) / (1 - mu s) per unit force;
+per position (series) the facets' work, on average the dissipation (the
+facets' work less the film's: the load the elements did not carry times the
+pad's descent).
 """
 from __future__ import annotations
 
@@ -95,7 +98,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             decay = 1.0 / (1.0 + stiffness * dt / viscosity)
         pref = alpha * 6 * water_viscosity * v**beta * width * length**2
         u = np.zeros(n)
-        mus, deltas, whs = [], [], []
+        mus, deltas, whs, means = [], [], [], []
         prev = None
         for j in steps:
             k = (j + i - 1) % n_p if closed else j + i - 1
@@ -126,19 +129,25 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             u = np.maximum(delta - h + z[k], u_free)
             if friction_scheme == "paper":
                 mu_j = (force * tan_t[k]).sum() / load
+                mean_j = mu_j
             else:
-                work = 0.0
+                work = film = 0.0
                 if prev is not None:
                     f_old, d_old = prev
                     work = (0.5 * (f_old + force) * ((u - u_old) - (delta - d_old))).sum()
-                mu_j = work / (load * dx) + (force * adh[k]).sum() / load
+                    # the load the elements did not carry, times the descent
+                    film = (load - 0.5 * (f_old.sum() + force.sum())) * (delta - d_old)
+                adhesion = (force * adh[k]).sum() / load
+                mu_j = work / (load * dx) + adhesion             # the facets' work (series)
+                mean_j = (work - film) / (load * dx) + adhesion  # the dissipation (mean)
             prev = (force, delta)
             if closed and j < 1:
                 continue
             mus.append(mu_j)
+            means.append(mean_j)
             deltas.append(delta)
             whs.append(wh)
-        out_mu.append(np.mean(mus))
+        out_mu.append(np.mean(means))
         out_series.append((np.array(mus), np.array(deltas), np.array(whs)))
     if series:
         return np.array(out_mu), out_series
