@@ -59,40 +59,43 @@ contains
    end subroutine refine_profile
 
    !> Points of a profile of n samples at spacing dx resampled to `length`
-   !> (resample_to_length's size; 0 when it would exceed 2e9).
-   pure integer function resampled_points(n, dx, closed, length) result(m)
+   !> from `phase` (a fraction of the new spacing, in [0, 1)): the size
+   !> resample_to_length gives; 0 when it would exceed 2e9 (or, open, when
+   !> the profile is shorter than the phase).
+   pure integer function resampled_points(n, dx, closed, length, phase) result(m)
       integer, intent(in) :: n
-      real(wp), intent(in) :: dx, length
+      real(wp), intent(in) :: dx, length, phase
       logical, intent(in) :: closed
       real(wp) :: r
+      m = 0
       if (closed) then
          r = real(n, wp) * dx / length
-         m = 0
          if (r < 2.0e9_wp) m = max(1, nint(r))
       else
-         r = real(n - 1, wp) * dx / length
-         m = 0
-         if (r < 2.0e9_wp) m = int(r * (1.0_wp + 1.0e-12_wp)) + 1
+         r = real(n - 1, wp) * dx / length - phase
+         if (r >= -1.0e-12_wp .and. r < 2.0e9_wp) m = int(max(0.0_wp, r) * &
+            & (1.0_wp + 1.0e-12_wp) + 1.0e-12_wp) + 1
       end if
    end function resampled_points
 
    !> The profile seen by pad elements of length `length`: the mean height of
    !> its linear interpolant over a window (a box filter: the element's
    !> footprint, which removes what the element cannot resolve before the
-   !> resampling can alias it), taken every `length`. The window is narrower
-   !> than the element by what the samples already average: its width w has
-   !> w^2 = length^2 - 3 dx^2 (the variances of an instrument's bin, dx^2/12,
-   !> and of linear interpolation, dx^2/6, and of the window add up to one
-   !> element's, length^2/12), so that a profile given at any spacing finer
-   !> than the element is smoothed alike; no window at dx >= length / sqrt(3). A closed
+   !> resampling can alias it), taken every `length` from `phase` x the new
+   !> spacing. The window is narrower than the element by what the linear
+   !> interpolant already averages: its width w has w^2 = length^2 - 2 dx^2
+   !> (the variances of interpolating between point samples, dx^2/6, and of
+   !> the window add up to one element's, length^2/12), so that a profile
+   !> given at any spacing finer than the element is smoothed alike; no
+   !> window at dx >= length / sqrt(2). A closed
    !> profile of circumference n dx gets a whole number m = nint(n dx /
    !> length) of samples at spacing n dx / m; an open one m samples at exactly
    !> `length` from its first point, its windows clipped at the ends. The
    !> integrals are exact for the linear interpolant; heights are taken
    !> relative to the first so that a vertical shift passes through.
    !> `stat` /= 0: the result could not be allocated.
-   pure subroutine resample_to_length(z, dx, closed, length, zr, dxr, stat)
-      real(wp), intent(in) :: z(:), dx, length
+   pure subroutine resample_to_length(z, dx, closed, length, phase, zr, dxr, stat)
+      real(wp), intent(in) :: z(:), dx, length, phase
       logical, intent(in) :: closed
       real(wp), allocatable, intent(out) :: zr(:)
       real(wp), intent(out) :: dxr
@@ -100,7 +103,7 @@ contains
       integer :: n, m, k, q, q0, q1
       real(wp) :: a, b, lo, hi, za, zb, w, integral, covered, z0, step, half
       n = size(z)
-      m = resampled_points(n, dx, closed, length)
+      m = resampled_points(n, dx, closed, length, phase)
       allocate(zr(max(m, 1)), stat=stat)
       if (stat /= 0) return
       if (closed) then
@@ -111,14 +114,13 @@ contains
       z0 = z(1)
       step = dxr / dx                     ! the new spacing in old samples
       ! half a window in old samples: the window's variance w^2 / 12 and the
-      ! linear interpolant's, 3 dx^2 / 12 (an instrument's sample is a mean
-      ! over its spacing, dx^2 / 12; interpolating adds dx^2 / 6), make up
-      ! one element's box, length^2 / 12
-      half = 0.5_wp * sqrt(max(0.0_wp, (length / dx)**2 - 3.0_wp))
+      ! linear interpolant's, 2 dx^2 / 12, make up one element's box,
+      ! length^2 / 12
+      half = 0.5_wp * sqrt(max(0.0_wp, (length / dx)**2 - 2.0_wp))
       do k = 1, m
          ! the window in units of the old spacing, sample 1 at 0
-         a = real(k - 1, wp) * step - half
-         b = real(k - 1, wp) * step + half
+         a = (real(k - 1, wp) + phase) * step - half
+         b = (real(k - 1, wp) + phase) * step + half
          if (.not. b - a > 1.0e-9_wp) then
             ! no window left: the interpolant at the point
             q0 = floor(a + half)
@@ -146,7 +148,7 @@ contains
          if (covered > 0.0_wp) then
             zr(k) = z0 + integral / covered
          else
-            zr(k) = z(min(n, nint(real(k - 1, wp) * step) + 1))
+            zr(k) = z(min(n, nint((real(k - 1, wp) + phase) * step) + 1))
          end if
       end do
    contains

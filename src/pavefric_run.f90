@@ -60,14 +60,18 @@ contains
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
       logical :: friction_film
-      integer :: npe
+      integer :: npe, phases
       real(wp) :: dxe
       call make_components(scene%model, rubber, film)
       friction_film = .false.
       if (allocated(film)) friction_film = film%changes_friction()
-      call element_grid(scene%model, size(clean%z), clean%dx, scene%closed, npe, dxe)
+      call element_grid(scene%model, size(clean%z), clean%dx, scene%closed, npe, dxe, phases)
       c = estimate_cost(scene%model, npe, dxe, scene%closed, &
          & size(scene%speeds_kmh), scene%series, friction_film, rubber%state_size())
+      ! every phase of the pad's grid is a run of that size
+      c%element_steps = c%element_steps * phases
+      c%total_element_steps = c%total_element_steps * phases
+      c%seconds = c%seconds * real(phases, wp)
    end function scene_estimate
 
    !> The estimate in words, for the progress line.

@@ -174,7 +174,15 @@ def test_element_length_resamples_a_closed_profile_whole(profile_m):
     n = round(profile_m.size * DX / 1.0e-3)
     assert ds.attrs["pad_element_spacing"] == pytest.approx(profile_m.size * DX / n, rel=1e-14)
     assert ds.attrs["pad_elements"] == round(0.020 / ds.attrs["pad_element_spacing"])
-    assert ds.attrs["averaged_positions"] == n
+    # the pad's grid at four phases, each round the whole circle
+    assert ds.attrs["averaged_positions"] == 4 * n
+    series = run(profile_m, [20.0, 60.0], element_length=1.0e-3, series=True)
+    pos = series["position"].values
+    assert pos.size == 4 * n and np.all(np.diff(pos) > 0)
+    np.testing.assert_allclose(np.diff(pos), ds.attrs["pad_element_spacing"] / 4, rtol=1e-9)
+    # dry: the mean of the merged series is mu
+    np.testing.assert_allclose(series["mu_inst"].values.mean(axis=1),
+                               series["mu"].values, rtol=1e-12)
     # at the profile's own spacing nothing is resampled
     same = run(profile_m, [20.0], element_length=DX)
     own = run(profile_m, [20.0], element_length=0.0)

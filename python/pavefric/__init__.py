@@ -11,7 +11,7 @@ from .core import (CTM_DX, PavefricError, PavefricKeywordError, PavefricWarning,
                    check_output,
                    ProfilesFailedWarning, Scene, defaults, groups, layout, load_scene,
                    open_dataset, parameters, run, simulate)
-from .profiles import ProfileEntry, list_profiles, read_profile, write_profiles
+from .profiles import ProfileEntry, element_profile, list_profiles, read_profile, write_profiles
 from .plot import plot_mu_speed, plot_profile
 from .texture import ifi, texture
 
@@ -23,4 +23,4 @@ __all__ = ["CTM_DX", "PavefricError", "PavefricKeywordError", "PavefricWarning",
            "ProfilesFailedWarning", "Scene", "load_scene", "defaults", "groups", "parameters",
            "layout", "open", "open_dataset", "ifi", "plot_mu_speed", "plot_profile",
            "read_profile", "texture", "run", "simulate", "__version__", "write_profiles",
-           "list_profiles", "ProfileEntry", "check_output"]
+           "list_profiles", "ProfileEntry", "check_output", "element_profile"]

@@ -19,7 +19,33 @@ from . import _core
 from .core import (PavefricError, PavefricKeywordError, Profile, _check, _format, _settings_text,
                    _spec, _text, parameters)
 
-__all__ = ["read_profile", "list_profiles", "write_profiles", "ProfileEntry"]
+__all__ = ["read_profile", "list_profiles", "write_profiles", "ProfileEntry", "element_profile"]
+
+
+def element_profile(heights, dx: float, element_length: float = 0.87e-3, *,
+                    closed: bool = True, phase: float = 0.0) -> tuple[np.ndarray, float]:
+    """The profile the pad's elements see (``&pad element_length``): the core's
+    own box filter and resampling of ``heights`` (m, spacing ``dx`` m) to
+    ``element_length``, the grid starting ``phase`` (a fraction in [0, 1)) of
+    an element along. Returns (heights, spacing); a closed profile's spacing
+    is adjusted to a whole number of elements round it. ``simulate`` runs
+    four phases of this and averages them (docs/model.md)."""
+    z = np.ascontiguousarray(heights, dtype=float).ravel()
+    if z.size < 1 or not np.all(np.isfinite(z)):
+        raise PavefricError("element_profile: heights must be finite and not empty")
+    if not (dx > 0 and element_length > 0 and 0.0 <= phase < 1.0):
+        raise PavefricError(f"element_profile: dx = {dx!r}, element_length = "
+                            f"{element_length!r} must be > 0, phase = {phase!r} in [0, 1)")
+    m = int(_core.pf_resampled_points(z.size, float(dx), int(bool(closed)),
+                                      float(element_length), float(phase)))
+    if m < 1:
+        raise PavefricError(f"element_profile: no element of {element_length} m fits the "
+                            f"profile at phase {phase}")
+    zr, dxr, status = _core.pf_resample_to_length(z, float(dx), int(bool(closed)),
+                                                  float(element_length), float(phase), m)
+    if status != 0:
+        raise PavefricError("element_profile: not enough memory")
+    return np.asarray(zr), float(dxr)
 
 def _b(text: str | os.PathLike) -> bytes:
     """Text for a Fortran character argument (f2py takes UTF-8 bytes; a

@@ -124,7 +124,7 @@ end subroutine pf_output_info
 subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_scene, only: scene_type, scene_from_text
-   use pavefric_simulate, only: pad_elements, averaged_positions, element_grid
+   use pavefric_simulate, only: pad_elements, element_grid
    use pavefric_outputs, only: series_count
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type
@@ -144,9 +144,8 @@ subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, me
       message = error%message
       return
    end if
-   call element_grid(scene%model, np, scene%dx, scene%closed, npe, dxe)
+   call element_grid(scene%model, np, scene%dx, scene%closed, npe, dxe, positions=n_positions)
    n_elements = pad_elements(scene%model, dxe)
-   n_positions = averaged_positions(scene%model, npe, dxe, scene%closed)
    n_series = series_count(scene%model)
 end subroutine pf_layout
 
@@ -749,3 +748,40 @@ subroutine pf_check_output(path, inputs, status, message)
       message = error%message
    end if
 end subroutine pf_check_output
+
+!> Points of the profile the pad's elements see (&pad element_length) at a
+!> phase of their grid: pavefric_heights' resampled_points.
+subroutine pf_resampled_points(n, dx, closed, length, phase, m)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_heights, only: resampled_points
+   implicit none
+   integer(c_int), intent(in) :: n, closed
+   real(c_double), intent(in) :: dx, length, phase
+   integer(c_int), intent(out) :: m
+   m = resampled_points(n, dx, closed /= 0, length, phase)
+end subroutine pf_resampled_points
+
+!> The profile the pad's elements see: pavefric_heights' resample_to_length
+!> (the core's own filter and resampling), m points from pf_resampled_points.
+!> status /= 0: m does not match, or no memory.
+subroutine pf_resample_to_length(n, z, dx, closed, length, phase, m, zr, dxr, status)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_heights, only: resample_to_length
+   implicit none
+   integer(c_int), intent(in) :: n, closed, m
+   real(c_double), intent(in) :: z(n), dx, length, phase
+   real(c_double), intent(out) :: zr(m), dxr
+   integer(c_int), intent(out) :: status
+   real(c_double), allocatable :: out(:)
+   integer :: stat
+   zr = 0
+   dxr = 0
+   call resample_to_length(z, dx, closed /= 0, length, phase, out, dxr, stat)
+   status = stat
+   if (stat /= 0) return
+   if (size(out) /= m) then
+      status = -1
+      return
+   end if
+   zr = out
+end subroutine pf_resample_to_length
