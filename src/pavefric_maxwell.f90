@@ -74,7 +74,8 @@ contains
       integer :: j, k, n, i, nl
       n = size(self%arm_stiffness)
       allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
-         & step%coef(size(speeds), 1 + 4 * n), ke(n))
+         & step%coef(size(speeds), 1 + 4 * n), ke(n), step%mode_decay(size(speeds), n), &
+         & step%mode_weight(size(speeds), n))
       do j = 1, size(speeds)
          step%memory(j) = speeds(j) > 0.0_wp
          k_eff = self%stiffness
@@ -93,6 +94,11 @@ contains
          end do
          step%coef(j, 1) = a / k_eff
          step%k_eff(j) = k_eff
+         ! the arms are the memory's modes: each decays by E_k a step
+         do k = 1, n
+            step%mode_decay(j, k) = ke(k)
+            step%mode_weight(j, k) = self%arm_stiffness(k) / k_eff
+         end do
       end do
       ! every lane's coefficients repeated for each element: the kernels then
       ! run over lanes and elements as one contiguous loop

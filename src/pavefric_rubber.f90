@@ -32,6 +32,11 @@ module pavefric_rubber
       !> count), for models whose loops run over lanes and elements as one
       !> (not allocated by models that do not need it).
       real(wp), allocatable :: per_element(:, :)
+      !> The memory's modes (lanes, modes): the factor by which each decays
+      !> over a step (in [0, 1)) and its share of the effective stiffness.
+      !> The driver spins a closed profile up until what is left of the
+      !> start can no longer change the state from one lap to the next.
+      real(wp), allocatable :: mode_decay(:, :), mode_weight(:, :)
    end type rubber_step_type
 
    !> A rubber element model.
@@ -126,7 +131,7 @@ contains
       integer :: i, j, nl
       nl = size(speeds)
       allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
-         & step%per_element(nl * elements, 1))
+         & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1))
       do j = 1, nl
          cv = self%viscosity * speeds(j)
          step%k_eff(j) = self%stiffness + cv / advance            ! K + C/dt
@@ -136,6 +141,9 @@ contains
          else
             step%coef(j, 1) = 0.0_wp
          end if
+         ! one mode: the compression's relaxation, all of the element
+         step%mode_decay(j, 1) = step%coef(j, 1)
+         step%mode_weight(j, 1) = 1.0_wp
       end do
       do i = 1, elements
          step%per_element((i - 1) * nl + 1 : i * nl, 1) = step%coef(:, 1)

@@ -37,6 +37,10 @@ module pavefric_simulate
    !> other (docs/model.md).
    integer, parameter, public :: element_phases = 4
 
+   !> Most laps of a closed profile a speed spins up over before averaging
+   !> (lap_spinup).
+   integer, parameter :: max_spin_laps = 4
+
    interface
       function c_physical_memory() bind(C, name="pavefric_physical_memory") result(bytes)
          import :: c_long_long
@@ -151,6 +155,9 @@ module pavefric_simulate
       real(wp) :: max_balance_residual = 0, mean_hydro_load = 0, max_compression = 0
       real(wp) :: mean_local_friction = 0, mean_film_thickness = 0
       integer(i8) :: n_clamped = 0, bearing_evaluations = 0, memory_updates = 0
+      !> Spin-up positions this speed ran, and whether its memory outlasted them.
+      integer :: spinup = 0
+      logical :: spin_short = .false.
       logical :: viscous_memory_ran = .false., bearing_ran = .false.
       logical :: friction_film_ran = .false.
       !> stat_memory when the speed's work arrays could not be allocated.
@@ -625,6 +632,8 @@ contains
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
       integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
+      integer, allocatable :: spinups(:)
+      logical, allocatable :: shorts(:)
       logical :: friction_film
       character(len=:), allocatable :: effect
 
@@ -656,7 +665,7 @@ contains
          & res%max_balance_residual(ns), res%mean_hydro_load(ns), res%max_compression(ns), &
          & res%n_clamped(ns), res%bearing_evaluations(ns), res%memory_updates(ns), &
          & res%viscous_memory_ran(ns), res%bearing_ran(ns), res%friction_film_ran(ns), &
-         & res%mean_local_friction(ns), res%mean_film_thickness(ns), stat=stat)
+         & res%mean_local_friction(ns), res%mean_film_thickness(ns), spinups(ns), shorts(ns), stat=stat)
       if (stat == 0 .and. want_series) then
          allocate(res%mu_inst(geo%n_avg, ns), res%hydro_load(geo%n_avg, ns), &
             & res%penetration(geo%n_avg, ns), res%contact_elements(geo%n_avg, ns), &
@@ -724,6 +733,8 @@ contains
                res%mean_local_friction(j) = summary%mean_local_friction
                res%mean_film_thickness(j) = summary%mean_film_thickness
                res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), summary%failed /= 0)
+               spinups(j) = summary%spinup
+               shorts(j) = summary%spin_short
             end associate
          end do
          deallocate(summaries)
@@ -733,6 +744,13 @@ contains
          call fatal_error(error, "not enough memory for the work arrays of a speed", stat_memory)
          return
       end if
+      res%n_spinup = maxval(spinups)
+      if (any(shorts)) call add_warning(res%warnings, "the rubber's memory outlasts " // &
+         & to_str(max_spin_laps) // " laps of spin-up at " // &
+         & to_str(speeds_kmh(findloc(shorts, .true., dim=1))) // " km/h: the pad's state " // &
+         & "still drifts round the profile, and mu (mu_hysteresis) holds that drift " // &
+         & "(a retardation time far beyond the time of a lap: is &rubber viscosity or " // &
+         & "stiffness what you meant?)")
 
       res%effects = "elastic_contact,facet_friction"
       if (any(res%viscous_memory_ran)) then
@@ -1064,7 +1082,13 @@ contains
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
       real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j
       integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
-      logical :: series, clamped, any_memory, any_load, any_friction, energy, have_prev
+      logical :: series, clamped, any_memory, any_load, any_friction, energy
+      !> Spin-up steps of each lane (closed profiles), and whether a lane has
+      !> had a step since it started.
+      integer, dimension(lanes) :: spin
+      logical, dimension(lanes) :: have_prev
+      !> Whether an element touched at the step before the first averaged one.
+      logical, dimension(lanes) :: contact_before
 
       n = geo%n_el
       nl = size(speeds)
@@ -1121,6 +1145,16 @@ contains
 
       delta_prev = -huge(1.0_wp)
       have_prev = .false.
+      contact_before = .false.
+      spin = geo%n_spin
+      ! (the paper's scheme keeps 0.1.0's spin-up of one pad length)
+      if (geo%closed .and. any_memory .and. energy) then
+         do j = 1, nl
+            if (rstep%memory(j)) call lap_spinup(rstep, j, geo, m%load / kel(j), spin(j), &
+               & out(j)%spin_short)
+         end do
+      end if
+      spin(nl+1:) = spin(nl)
       hyst = 0.0_wp
       film_work = 0.0_wp
       push_total_prev = 0.0_wp
@@ -1138,7 +1172,20 @@ contains
       n_nocontact = 0
       n_wet = 0
       lead_prev = -huge(1)
-      do t = -geo%n_spin, geo%n_avg - 1
+      do t = -maxval(spin(1:nl)), geo%n_avg - 1
+         ! a lane whose spin-up starts now begins from relaxed elements
+         ! (what it did before is discarded): its numbers are its own,
+         ! whichever speeds share its chunk
+         do j = 1, nl
+            if (t /= -spin(j) .or. t == -maxval(spin(1:nl))) cycle
+            if (any_memory) state(j, :, :) = 0.0_wp
+            u_free(j, :) = 0.0_wp
+            delta_prev(j) = -huge(1.0_wp)
+            have_prev(j) = .false.
+            u_max(j) = 0.0_wp
+            n_eval(j) = 0
+            if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
+         end do
          if (geo%closed) then
             k1 = modulo(t * geo%stride + 1, geo%npf) + 1
          else
@@ -1174,6 +1221,7 @@ contains
             & contacts, sum_ft, clamps, u_max, sum_fa)
          n_contact = nint(contacts)
          n_clamp_j = nint(clamps)
+         if (t == -1) contact_before = n_contact > 0
 
          if (any_friction) then
             ! the film on the road samples entering under the leading edge
@@ -1244,7 +1292,7 @@ contains
          if (energy) then
             ! the work of the step on the elements beyond the pad's own
             ! descent: what the facets did (lane_work)
-            if (have_prev) then
+            if (any(have_prev(1:nl))) then
                call lane_work(nl, n, u_free, push, u_prev, push_prev, cmin + x - delta_last, hyst)
                ! what the pad's descent did against the film: the load the
                ! elements did not carry (W - their mean force, the film's
@@ -1253,10 +1301,11 @@ contains
                   film_work(j) = (m%load - 0.5_wp * kel(j) * (push_total_prev(j) + sum_f(j))) &
                      & * (cmin(j) + x(j) - delta_last(j))
                end do
-            else
+            end if
+            where (.not. have_prev)
                hyst = 0.0_wp
                film_work = 0.0_wp
-            end if
+            end where
             push_total_prev(1:nl) = sum_f(1:nl)
             call lane_remember(nl, n, u_free, push, u_prev, push_prev)
             delta_last = cmin + x
@@ -1313,6 +1362,11 @@ contains
                ! differs from 0 by rounding only (~1e-19).
                out(j)%mu_hysteresis = 0.0_wp
             end if
+            if (n_nocontact(j) == geo%n_avg .and. .not. contact_before(j)) then
+               ! nothing touched: no facet did any work, and what the film
+               ! did round the profile is not friction
+               out(j)%mu_hysteresis = 0.0_wp
+            end if
             out(j)%mu = out(j)%mu_hysteresis + out(j)%mu_adhesion
          end if
          out(j)%hydroplaning_fraction = real(n_nocontact(j), wp) / real(geo%n_avg, wp)
@@ -1322,7 +1376,8 @@ contains
          out(j)%max_compression = u_max(j)
          out(j)%n_clamped = n_clamped(j)
          out(j)%bearing_evaluations = n_eval(j)
-         if (rstep%memory(j)) out(j)%memory_updates = int(n, i8) * int(geo%n_avg + geo%n_spin, i8)
+         if (rstep%memory(j)) out(j)%memory_updates = int(n, i8) * int(geo%n_avg + spin(j), i8)
+         out(j)%spinup = spin(j)
          out(j)%viscous_memory_ran = rstep%memory(j)
          out(j)%bearing_ran = load_film(j)
          out(j)%friction_film_ran = friction_film(j)
@@ -1362,6 +1417,62 @@ contains
          a = mu * (1.0_wp + s * s) / (1.0_wp - s * mu)
       end if
    end function adhesion_tangent
+
+   !> Spin-up steps of lane j on a closed profile: at least the pad's length
+   !> (geo%n_spin), and as many more (at most a lap) as the rubber's memory
+   !> needs before the state it started from (relaxed) stops changing from
+   !> one lap to the next. A mode decaying by e a step, of weight w, leaves
+   !> e^S of the start after S steps, which changes over a lap of L steps by
+   !> e^S (1 - e^L); as friction (the stored energy it moves, about half the
+   !> load times the mean push, over W and the lap's length) that is
+   !> c e^S, c = w (1 - e^L) u / (2 L advance), kept below 1e-9 for every
+   !> mode, at most max_spin_laps laps (`short`: not met within them). The
+   !> paper's rubber (memory gone within a step) and the shipped compound
+   !> (its slow arms soft next to k_eff: at most 16 steps at -20 to 60 C)
+   !> need no more than the pad's length; a soft viscous pad (K = 1e4 N m-3,
+   !> C = 100) several laps.
+   pure subroutine lap_spinup(rstep, j, geo, push_total, spin, short)
+      type(rubber_step_type), intent(in) :: rstep
+      integer, intent(in) :: j
+      type(geometry_type), intent(in) :: geo
+      !> W / (l dx k_eff): the elements' pushes add up to it.
+      real(wp), intent(in) :: push_total
+      integer, intent(out) :: spin
+      logical, intent(out) :: short
+      real(wp), parameter :: tol = 1.0e-6_wp
+      real(wp) :: e, w, lap_len, coef, need
+      integer :: lap, k
+      spin = geo%n_spin
+      short = .false.
+      if (.not. allocated(rstep%mode_decay)) return
+      lap = (geo%npf + geo%stride - 1) / geo%stride
+      lap_len = real(lap, wp) * geo%advance
+      do k = 1, size(rstep%mode_decay, 2)
+         e = rstep%mode_decay(j, k)
+         w = rstep%mode_weight(j, k)
+         if (.not. (e > 0.0_wp .and. e < 1.0_wp .and. w > 0.0_wp)) cycle
+         coef = w * (-expm1_(real(lap, wp) * log(e))) * (push_total / real(geo%n_el, wp)) / &
+            & (2.0_wp * lap_len)
+         if (.not. coef > tol) cycle
+         need = log(tol / coef) / log(e)
+         if (need > real(max_spin_laps, wp) * real(lap, wp)) then
+            spin = max(spin, max_spin_laps * lap)
+            short = .true.
+         else
+            spin = max(spin, ceiling(need))
+         end if
+      end do
+   contains
+      !> exp(x) - 1 without cancellation near 0.
+      pure real(wp) function expm1_(x)
+         real(wp), intent(in) :: x
+         if (abs(x) < 1.0e-5_wp) then
+            expm1_ = x + 0.5_wp * x * x
+         else
+            expm1_ = exp(x) - 1.0_wp
+         end if
+      end function expm1_
+   end subroutine lap_spinup
 
    !> sum_i push_i mu_eff_i at one position (mu_eff = mu_loc times the share).
    pure real(wp) function local_partial(push, share, mu_loc)

@@ -61,6 +61,21 @@ def local_friction_tangent(slope, tan_t, clamped, mu_loc, theta_max_deg):
     return np.where(clamped, walls, free)
 
 
+def spin_up(n, n_p, dx, decay, push_total, tol=1e-6, max_laps=4):
+    """Spin-up steps of a closed profile (docs/model.md, "Spin-up"): at least
+    the pad's n; with a memory decaying by `decay` a step, until what is
+    left of the relaxed start, decay^S, changes the state over a lap of n_p
+    steps by so little that, as friction (half the load times the mean push
+    over W and the lap), it is below tol; at most max_laps laps."""
+    left = (1.0 - decay**n_p) * (push_total / n) / (2.0 * n_p * dx)
+    if left <= tol:
+        return n
+    need = np.log(tol / left) / np.log(decay)
+    if need > max_laps * n_p:
+        return max(n, max_laps * n_p)
+    return max(n, int(np.ceil(need)))
+
+
 def dry_delta(c, s):
     """Root of sum max(0, delta - c_i) = s by sorting ("water-filling")."""
     cs = np.sort(c)
@@ -97,10 +112,13 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             dt = dx / v
             decay = 1.0 / (1.0 + stiffness * dt / viscosity)
         pref = alpha * 6 * water_viscosity * v**beta * width * length**2
+        speed_steps = steps
+        if closed and 0.0 < decay < 1.0 and friction_scheme == "energy":
+            speed_steps = range(1 - spin_up(n, n_p, dx, decay, load / kel), n_p + 1)
         u = np.zeros(n)
         mus, deltas, whs, means = [], [], [], []
         prev = None
-        for j in steps:
+        for j in speed_steps:
             k = (j + i - 1) % n_p if closed else j + i - 1
             u_free = decay * u
             c = h - z[k] + u_free
