@@ -8,7 +8,7 @@ module pavefric_run
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
-      & element_grid, &
+      & element_grid, add_spinup_cost, &
       & cost_estimate_type, check_memory
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
@@ -68,6 +68,7 @@ contains
       call element_grid(scene%model, size(clean%z), clean%dx, scene%closed, npe, dxe, phases)
       c = estimate_cost(scene%model, npe, dxe, scene%closed, &
          & size(scene%speeds_kmh), scene%series, friction_film, rubber%state_size())
+      call add_spinup_cost(scene%model, npe, dxe, scene%closed, scene%speeds_kmh, c)
       ! every phase of the pad's grid is a run of that size
       c%element_steps = c%element_steps * phases
       c%total_element_steps = c%total_element_steps * phases

@@ -23,6 +23,7 @@ module pavefric_simulate
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components, cost_estimate_type, estimate_cost, check_memory, element_grid
+   public :: add_spinup_cost
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -648,6 +649,7 @@ contains
       if (allocated(film)) friction_film = film%changes_friction()
       res%estimate = estimate_cost(m, size(z), dx, closed, size(speeds_kmh), want_series, &
          & friction_film, rubber%state_size())
+      call add_spinup_cost(m, size(z), dx, closed, speeds_kmh, res%estimate)
       call check_memory(res%estimate, error)
       if (allocated(error)) return
       call build_geometry(m, z, dx, closed, friction_film, geo, error)
@@ -867,6 +869,48 @@ contains
          & real(c%total_element_steps, wp)
       if (n_el > 0.0_wp) c%seconds = c%seconds + per_position * real(c%element_steps, wp) / n_el
    end function estimate_cost
+
+   !> The estimate `c` of a run at `speeds_kmh` (km/h) with each speed's own
+   !> spin-up (lap_spinup: the energy scheme on a closed profile spins a
+   !> speed up further when its rubber's memory is long), as the run will
+   !> make it: every element-step counted, and the seconds they cost.
+   subroutine add_spinup_cost(m, np, dx, closed, speeds_kmh, c)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: np
+      real(wp), intent(in) :: dx, speeds_kmh(:)
+      logical, intent(in) :: closed
+      type(cost_estimate_type), intent(inout) :: c
+      class(rubber_model), allocatable :: rubber
+      class(film_model), allocatable :: film
+      type(rubber_step_type) :: rstep
+      type(geometry_type) :: geo
+      real(wp) :: extra, fine, kel, per_step
+      integer :: j, spin
+      logical :: short
+      if (.not. closed .or. c%element_steps <= 0) return
+      if (allocated(m%friction_scheme)) then
+         if (m%friction_scheme == "paper") return
+      end if
+      fine = real(m%elements_per_sample, wp) * real(m%substeps, wp)
+      geo%n_el = pad_elements(m, dx)
+      geo%stride = m%position_stride
+      geo%npf = np * m%elements_per_sample * m%substeps
+      geo%n_spin = (geo%n_el * m%substeps + geo%stride - 1) / geo%stride
+      geo%advance = dx / fine * real(m%position_stride, wp)
+      call make_components(m, rubber, film)
+      call rubber%prepare(speeds_kmh * kmh_to_ms, geo%advance, geo%n_el, rstep)
+      extra = 0.0_wp
+      do j = 1, size(speeds_kmh)
+         if (.not. rstep%memory(j)) cycle
+         kel = m%width * (dx / real(m%elements_per_sample, wp)) * rstep%k_eff(j)
+         call lap_spinup(rstep, j, geo, m%load / kel, spin, short)
+         extra = extra + real(spin - geo%n_spin, wp) * real(geo%n_el, wp)
+      end do
+      if (.not. extra > 0.0_wp) return
+      c%total_element_steps = c%total_element_steps + int(extra, i8)
+      per_step = sec_step + sec_arm * real(rubber%state_size() - 1, wp)
+      c%seconds = c%seconds + per_step * extra
+   end subroutine add_spinup_cost
 
    !> Refuse a run, before allocating, whose estimated memory exceeds what
    !> the machine has (a clear error instead of the process being killed).

@@ -152,8 +152,8 @@ def hysteresis_table(rubber: dict, temperatures=TEMPERATURES, surfaces=SURFACES,
             # central differences): friction where nothing dissipates
             for key, q in (("paper elastic 1e+10", dict(base, stiffness=1e10, viscosity=0.0)),
                            ("paper elastic 1e+10, default numerics", p)):
+                q = dict(q, friction_scheme="paper", element_length=0.0)
                 row[key] = float(simulate(scene.heights, scene.dx, [speed], closed=scene.closed,
-                                          friction_scheme="paper", element_length=0.0,
                                           **q)["mu"][0])
             for t in temperatures:
                 row[t] = float(simulate(scene.heights, scene.dx, [speed], closed=scene.closed,
