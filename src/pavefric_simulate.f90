@@ -1337,6 +1337,7 @@ contains
             ! the work of the step on the elements beyond the pad's own
             ! descent: what the facets did (lane_work)
             if (any(have_prev(1:nl))) then
+               ! (lane_work also remembers this step for the next)
                call lane_work(nl, n, u_free, push, u_prev, push_prev, cmin + x - delta_last, hyst)
                ! what the pad's descent did against the film: the load the
                ! elements did not carry (W - their mean force, the film's
@@ -1351,7 +1352,8 @@ contains
                film_work = 0.0_wp
             end where
             push_total_prev(1:nl) = sum_f(1:nl)
-            call lane_remember(nl, n, u_free, push, u_prev, push_prev)
+            if (.not. all(have_prev(1:nl))) call lane_remember(nl, n, u_free, push, u_prev, &
+               & push_prev)
             delta_last = cmin + x
             have_prev = .true.
          end if
@@ -1663,17 +1665,36 @@ contains
    !> stored energy change plus its dissipation, whatever the rubber model,
    !> and its sum over a closed profile is the rubber's dissipation
    !> (docs/model.md, "Energy").
+   !> The step's compressions and pushes then replace the previous ones (one
+   !> pass for both).
    pure subroutine lane_work(nl, n, u_free, push, u_prev, push_prev, ddelta, w)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: u_free(nl, n), push(nl, n), u_prev(nl, n), push_prev(nl, n)
+      real(wp), intent(in) :: u_free(nl, n), push(nl, n)
+      real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n)
       real(wp), intent(in) :: ddelta(nl)
       real(wp), intent(out) :: w(nl)
       integer :: i, j
+      real(wp) :: u, acc, dd
+      if (nl == 1) then
+         ! one lane: a plain loop (a lane loop of one trip costs more)
+         acc = 0.0_wp
+         dd = ddelta(1)
+         do i = 1, n
+            u = u_free(1, i) + push(1, i)
+            acc = acc + (push_prev(1, i) + push(1, i)) * ((u - u_prev(1, i)) - dd)
+            u_prev(1, i) = u
+            push_prev(1, i) = push(1, i)
+         end do
+         w(1) = 0.5_wp * acc
+         return
+      end if
       w = 0.0_wp
       do i = 1, n
          do j = 1, nl
-            w(j) = w(j) + (push_prev(j, i) + push(j, i)) * &
-               & ((u_free(j, i) + push(j, i) - u_prev(j, i)) - ddelta(j))
+            u = u_free(j, i) + push(j, i)
+            w(j) = w(j) + (push_prev(j, i) + push(j, i)) * ((u - u_prev(j, i)) - ddelta(j))
+            u_prev(j, i) = u
+            push_prev(j, i) = push(j, i)
          end do
       end do
       w = 0.5_wp * w

@@ -7,7 +7,6 @@ Runs only the core (pavefric.simulate); nothing is fitted here.
 """
 from __future__ import annotations
 
-import re
 import warnings
 from pathlib import Path
 
@@ -31,17 +30,12 @@ def _repo_file(*parts: str) -> Path:
 
 
 def compound() -> dict:
-    """The shipped tread compound's &rubber values as simulate() keywords."""
-    text = re.sub(r"!.*", "", _repo_file("inputs", "rubber", "tread_compound.nml").read_text())
+    """The shipped tread compound's &rubber values as simulate() keywords
+    (read by the core), its temperature left to the caller."""
+    from .rubber import compound as read_compound
 
-    def values(name):
-        body = re.split(r"\n\s*[a-z_0-9]+\s*=", text.split(f"{name} =")[1])[0]
-        return [float(v) for v in re.findall(r"[-+]?[0-9.]+(?:e[-+]?[0-9]+)?", body)]
-
-    return dict(rubber_model="maxwell", stiffness=values("stiffness")[0],
-                prony_stiffness=values("prony_stiffness"), prony_times=values("prony_times"),
-                reference_temperature=values("reference_temperature")[0],
-                wlf_c1=values("wlf_c1")[0], wlf_c2=values("wlf_c2")[0])
+    rubber = read_compound(_repo_file("inputs", "rubber", "tread_compound.nml"))
+    return {k: v for k, v in rubber.items() if k != "temperature"}
 
 
 def medium_profile() -> np.ndarray:
