@@ -33,7 +33,7 @@ module pavefric_simulate
    !> element_length): the grid starts at k / element_phases of an element,
    !> k = 0 .. element_phases - 1, and the results are averaged over them.
    !> Where the grid falls moves a profile's friction by several per cent
-   !> (CAPTIF station 0: 0.433 to 0.460 over four phases, mu_loc = 0.3);
+   !> (CAPTIF station 0: 0.433 to 0.459 over four phases, mu_loc = 0.3);
    !> four phases bring profiles given at 0.037 to 0.5 mm within 2 % of each
    !> other (docs/model.md).
    integer, parameter, public :: element_phases = 4
