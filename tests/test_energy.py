@@ -228,3 +228,16 @@ def test_mean_is_the_dissipation_and_the_series_the_facets_work(profile_m):
             np.testing.assert_allclose(gap, 0.0, atol=1e-13)
         else:
             assert np.all(gap > 1e-5)
+
+
+def test_a_memory_longer_than_the_spin_up_is_warned_of(short_profile_m):
+    """A soft viscous pad pressed far in (K = 1e4 N m-3: its memory outlasts
+    a lap of the 200-point profile many times) still drifts after the longest
+    spin-up: the run says so and names the speed; the paper's rubber spins
+    up one pad length only."""
+    with pytest.warns(pavefric.PavefricWarning, match="memory outlasts 4 laps of spin-up at 120"):
+        ds = pavefric.simulate(short_profile_m, DX, [120.0], stiffness=1e4, viscosity=100.0,
+                               mu_loc=0.0)
+    assert ds.attrs["spinup_positions"] == 4 * short_profile_m.size
+    quick = run(short_profile_m, [120.0])
+    assert quick.attrs["spinup_positions"] == quick.attrs["pad_elements"]
