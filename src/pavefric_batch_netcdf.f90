@@ -28,11 +28,14 @@ contains
    end subroutine write_batch_results
 
    !> The file: dimensions profile x water_depth x speed_kmh, each with a
-   !> coordinate variable (`profile` holds the names, so `ds.sel(profile=
-   !> "seg_0001", speed_kmh=60)` works on the file as xarray opens it);
-   !> `speed` (m/s) and `chainage` (when the list gives it) are auxiliary
-   !> coordinates. No `depth` dimension: CF reads a dimension of that name as
-   !> the vertical axis, which a water film's thickness is not.
+   !> numeric coordinate variable (`profile` numbers the profiles 1, 2, ...
+   !> in the order of the batch, so xarray plots any variable as it opens
+   !> the file); `profile_name` (a CF label), `speed` (m/s) and `chainage`
+   !> (when the list gives it) are auxiliary coordinates. No `depth`
+   !> dimension: CF reads a dimension of that name as the vertical axis,
+   !> which a water film's thickness is not. Integer variables carry a
+   !> _FillValue only when a profile failed (only then can a value be
+   !> missing), so that readers keep them integers otherwise.
    subroutine write_batch_file(path, batch, blocks, history, error)
       character(len=*), intent(in) :: path, history
       type(batch_type), intent(in) :: batch
@@ -42,18 +45,19 @@ contains
       integer :: stat, d_p, d_d, d_s, d_name, d_msg, d_warn, np, nd, ns, lname, lmsg, lwarn, i, k
       integer :: v_warn, v_nwarn
       integer :: v_muh, v_mua
-      integer :: v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
+      integer :: v_num, v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
       integer, allocatable :: counts(:)
       logical, allocatable :: ok(:)
       character(len=:), allocatable :: names(:), msgs(:), warns(:)
-      logical :: failed
+      logical :: failed, any_failed
       character(len=:), allocatable :: effects, profile_coords, result_coords
       integer(i8), allocatable :: c(:,:,:)
       real(wp), parameter :: fill = nf90_fill_double
       integer, parameter :: ifill = nf90_fill_int
       integer(1), parameter :: bfill = nf90_fill_byte
+      integer(i8), parameter :: i8fill = -9223372036854775806_i8   ! NC_FILL_INT64
 
       np = size(blocks)
       nd = batch%n_depths
@@ -96,9 +100,10 @@ contains
       effects = "elastic_contact,facet_friction"
       if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
       if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
-      profile_coords = ""
-      if (batch%has_chainage) profile_coords = "chainage"
-      result_coords = trim("speed " // profile_coords)
+      any_failed = .not. all(ok)
+      profile_coords = "profile_name"
+      if (batch%has_chainage) profile_coords = "profile_name chainage"
+      result_coords = "speed " // profile_coords
 
       call w%create(path)
       if (allocated(w%error)) goto 99
@@ -108,7 +113,10 @@ contains
       call w%check(nf90_def_dim(w%ncid, "name_strlen", lname, d_name), "dimension name_strlen")
       call w%check(nf90_def_dim(w%ncid, "message_strlen", lmsg, d_msg), "dimension message_strlen")
       call w%check(nf90_def_dim(w%ncid, "warning_strlen", lwarn, d_warn), "dimension warning_strlen")
-      call w%def("profile", nf90_char, [d_name, d_p], "", "profile name: the file name " // &
+      call w%def("profile", nf90_int, [d_p], "1", "profile number: the profile's place " // &
+         & "in the batch (1 = first; the order of the list, or of the sorted file names)", &
+         & v_num)
+      call w%def("profile_name", nf90_char, [d_name, d_p], "", "profile name: the file name " // &
          & "without directory and extension (the path below the profiles' common " // &
          & "directory when two files share a name)", v_name)
       call w%check(nf90_put_att(w%ncid, v_name, "_Encoding", "utf-8"), "encoding")
@@ -179,29 +187,31 @@ contains
       do k = 1, 10
          select case (k)
          case (1:6)
-            call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, ifill), "fill value")
+            if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, ifill), &
+               & "fill value")
          case (7:8)
-            call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, bfill), "fill value")
+            if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, bfill), &
+               & "fill value")
          case default
             call w%check(nf90_def_var_fill(w%ncid, v_pre(k), 0, fill), "fill value")
          end select
-         if (len(profile_coords) > 0) call w%check(nf90_put_att(w%ncid, v_pre(k), &
-            & "coordinates", profile_coords), "coordinates")
+         call w%check(nf90_put_att(w%ncid, v_pre(k), "coordinates", profile_coords), &
+            & "coordinates")
       end do
+      if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_ncl, 0, i8fill), &
+         & "fill value")
       do k = 1, 9
          call fillatt([v_mu, v_muh, v_mua, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
       end do
       do k = 1, 7
          call coordatt([v_mu, v_muh, v_mua, v_wet, v_hyd, v_res, v_ncl], k, result_coords)
       end do
-      if (len(profile_coords) > 0) then
-         do k = 1, 5
-            call coordatt([v_mpd, v_rh, v_rs, v_status, v_err], k, profile_coords)
-         end do
-         do k = 1, 2
-            call coordatt([v_nwarn, v_warn], k, profile_coords)
-         end do
-      end if
+      do k = 1, 5
+         call coordatt([v_mpd, v_rh, v_rs, v_status, v_err], k, profile_coords)
+      end do
+      do k = 1, 2
+         call coordatt([v_nwarn, v_warn], k, profile_coords)
+      end do
       call w%gatt("Conventions", "CF-1.10")
       call w%gatt("title", "pavefric batch " // batch%scene%name)
       call w%gatt("source", "pavefric " // pavefric_version)
@@ -220,7 +230,8 @@ contains
       call w%check(nf90_enddef(w%ncid), "end of definitions")
       if (allocated(w%error)) goto 99
 
-      call w%check(nf90_put_var(w%ncid, v_name, names), "profile")
+      call w%check(nf90_put_var(w%ncid, v_num, [(i, i = 1, np)]), "profile")
+      call w%check(nf90_put_var(w%ncid, v_name, names), "profile_name")
       call w%check(nf90_put_var(w%ncid, v_depth, batch%depths), "water_depth")
       call w%check(nf90_put_var(w%ncid, v_kmh, batch%speeds), "speed_kmh")
       call w%check(nf90_put_var(w%ncid, v_speed, batch%speeds * kmh_to_ms), "speed")
@@ -252,7 +263,7 @@ contains
       call w%check(nf90_put_var(w%ncid, v_hyd, a), "hydroplaning_fraction")
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%residual, fill, ok(i))
-         c(:, :, i) = nint(blocks(i)%n_clamped, i8)
+         c(:, :, i) = merge(nint(blocks(i)%n_clamped, i8), i8fill, ok(i))
       end do
       call w%check(nf90_put_var(w%ncid, v_res, a), "max_balance_residual")
       call w%check(nf90_put_var(w%ncid, v_ncl, c), "n_clamped")

@@ -61,8 +61,13 @@ def test_demo_batch_output(serial_demo):
     with xr.open_dataset(serial_demo) as ds:
         assert dict(ds.sizes) == {"profile": 300, "water_depth": 3, "speed_kmh": 4}
         assert ds["mu"].dims == ("profile", "water_depth", "speed_kmh")
-        assert "profile" in ds.indexes and ds["profile"].values[0] == "seg_0001"
+        assert ds["profile"].values.tolist() == list(range(1, 301))
+        assert ds["profile_name"].values[0] == "seg_0001"
         assert np.all(ds["status"].values == 1)
+        # no profile failed, so no integer can be missing: integers stay integers
+        for v in ("preprocess_points_read", "preprocess_spikes", "preprocess_resampled",
+                  "n_clamped", "n_warnings"):
+            assert ds[v].dtype.kind == "i" and "_FillValue" not in ds[v].encoding, v
         assert np.all(np.isfinite(ds["mu"].values))
         assert np.all(ds["max_balance_residual"].values <= 1e-12)
         # dry (depth 0) is above wet at speed, texture beside friction
@@ -86,7 +91,12 @@ def test_batch_splits_mu_as_a_single_scene_does(tmp_path):
         assert ds["mu_hysteresis"].dims == ("profile", "water_depth", "speed_kmh")
         np.testing.assert_allclose((hyst + adh)[ok], mu[ok], rtol=1e-14, atol=1e-15)
         assert np.all(adh[ok] > 0) and np.all(np.isnan(hyst[~ok])) and np.all(np.isnan(adh[~ok]))
-        name = str(ds["profile"].values[0])
+        # a failed profile's integers are missing: they have a _FillValue
+        for v in ("preprocess_points_read", "preprocess_spikes", "preprocess_filtered",
+                  "n_clamped"):
+            assert ds[v].encoding.get("_FillValue") is not None, v
+            assert np.all(np.isnan(ds[v].values[~ok])) and np.all(np.isfinite(ds[v].values[ok]))
+        name = str(ds["profile_name"].values[0])
         z = pavefric.read_profile(tmp_path / "profiles" / f"{name}.txt").heights
         for d, depth in enumerate(ds["water_depth"].values):
             one = pavefric.simulate(z, 0.87e-3, [20.0, 60.0], closed=False, mu_loc=0.6,
@@ -234,7 +244,7 @@ def test_profile_list_restart_off_and_progress_every(tmp_path):
     assert r.returncode == 0, r.stderr
     assert len([l for l in r.stderr.splitlines() if "profiles/s" in l]) == 4   # one a profile
     with xr.open_dataset(out) as ds:
-        assert list(ds["profile"].values) == [p.stem for p in names]
+        assert list(ds["profile_name"].values) == [p.stem for p in names]
     # restart = .false.: an old journal is ignored and overwritten
     assert run_program(scene, "-o", out, "--max-profiles", "2").returncode == 3
     scene.write_text(scene.read_text().replace("progress_every = 1",
@@ -254,19 +264,30 @@ def test_batch_unwritable_output_and_bad_max_profiles(tmp_path):
 
 def test_a_batch_output_plots_directly(tmp_path):
     """Issue 24: `b.mu.sel(speed_kmh=60).plot()` on a batch of a glob (names,
-    no chainage) read by pavefric.open_dataset; the names still index."""
+    no chainage), read by plain xarray and by pavefric.open_dataset: the
+    dimension's coordinate `profile` numbers the profiles 1..N; the names
+    are the label `profile_name`, which indexes in pavefric.open_dataset."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import xarray as xr
 
     scene = make_batch(tmp_path, n=4)
     out = tmp_path / "b.nc"
     assert run_program(scene, "-o", out).returncode == 0
+    with xr.open_dataset(out) as plain:
+        assert plain["profile"].dtype.kind == "i"
+        assert plain["profile"].values.tolist() == [1, 2, 3, 4]
+        mesh = plain.mu.sel(speed_kmh=60).plot()         # profile x water depth
+        assert mesh.get_array().size == 4 * 2
+        plt.close("all")
     b = pavefric.open_dataset(out)
-    assert b["profile"].dtype.kind == "U"
-    mesh = b.mu.sel(speed_kmh=60).plot()                 # profile x water depth
+    assert b["profile_name"].dtype.kind == "U"
+    mesh = b.mu.sel(speed_kmh=60).plot()
     assert mesh.get_array().size == 4 * 2
     line, = b.mu.sel(speed_kmh=60, water_depth=0.0).plot()
+    np.testing.assert_array_equal(line.get_xdata(), [1, 2, 3, 4])
     np.testing.assert_array_equal(line.get_ydata(), b.mu.sel(speed_kmh=60, water_depth=0.0))
     plt.close("all")
-    assert b.mu.sel(profile="seg_0002", speed_kmh=20, water_depth=0.0) == b.mu.values[1, 0, 0]
+    assert b.mu.sel(profile_name="seg_0002", speed_kmh=20, water_depth=0.0) == b.mu.values[1, 0, 0]
+    assert b.mu.sel(profile=2, speed_kmh=20, water_depth=0.0) == b.mu.values[1, 0, 0]

@@ -41,8 +41,10 @@ def test_netcdf_survey_equals_text_profiles(survey):
     assert run_program(tmp / "nc.nml", "-o", tmp / "nc.nc").returncode == 0
     assert run_program(tmp / "txt.nml", "-o", tmp / "txt.nc").returncode == 0
     with xr.open_dataset(tmp / "nc.nc") as a, xr.open_dataset(tmp / "txt.nc") as b:
-        assert list(a["profile"].values) == names
-        b = b.sel(profile=names)                       # the directory lists them sorted
+        assert list(a["profile_name"].values) == names
+        assert a["profile"].values.tolist() == [1, 2, 3, 4]
+        # the directory lists them sorted: select b's by name (the label as an index)
+        b = b.set_xindex("profile_name").sel(profile_name=names)
         for var in ("mu", "wet_fraction", "max_balance_residual", "mpd", "rms_height"):
             np.testing.assert_array_equal(a[var].values, b[var].values, err_msg=var)
         np.testing.assert_array_equal(a["chainage"].values, [100.0, 200.0, 300.0, 400.0])

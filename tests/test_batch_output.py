@@ -64,10 +64,27 @@ def test_batch_file_passes_the_cf_1_10_checker(batch_file, tmp_path):
     assert msgs == [] and scored == possible, msgs
 
 
+def test_batch_file_without_failures_passes_the_cf_1_10_checker(tmp_path):
+    """No profile failed and no chainage: integers without _FillValue, the
+    profile numbers and names alone as coordinates; still clean CF 1.10."""
+    scene = list_batch(tmp_path, n=3, broken=0, chainage=False)
+    out = tmp_path / "b.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(out) as ds:
+        assert ds["preprocess_points_read"].dtype.kind == "i" and "chainage" not in ds
+        assert set(ds["mu"].coords) == {"profile", "profile_name", "water_depth", "speed_kmh",
+                                        "speed"}
+    scored, possible, msgs = cf_check(out, tmp_path)
+    assert msgs == [] and scored == possible, msgs
+
+
 def test_sel_by_speed_kmh_and_profile_name(batch_file):
     with xr.open_dataset(batch_file) as ds:
         assert set(ds.indexes) == {"profile", "water_depth", "speed_kmh"}
-        mu = ds["mu"].sel(speed_kmh=42, profile="seg_0005", water_depth=1.0e-3)
+        mu = ds["mu"].set_xindex("profile_name").sel(speed_kmh=42, profile_name="seg_0005",
+                                                       water_depth=1.0e-3)
+        assert float(mu) == float(ds["mu"].sel(speed_kmh=42, profile=5, water_depth=1.0e-3))
         assert float(mu) == float(ds["mu"].values[4, 1, 1]) and 0 < float(mu) < 1
         assert ds["mu"].sel(speed_kmh=21).dims == ("profile", "water_depth")
         # speed (m/s) is an auxiliary coordinate, not an axis (not a longitude)
@@ -151,7 +168,7 @@ def test_profile_list_format_errors_and_quoted_paths(tmp_path):
     r = run_program(scene, "-o", tmp_path / "o.nc")
     assert r.returncode == 0, r.stderr
     with xr.open_dataset(tmp_path / "o.nc") as ds:
-        assert list(ds["profile"].values) == ["my dir/seg", "other/seg"]
+        assert list(ds["profile_name"].values) == ["my dir/seg", "other/seg"]
         assert list(ds["chainage"].values) == [5.0, 7.5]
 
 

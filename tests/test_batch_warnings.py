@@ -48,7 +48,7 @@ def test_micrometres_on_millimetre_data_warn_per_profile(tmp_path):
     # the very line the profile alone records
     alone = single_scene_warnings(tmp_path, tmp_path / "profiles" / "seg_0002.txt", "um")
     assert len(alone) == 1 and "RMS height" in alone[0]
-    lines = str(ds["warning_message"].sel(profile="seg_0002").values).splitlines()
+    lines = str(ds["warning_message"].sel(profile_name="seg_0002").values).splitlines()
     assert lines[0] == alone[0]
     assert lines[1].startswith("&water depth = 0.001 m is more than 2 x the texture depth")
 
@@ -92,7 +92,7 @@ def test_warnings_and_messages_survive_a_resume(tmp_path):
     assert r.returncode == 4 and "resuming: 4 of 6" in r.stderr, r.stdout + r.stderr
     same_contents(whole, part)
     ds = pavefric.open_dataset(part)
-    assert "a\\b" in str(ds["error_message"].sel(profile="seg_0004").values)
+    assert "a\\b" in str(ds["error_message"].sel(profile_name="seg_0004").values)
     assert int(ds["n_warnings"].sum()) > 0
 
 

@@ -47,3 +47,33 @@ def test_plot_of_a_scene_file(scene_file, tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert png.stat().st_size > 5000
+
+
+def test_a_sweep_of_scene_files_sorts_by_its_typed_parameters(tmp_path, profile_m):
+    """Issue 24 asked whether the per-parameter attributes (param_<group>_<name>)
+    are needed beside the one namelist text (`parameters`). They are: a
+    study over many scene files selects and sorts them by the values they
+    ran with, as numbers and strings, and Python has no Fortran-namelist
+    reader (pavefric depends on none); the text alone would need one."""
+    files = []
+    for k, (depth, model) in enumerate([(1e-3, "squeeze"), (0.0, "kane2017"),
+                                         (0.5e-3, "kane2017")]):
+        scene = write_scene(tmp_path / f"s{k}", profile=profile_m, groups={
+            "water": f"depth = {depth}, wet_model = '{model}'"})
+        out = tmp_path / f"s{k}.nc"
+        assert run_program(scene, "-o", out).returncode == 0
+        files.append(out)
+    runs = []
+    for f in files:
+        with xr.open_dataset(f) as ds:
+            runs.append((ds.attrs["param_water_depth"], ds.attrs["param_water_wet_model"],
+                         float(ds["mu"].values[0]), ds.attrs["parameters"]))
+    # typed: a float and a string, as given, with no parsing
+    assert [type(r[0]) for r in runs] == [np.float64] * 3
+    ordered = sorted(runs)
+    assert [r[0] for r in ordered] == [0.0, 0.5e-3, 1e-3]
+    assert [r[1] for r in ordered] == ["kane2017", "kane2017", "squeeze"]
+    # the same values are in the namelist text, but only as text
+    assert all("depth = " in r[3] for r in runs)
+    # dry friction above wet, read off the sorted runs
+    assert ordered[0][2] > ordered[1][2]

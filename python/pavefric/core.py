@@ -572,12 +572,13 @@ def _warn_failed_profiles(path: str, out: Path) -> None:
     with xr.open_dataset(out, engine="netcdf4") as ds:
         total = ds.sizes["profile"]
         bad = np.flatnonzero(ds["status"].values == 2)
-        failed = {str(ds["profile"].values[i]): str(ds["error_message"].values[i]) for i in bad}
+        failed = {str(ds["profile_name"].values[i]): str(ds["error_message"].values[i])
+                  for i in bad}
         scene_warnings = str(ds.attrs.get("warnings", "")).splitlines()
         warned, first, n_all = np.zeros(0, dtype=int), [], 0
         if "n_warnings" in ds.variables:
             warned = np.flatnonzero(ds["n_warnings"].values > 0)
-            first = [f"{ds['profile'].values[i]}: "
+            first = [f"{ds['profile_name'].values[i]}: "
                      f"{str(ds['warning_message'].values[i]).splitlines()[0]}"
                      for i in warned[:3]]
             n_all = int(ds["n_warnings"].values.sum())
@@ -686,11 +687,15 @@ def open_dataset(path: str | os.PathLike):
 
 def _text_coordinates(ds):
     """Text coordinates (a batch's profile names) as NumPy unicode rather
-    than Python objects: xarray plots and indexes those (``ds.mu.sel(
-    speed_kmh=60).plot()`` refuses an object coordinate)."""
+    than Python objects, and an index on ``profile_name``, so that
+    ``ds.sel(profile_name="seg_0042")`` selects a profile by name (the
+    dimension's own coordinate, ``profile``, numbers them 1, 2, ...)."""
     for name, coord in ds.coords.items():
         if coord.dtype == object and all(isinstance(v, str) for v in coord.values.ravel()):
             ds = ds.assign_coords({name: coord.copy(data=coord.values.astype(str))})
+    if "profile_name" in ds.coords and ds["profile_name"].dims == ("profile",) \
+            and "profile_name" not in ds.indexes:
+        ds = ds.set_xindex("profile_name")
     return ds
 
 

@@ -223,7 +223,10 @@ def outputs_markdown() -> str:
         "| `parameters` | every variable used, defaults included, as a namelist: running "
         "it as a scene gives the same numbers |",
         "| `param_<group>_<name>` | the same values one by one, typed (e.g. "
-        "`param_rubber_stiffness`, `param_water_wet_model`; lists as arrays) |",
+        "`param_rubber_stiffness`, `param_water_wet_model`; lists as arrays): kept "
+        "beside `parameters` because a study over many scene files selects and sorts "
+        "them by a value (`ds.attrs['param_water_depth']`) with no namelist parser "
+        "(tests/test_scene_output.py) |",
         "| `profile_file`, `profile_points`, `profile_dx`, `profile_closed` | the "
         "profile used |",
         "| `pad_elements`, `averaged_positions`, `spinup_positions` | the "

@@ -151,8 +151,16 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             if "profile" not in var.dims:
                 merged[name] = var
         merged = merged[list(first.variables)]
+        # the profile numbers run on across the parts: 1, 2, ..., N
+        merged = merged.assign_coords(profile=merged["profile"].copy(
+            data=np.arange(1, merged.sizes["profile"] + 1, dtype=first["profile"].dtype)))
         for name in first.variables:               # keep each variable's own encoding
             merged[name].attrs = dict(first[name].attrs)
+            # an integer variable has a _FillValue only in a part where a profile
+            # failed: the merged file has it if any part has it
+            for ds in sets:
+                if "_FillValue" in ds[name].attrs and "_FillValue" not in merged[name].attrs:
+                    merged[name].attrs["_FillValue"] = ds[name].attrs["_FillValue"]
             merged[name].encoding = {k: v for k, v in first[name].encoding.items()
                                      if k in ("dtype", "_FillValue", "zlib", "complevel",
                                               "shuffle", "contiguous", "char_dim_name")}
@@ -184,7 +192,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
 
 
 def _profile_names(ds) -> list[str]:
-    values = ds["profile"].values
+    values = ds["profile_name"].values
     if values.dtype.kind == "S" and values.ndim == 2:          # char(profile, strlen)
         return [b"".join(row).decode("utf-8").rstrip("\x00 ") for row in values]
     return [v.decode("utf-8") if isinstance(v, bytes) else str(v) for v in values]
