@@ -55,7 +55,8 @@ program pavefric_main
          command = command // " " // arg
          call parse_integer(arg, max_profiles, stat)
          if (stat /= 0 .or. max_profiles < 0) call usage_error("--max-profiles '" // arg // &
-            & "': not a count of profiles")
+            & "': must be a whole number >= 0 (profiles to compute before stopping; 0: " // &
+            & "no limit)")
       case ("-o", "--output")
          if (i == nargs) call usage_error("option " // arg // " needs a file name")
          i = i + 1
@@ -67,7 +68,8 @@ program pavefric_main
                & "' (see pavefric --help)")
          end if
          if (len(scene_path) > 0) call usage_error("more than one scene file given ('" // &
-            & scene_path // "', '" // arg // "')")
+            & scene_path // "', '" // arg // "'): pavefric runs one scene; name the " // &
+            & "output with -o (pavefric " // scene_path // " -o out.nc)")
          scene_path = arg
       end select
       i = i + 1

@@ -301,7 +301,8 @@ contains
       end if
       if (count == 0) then
          call fatal_error(error, "&batch profiles = '" // scene%batch_profiles // &
-            & "': matches no file")
+            & "': matches no file; check the pattern, or give a directory or &batch " // &
+            & "profile_list")
          return
       end if
       allocate(paths(count), stat=n)
@@ -397,11 +398,19 @@ contains
       integer :: i, j, n, common
       character(len=:), allocatable :: where
       n = size(paths)
-      allocate(names(n))
+      allocate(names(n), stat=i)
+      if (i /= 0) then
+         call no_memory(n, "profile names", error)
+         return
+      end if
       do i = 1, n
          names(i)%s = base_name(paths(i)%s)
       end do
       call first_duplicate(names, i, j)
+      if (i < 0) then
+         call no_memory(n, "profile names", error)
+         return
+      end if
       if (i == 0) return
       ! the longest directory prefix every path shares
       common = 0
@@ -418,6 +427,10 @@ contains
          names(i)%s = strip_extension(paths(i)%s(common+1:))
       end do
       call first_duplicate(names, i, j)
+      if (i < 0) then
+         call no_memory(n, "profile names", error)
+         return
+      end if
       if (i == 0) return
       where = "&batch profiles = '" // scene%batch_profiles // "'"
       if (len(scene%batch_profile_list) > 0) where = "&batch profile_list = '" // &
@@ -453,14 +466,17 @@ contains
       if (dot > slash + 1) out = path(1:dot-1)
    end subroutine strip_extension_text
 
-   !> Indices of two equal names (i = 0 when all differ), as
-   !> `first_duplicate_label` finds them.
+   !> Indices of two equal names (i = 0 when all differ; i = -1 when memory
+   !> is short), as `first_duplicate_label` finds them.
    subroutine first_duplicate(s, i, j)
       type(string_type), intent(in) :: s(:)
       integer, intent(out) :: i, j
       type(profile_label_type), allocatable :: labels(:)
       integer :: k
-      allocate(labels(size(s)))
+      i = -1
+      j = 0
+      allocate(labels(size(s)), stat=k)
+      if (k /= 0) return
       do k = 1, size(s)
          labels(k)%s = s(k)%s
       end do
@@ -609,7 +625,11 @@ contains
          end if
          return
       end if
-      allocate(current(size(blocks)), hashed(size(blocks)), changed(size(blocks)))
+      allocate(current(size(blocks)), hashed(size(blocks)), changed(size(blocks)), stat=i)
+      if (i /= 0) then
+         call no_memory(size(blocks), "journal entries", error)
+         return
+      end if
       hashed = .false.
       changed = .false.
       start = k + 1

@@ -5,7 +5,7 @@ module pavefric_format
    implicit none
    private
 
-   public :: to_str, to_lower
+   public :: to_str, to_lower, round_sig
 
    !> Shortest faithful text of a number.
    interface to_str
@@ -96,6 +96,22 @@ contains
       end if
       if (x < 0.0_wp) s = "-" // s
    end subroutine real_to_str_text
+
+   !> x rounded to n significant digits (for messages: to_str(round_sig(x, 3))
+   !> prints 0.0015 where x is 0.0014999999999999944). Not finite: x.
+   pure real(wp) function round_sig(x, n)
+      real(wp), intent(in) :: x
+      integer, intent(in) :: n
+      character(len=40) :: buf
+      character(len=16) :: fmt
+      integer :: ios
+      round_sig = x
+      if (ieee_is_nan(x) .or. abs(x) > huge(x) .or. x == 0.0_wp) return
+      write(fmt, '(a, i0, a)') "(es30.", max(n, 1) - 1, "e3)"
+      write(buf, fmt) x
+      read(buf, *, iostat=ios) round_sig
+      if (ios /= 0) round_sig = x
+   end function round_sig
 
    !> ASCII letters in lower case.
    pure function to_lower(s) result(t)

@@ -20,7 +20,8 @@ contains
       do k = 1, size(z)
          if (.not. (abs(z(k)) <= huge(1.0_wp))) then
             call fatal_error(error, "profile height " // to_str(k) // " = " // to_str(z(k)) // &
-               & ": heights must be finite")
+               & ": heights must be finite; fill or remove the dropouts first (a profile " // &
+               & "file: &preprocess dropouts = 'interpolate')")
             return
          end if
       end do

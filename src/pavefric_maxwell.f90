@@ -64,18 +64,20 @@ contains
    !> and coef(:, 1+k) = K_k E_k / k_eff give u_free; coef(:, 1+n+k) = 1 - G_k,
    !> coef(:, 1+2n+k) = G_k - E_k and coef(:, 1+3n+k) = E_k update v_k.
    !> V = 0 is the static limit: every arm relaxed, k_eff = K_inf, no memory.
-   pure subroutine mx_prepare(self, speeds, advance, elements, step)
+   pure subroutine mx_prepare(self, speeds, advance, elements, step, stat)
       class(maxwell_rubber), intent(in) :: self
       real(wp), intent(in) :: speeds(:), advance
       integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
+      integer, intent(out) :: stat
       real(wp) :: e, g, one_g, g_e, k_eff, a
       real(wp), allocatable :: ke(:)
       integer :: j, k, n, i, nl
       n = size(self%arm_stiffness)
       allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
          & step%coef(size(speeds), 1 + 4 * n), ke(n), step%mode_decay(size(speeds), n), &
-         & step%mode_weight(size(speeds), n))
+         & step%mode_weight(size(speeds), n), stat=stat)
+      if (stat /= 0) return
       do j = 1, size(speeds)
          step%memory(j) = speeds(j) > 0.0_wp
          k_eff = self%stiffness
@@ -103,7 +105,8 @@ contains
       ! every lane's coefficients repeated for each element: the kernels then
       ! run over lanes and elements as one contiguous loop
       nl = size(speeds)
-      allocate(step%per_element(nl * elements, 1 + 4 * n))
+      allocate(step%per_element(nl * elements, 1 + 4 * n), stat=stat)
+      if (stat /= 0) return
       do k = 1, 1 + 4 * n
          do i = 1, elements
             step%per_element((i - 1) * nl + 1 : i * nl, k) = step%coef(:, k)

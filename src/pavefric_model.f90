@@ -12,7 +12,7 @@ module pavefric_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type, fatal_error, add_warning
-   use pavefric_format, only: to_str, to_lower
+   use pavefric_format, only: to_str, to_lower, round_sig
    use pavefric_numbers, only: parse_real, parse_integer
    use pavefric_namelist, only: nml_group_type, nml_item_type, nml_token_type, parse_namelist, at
    use pavefric_maxwell, only: wlf_check, max_log10_shift
@@ -722,12 +722,12 @@ contains
       label = "&" // spec%group // " " // spec%name // "(" // to_str(pos) // ") = "
       v = 0.0_wp
       if (tok%quoted) then
-         call fatal_error(error, label // "'" // tok%text // "': cannot be read as a number")
+         call fatal_error(error, label // "'" // tok%text // "': " // not_a_number(spec, ""))
          return
       end if
       call parse_real(tok%text, v, stat)
       if (stat /= 0) then
-         call fatal_error(error, label // tok%text // ": cannot be read as a number")
+         call fatal_error(error, label // tok%text // ": " // not_a_number(spec, tok%text))
          return
       end if
       call check_range(spec, v, label // to_str(v), error, tok%text)
@@ -752,7 +752,9 @@ contains
       do k = 1, n
          if (.not. elem_set(k, id)) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // ": element " // &
-               & to_str(k) // " is not given (the list has gaps)")
+               & to_str(k) // " is not given (the list has gaps, up to element " // &
+               & to_str(n) // "); give " // spec%name // "(" // to_str(k) // ") too, or " // &
+               & "number the elements from 1 without gaps")
             return
          end if
       end do
@@ -780,12 +782,12 @@ contains
          select case (spec%kind)
          case (kind_real, kind_real_list)
             if (tok%quoted) then
-               call fatal_error(error, label // shown // ": cannot be read as a number")
+               call fatal_error(error, label // shown // ": " // not_a_number(spec, ""))
                return
             end if
             call parse_real(tok%text, r, stat)
             if (stat /= 0) then
-               call fatal_error(error, label // shown // ": cannot be read as a number")
+               call fatal_error(error, label // shown // ": " // not_a_number(spec, tok%text))
                return
             end if
             call check_range(spec, r, label // to_str(r), error, tok%text)
@@ -797,7 +799,7 @@ contains
             end if
          case (kind_integer)
             if (tok%quoted) then
-               call fatal_error(error, label // shown // ": cannot be read as a whole number")
+               call fatal_error(error, label // shown // ": " // whole_number_text(spec))
                return
             end if
             call parse_integer(tok%text, i, stat)
@@ -807,7 +809,7 @@ contains
                return
             end if
             if (stat /= 0) then
-               call fatal_error(error, label // shown // ": cannot be read as a whole number")
+               call fatal_error(error, label // shown // ": " // whole_number_text(spec))
                return
             end if
             if (real(i, wp) < spec%lower .or. real(i, wp) > spec%upper) then
@@ -874,6 +876,15 @@ contains
             return
          end if
       end if
+      if (present(text) .and. .not. (abs(r) <= huge(r)) .and. .not. ieee_is_nan(r)) then
+         if (scan(to_lower(text), "n") == 0) then
+            ! 1e400 overflows to Infinity: say so, with the value as written
+            call fatal_error(error, "&" // spec%group // " " // spec%name // " = " // &
+               & trim(text) // ": too large for double precision (it would be read as " // &
+               & "Infinity); " // range_text(spec))
+            return
+         end if
+      end if
       if (spec%group == "numerics" .and. spec%name == "tolerance" .and. r > 0.0_wp .and. &
             & r < tolerance_floor) then
          call fatal_error(error, label // ": below what double precision can meet (the " // &
@@ -899,6 +910,73 @@ contains
       if (ok) return
       call fatal_error(error, label // ": " // range_text(spec))
    end subroutine check_range
+
+   !> Why a token is not a number, and what to write: the range for a NaN or
+   !> an Infinity written out (Python sends them so), the grammar otherwise
+   !> (text: the token; "" for a quoted one).
+   pure function not_a_number(spec, text) result(t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=*), intent(in) :: text
+      character(len=not_a_number_len(spec, text)) :: t
+      character(len=:), allocatable :: deferred_text
+      call not_a_number_text(spec, deferred_text, text)
+      t = deferred_text
+   end function not_a_number
+
+   !> The length of not_a_number's text.
+   pure integer function not_a_number_len(spec, text)
+      type(param_spec_type), intent(in) :: spec
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable :: deferred_text
+      call not_a_number_text(spec, deferred_text, text)
+      not_a_number_len = len(deferred_text)
+   end function not_a_number_len
+
+   !> The text of not_a_number, into a deferred-length argument.
+   pure subroutine not_a_number_text(spec, t, text)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable, intent(out) :: t
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable :: w
+      w = to_lower(trim(adjustl(text)))
+      if (len(w) > 0) then
+         if (w(1:1) == "+" .or. w(1:1) == "-") w = w(2:)
+      end if
+      if (w == "nan" .or. w == "inf" .or. w == "infinity") then
+         t = range_text(spec)
+      else
+         t = "not a number (write one such as 0.5, 1e-3 or 2.5d3); " // range_text(spec)
+      end if
+   end subroutine not_a_number_text
+
+   !> 'must be a whole number from 1 to 1024', or '... >= 0'.
+   pure function whole_number_text(spec) result(t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=whole_number_len(spec)) :: t
+      character(len=:), allocatable :: deferred_text
+      call whole_number_text_text(spec, deferred_text)
+      t = deferred_text
+   end function whole_number_text
+
+   !> The length of whole_number_text's text.
+   pure integer function whole_number_len(spec)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable :: deferred_text
+      call whole_number_text_text(spec, deferred_text)
+      whole_number_len = len(deferred_text)
+   end function whole_number_len
+
+   !> The text of whole_number_text, into a deferred-length argument.
+   pure subroutine whole_number_text_text(spec, t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable, intent(out) :: t
+      if (spec%upper >= real(huge(1), wp)) then
+         t = "must be a whole number >= " // to_str(nint(spec%lower))
+      else
+         t = "must be a whole number from " // to_str(nint(spec%lower)) // " to " // &
+            & int_upper(spec)
+      end if
+   end subroutine whole_number_text_text
 
    !> 'must be finite and > 0', 'must be > 0 and < 90 degree' ...
    pure function range_text(spec) result(t)
@@ -1223,14 +1301,19 @@ contains
          call fatal_error(error, "&rubber temperature = " // to_str(m%temperature) // &
             & ": T - reference_temperature = " // to_str(dt) // " K must be > -wlf_c2 = " // &
             & to_str(-m%wlf_c2) // " K (the WLF equation diverges at T = Tref - C2; it " // &
-            & "holds above the glass transition)")
+            & "holds above the glass transition); give a temperature above " // &
+            & to_str(m%reference_temperature - m%wlf_c2) // " C, or the WLF constants " // &
+            & "of a fit that reaches it")
       else if (why == "too far") then
          call fatal_error(error, "&rubber temperature = " // to_str(m%temperature) // &
             & ": the WLF shift at T - reference_temperature = " // to_str(dt) // " K " // &
             & "(wlf_c1 = " // to_str(m%wlf_c1) // ", wlf_c2 = " // to_str(m%wlf_c2) // &
-            & ") is log10 a_T = " // to_str(-m%wlf_c1 * dt / (m%wlf_c2 + dt)) // &
+            & ") is log10 a_T = " // to_str(round_sig(-m%wlf_c1 * dt / (m%wlf_c2 + dt), 4)) // &
             & ", beyond +-" // to_str(nint(max_log10_shift)) // " decades: no WLF fit " // &
-            & "holds that far from its reference temperature")
+            & "holds that far from its reference temperature; give a temperature nearer " // &
+            & "reference_temperature = " // to_str(m%reference_temperature) // " C, or " // &
+            & "the reference_temperature and WLF constants of a fit near " // &
+            & to_str(m%temperature) // " C")
       end if
    end subroutine validate_rubber
 

@@ -243,7 +243,8 @@ contains
       end do
       if (item%n_values == 0) then
          call fatal_error(error, at(path, item%line) // "&" // group // " " // &
-            & item%name // " = : no value given")
+            & item%name // " = : no value given; give one, or remove the assignment to " // &
+            & "keep the default")
          return
       end if
       item%written = squeeze_blanks(text(first:last))

@@ -4,7 +4,7 @@
 module pavefric_preprocess
    use pavefric_kinds, only: wp, pi
    use pavefric_error, only: error_type, fatal_error, stat_memory
-   use pavefric_format, only: to_str
+   use pavefric_format, only: to_str, round_sig
    use pavefric_profile, only: raw_profile_type, point_location
    implicit none
    private
@@ -163,7 +163,8 @@ contains
          clean%report%trimmed_end = n - i1
          if (i1 - i0 + 1 < 2) then
             call fatal_error(error, raw%path // ": nothing is left of the profile after " // &
-               & "trimming reference plates (&preprocess trim_plates, plate_threshold)")
+               & "trimming reference plates; set &preprocess trim_plates = .false. or a " // &
+               & "larger plate_threshold, and check the heights' unit (&surface height_unit)")
             return
          end if
       end if
@@ -198,7 +199,9 @@ contains
             return
          end if
          if (count(ok) == 0) then
-            call fatal_error(error, raw%path // ": every height is a dropout")
+            call fatal_error(error, raw%path // ": every height is a dropout (NaN or " // &
+               & "empty), nothing to interpolate; check the height column (&surface " // &
+               & "z_column) and the file")
             return
          end if
          call interpolate_gaps(x(1:m), z, ok)
@@ -233,9 +236,9 @@ contains
                step = x(i) - x(i-1)
                if (abs(step - clean%dx) > 0.05_wp * clean%dx) then
                   call fatal_error(error, point_location(raw, raw%line(i0 + i - 1)) // &
-                     & ": spacing " // to_str(step) // " m against the mean " // &
-                     & to_str(clean%dx) // " m (more than 5 % off): resample it " // &
-                     & "(&preprocess resample_dx)")
+                     & ": spacing " // to_str(round_sig(step, 4)) // " m against the mean " // &
+                     & to_str(round_sig(clean%dx, 4)) // " m (more than 5 % off): resample " // &
+                     & "it (&preprocess resample_dx)")
                   return
                end if
             end do
@@ -457,8 +460,10 @@ contains
       if (bins > real(size(x), wp)) then
          call fatal_error(error, "&preprocess resample_dx = " // to_str(target) // &
             & ": finer than the data's spacing (" // to_str(size(x)) // " points over " // &
-            & to_str(x(size(x))) // " m would need " // to_str(bins) // &
-            & " bins, some of them empty)")
+            & to_str(round_sig(x(size(x)), 4)) // " m, about " // &
+            & to_str(round_sig(x(size(x)) / max(size(x) - 1, 1), 3)) // " m apart, would " // &
+            & "need " // to_str(bins) // " bins, some of them empty); give resample_dx >= " // &
+            & "the data's spacing, or 0 to keep it")
          return
       end if
       nb = int(bins)
@@ -480,7 +485,8 @@ contains
       end do
       if (any(cnt == 0)) then
          call fatal_error(error, "&preprocess resample_dx = " // to_str(target) // &
-            & ": finer than the data's spacing (a bin holds no point)")
+            & ": finer than the data's spacing (a bin holds no point); give resample_dx >= " // &
+            & "the data's spacing, or 0 to keep it")
          return
       end if
       do k = 1, nb
@@ -502,7 +508,9 @@ contains
       integer :: n, i
       n = size(z)
       if (n <= pad) then
-         call fatal_error(error, "the low-pass filter needs more than " // to_str(pad) // " points")
+         call fatal_error(error, "&preprocess lowpass_wavelength: the low-pass filter " // &
+            & "needs more than " // to_str(pad) // " points, the profile has " // to_str(n) // &
+            & "; give a longer profile, or lowpass_wavelength = 0 (off)")
          return
       end if
       if (.not. (wavelength > 2.0_wp * dx)) then

@@ -9,7 +9,7 @@ module pavefric_profile
    use pavefric_kinds, only: wp
    use pavefric_heights, only: refine_profile, check_heights
    use pavefric_error, only: error_type, fatal_error
-   use pavefric_format, only: to_str
+   use pavefric_format, only: to_str, round_sig
    use pavefric_profile_types, only: profile_type, raw_profile_type
    use pavefric_profile_file, only: read_file_head, read_whole_file
    use pavefric_profile_text, only: detect_text_format, parse_plain, parse_table
@@ -102,7 +102,8 @@ contains
          call parse_plain(buf, path, factor, .true., raw, error)
          if (allocated(error)) return
          deallocate(buf)
-         if (raw%has_x) call check_uniform(path, raw%x, error)
+         ! the distances' spacing is preprocess's to check (as a table's), where
+         ! &preprocess resample_dx can mend it
       else
          call parse_table(buf, path, fmt, factor, x_column, z_column, raw, error)
       end if
@@ -217,9 +218,11 @@ contains
       do i = 2, n
          step = x(i) - x(i-1)
          if (abs(step - dx) > 0.01_wp * dx) then
-            call fatal_error(error, path // ": non-uniform spacing near data point " // &
-               & to_str(i) // " (step " // to_str(step) // " m against mean " // &
-               & to_str(dx) // " m)")
+            call fatal_error(error, path // ": non-uniform spacing at data point " // &
+               & to_str(i) // " (step " // to_str(round_sig(step, 4)) // " m against the " // &
+               & "mean " // to_str(round_sig(dx, 4)) // " m, more than 1 % off): the " // &
+               & "distances must be evenly spaced; resample the profile (a scene: &preprocess " // &
+               & "resample_dx)")
             return
          end if
       end do

@@ -171,7 +171,8 @@ contains
       status = nf90_open(path, nf90_nowrite, ncid)
       if (status /= nf90_noerr) then
          call fatal_error(error, "&surface profile_file = '" // path // &
-            & "': cannot open as NetCDF (" // trim(nf90_strerror(status)) // ")")
+            & "': cannot open as NetCDF (" // trim(nf90_strerror(status)) // "); a text " // &
+            & "profile? set &surface format = 'auto'")
          return
       end if
       cat%ncid = ncid
@@ -330,13 +331,19 @@ contains
       end do
       call first_duplicate_label(cat%names, i, j)
       if (i == 0) return
+      if (i < 0) then
+         call fail(cat, "not enough memory to check the names of " // to_str(cat%n_profiles) // &
+            & " profiles", error, stat_memory)
+         return
+      end if
       call fail(cat, "profiles " // to_str(min(i, j)) // " and " // to_str(max(i, j)) // &
          & " are both named '" // cat%names(i)%s // "'; every profile needs a name of its " // &
          & "own (names index the profiles and the output)", error)
    end subroutine check_names
 
-   !> Indices of two equal names (i = 0 when all differ): a merge sort of
-   !> the indices, then neighbours compared; n log n for long lists.
+   !> Indices of two equal names (i = 0 when all differ; i = -1 when memory
+   !> is short): a merge sort of the indices, then neighbours compared;
+   !> n log n for long lists.
    subroutine first_duplicate_label(s, i, j)
       type(profile_label_type), intent(in) :: s(:)
       integer, intent(out) :: i, j
@@ -345,7 +352,11 @@ contains
       n = size(s)
       i = 0
       j = 0
-      allocate(order(n), work(n))
+      allocate(order(n), work(n), stat=k)
+      if (k /= 0) then
+         i = -1
+         return
+      end if
       order = [(k, k = 1, n)]
       call sort(1, n)
       do k = 1, n - 1
@@ -938,7 +949,12 @@ contains
          call fail(cat, "attribute '" // name // "' of 'height' must be a number", error)
          return
       end if
-      allocate(values(n))
+      allocate(values(n), stat=xtype)
+      if (xtype /= 0) then
+         call fail(cat, "attribute '" // name // "' of 'height' has " // to_str(n) // &
+            & " values, more than memory holds (it should have one or two)", error)
+         return
+      end if
       call check(cat, nf90_get_att(cat%ncid, varid, name, values), "attribute " // name, error)
       if (allocated(error)) return
       if (present(all_values)) then

@@ -215,7 +215,8 @@ contains
          end if
          if (ntok /= ncol) then
             call fatal_error(error, path // ":" // to_str(lineno) // ": " // to_str(ntok) // &
-               & " columns where earlier lines have " // to_str(ncol))
+               & " columns where earlier lines have " // to_str(ncol) // ": every line " // &
+               & "holds a height, or a distance and a height (a decimal comma? write 0.5)")
             return
          end if
          n = n + 1
@@ -285,7 +286,8 @@ contains
          end if
       end do
       if (.not. in_data) then
-         call fatal_error(error, path // ": no '*****DATA*****' line (not a laser profiler file)")
+         call fatal_error(error, path // ": no '*****DATA*****' line, so not a laser " // &
+            & "profiler export; set &surface format = 'auto' (or 'plain', 'csv')")
          return
       end if
       cap = max(cap - lineno, 1)
@@ -665,7 +667,9 @@ contains
             & quoted(tok) // "' is not finite")
       else
          call fatal_error(error, path // ":" // to_str(lineno) // ": " // what // "'" // &
-            & quoted(tok) // "' is not a number")
+            & quoted(tok) // "' is not a number: write heights as numbers (0.25, -3e-1); " // &
+            & "mark a dropout as NaN (or an empty CSV field) and set &preprocess " // &
+            & "dropouts = 'interpolate'")
       end if
    end subroutine token_error
 
@@ -709,7 +713,9 @@ contains
       type(error_type), allocatable, intent(out) :: error
       integer :: st, k
       if (n == 0) then
-         call fatal_error(error, "&surface profile_file = '" // path // "': holds no heights")
+         call fatal_error(error, "&surface profile_file = '" // path // "': holds no " // &
+            & "heights (only comments or blank lines); give one height a line, or a " // &
+            & "distance and a height (docs/profiles.md)")
          return
       end if
       raw%has_x = has_x

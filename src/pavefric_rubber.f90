@@ -61,12 +61,14 @@ module pavefric_rubber
          class(rubber_model), intent(in) :: self
       end function state_size_interface
 
-      pure subroutine prepare_interface(self, speeds, advance, elements, step)
+      pure subroutine prepare_interface(self, speeds, advance, elements, step, stat)
          import :: rubber_model, rubber_step_type, wp
          class(rubber_model), intent(in) :: self
          real(wp), intent(in) :: speeds(:), advance
          integer, intent(in) :: elements
          type(rubber_step_type), intent(out) :: step
+         !> 0, or the allocation's status (not enough memory)
+         integer, intent(out) :: stat
       end subroutine prepare_interface
 
       pure subroutine free_interface(self, step, state, u_free)
@@ -122,16 +124,19 @@ contains
    !> k_eff = K + C/dt, and with p = 0 (Eq. 8) u_free = u_prev / (1 + K dt/C)
    !> = u_prev C V / (C V + K advance), 0 for C = 0 or V = 0 (no division by
    !> zero in either limit). coef(:, 1) is that relaxation factor.
-   pure subroutine kv_prepare(self, speeds, advance, elements, step)
+   pure subroutine kv_prepare(self, speeds, advance, elements, step, stat)
       class(kelvin_voigt_rubber), intent(in) :: self
       real(wp), intent(in) :: speeds(:), advance
       integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
+      integer, intent(out) :: stat
       real(wp) :: cv
       integer :: i, j, nl
       nl = size(speeds)
       allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
-         & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1))
+         & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1), &
+         & stat=stat)
+      if (stat /= 0) return
       do j = 1, nl
          cv = self%viscosity * speeds(j)
          step%k_eff(j) = self%stiffness + cv / advance            ! K + C/dt

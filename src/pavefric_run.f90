@@ -131,8 +131,9 @@ contains
             & scene%preprocess%resample_dx <= 0.0_wp .and. &
             & abs(scene%dx - file_dx) > 0.01_wp * file_dx) then
          call fatal_error(error, "&surface dx = " // to_str(scene%dx) // &
-            & ": disagrees with the spacing " // to_str(file_dx) // &
-            & " m the profile file '" // scene%profile_file // "' states")
+            & ": disagrees (by more than 1 %) with the spacing " // to_str(file_dx) // &
+            & " m of the distances in '" // scene%profile_file // "'; remove dx to take " // &
+            & "the file's spacing, or correct it")
          return
       end if
       call preprocess(raw, dx, scene%preprocess, clean, error)
@@ -229,7 +230,7 @@ contains
       if (allocated(error)) return
       call guard%check_input(scene%profile_file, "the profile (&surface profile_file)", error)
       if (allocated(error)) return
-      call check_writable(out_path, error)
+      call check_writable(out_path, out_what, error)
       if (allocated(error)) return
 
       call load_scene_profile(scene, clean, error)
@@ -268,7 +269,14 @@ contains
 
       call simulate(scene%model, clean%z, clean%dx, scene%closed, scene%speeds_kmh, &
          & scene%series, res, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         ! the core's words for the profile ("the profile has 8 points, ..."):
+         ! which file (a batch names its profile itself)
+         if (index(error%message, "the profile ") == 1 .and. len(scene%profile_file) > 0) &
+            & error%message = "&surface profile_file = '" // scene%profile_file // "': " // &
+            & error%message
+         return
+      end if
       meta%title = "pavefric friction-speed curve"
       meta%history = ""
       meta%input_namelist = scene%text
@@ -392,19 +400,36 @@ contains
    end subroutine texture_warning
 
    !> Error unless a file can be created beside `path`.
-   subroutine check_writable(path, error)
+   subroutine check_writable(path, what, error)
       character(len=*), intent(in) :: path
+      !> where the path came from: "&output file" or "-o"
+      character(len=*), intent(in) :: what
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
       character(len=512) :: msg
-      integer :: unit, ios
+      character(len=:), allocatable :: reason, head
+      integer :: unit, ios, k
       logical :: ok
       call temporary_name(path, tmp)
       open(newunit=unit, file=tmp, status="replace", action="write", iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call release_temporary(tmp)
-         call fatal_error(error, "&output file = '" // path // "': cannot write in directory '" // &
-            & dir_name(path) // "' (" // trim(msg) // ")", stat_io)
+         ! the runtime's "Cannot open file '<temporary>': <reason>": the reason
+         ! alone (the temporary's name is not the user's)
+         k = index(msg, "': ", back=.true.)
+         if (k > 0) then
+            reason = trim(msg(k+3:))
+         else
+            reason = trim(msg)
+         end if
+         if (what == "-o") then
+            head = "-o '" // path // "'"
+         else
+            head = what // " = '" // path // "'"
+         end if
+         call fatal_error(error, head // ": cannot write in directory '" // &
+            & dir_name(path) // "' (" // reason // "); create the directory " // &
+            & "or give another path", stat_io)
          return
       end if
       close(unit, status="delete")

@@ -179,7 +179,9 @@ contains
             & join_path(dir_name(path), scene%batch_profile_list)
       else
          if (len(scene%profile_file) == 0) then
-            call fatal_error(error, "&surface profile_file: not given in '" // path // "'")
+            call fatal_error(error, "&surface profile_file: not given in '" // path // &
+               & "'; give the profile, e.g. &surface profile_file = 'profile.txt' " // &
+               & "(relative to the scene's directory), or a &batch group to run many profiles")
             return
          end if
          scene%profile_file = join_path(dir_name(path), scene%profile_file)

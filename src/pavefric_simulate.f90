@@ -8,7 +8,7 @@ module pavefric_simulate
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
-   use pavefric_format, only: to_str
+   use pavefric_format, only: to_str, round_sig
    use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded, max_substeps
    use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
@@ -330,7 +330,8 @@ contains
       if (allocated(error)) return
       if (resampled_points(size(z), dx, closed, m%element_length, 0.0_wp) < 1) then
          call fatal_error(error, "&pad element_length = " // to_str(m%element_length) // &
-            & ": the profile resampled to it would have more than 2e9 points", stat_memory)
+            & ": the profile resampled to it would have more than 2e9 points; give a larger " // &
+            & "element_length (default 0.87e-3 m) or 0 for the profile's own spacing", stat_memory)
          return
       end if
       me = m
@@ -359,7 +360,14 @@ contains
                deallocate(error)
                exit
             end if
-            call merge_phase(res, r, phase * dxe)
+            call merge_phase(res, r, phase * dxe, stat)
+            if (stat /= 0) then
+               call fatal_error(error, "not enough memory to merge the series of " // &
+                  & to_str(element_phases) // " phases of the pad's element grid (" // &
+                  & to_str(res%n_positions) // " positions); run without &output series " // &
+                  & "or on a shorter profile", stat_memory)
+               return
+            end if
          end if
       end do
    contains
@@ -380,15 +388,18 @@ contains
    !> into the results `acc` of the phases before it: per-speed means
    !> weighted by the positions averaged, largest values, sums of counts,
    !> effects that ran in any; the series merged in order of position.
-   pure subroutine merge_phase(acc, r, offset)
+   pure subroutine merge_phase(acc, r, offset, stat)
       type(sim_result_type), intent(inout) :: acc
       type(sim_result_type), intent(in) :: r
       real(wp), intent(in) :: offset
+      !> 0, or the status of an allocation that failed (the caller's error)
+      integer, intent(out) :: stat
       real(wp) :: wa, wr
       integer :: na, nr, i, ia, ir
       real(wp), allocatable :: pos(:), a2(:,:), b2(:,:), c2(:,:), d2(:,:), e2(:,:)
       integer, allocatable :: k2(:,:), from(:)
       character(len=:), allocatable :: line, rest
+      stat = 0
       wa = real(acc%n_positions, wp)
       wr = real(r%n_positions, wp)
       call mean_in(acc%mu, r%mu)
@@ -436,7 +447,8 @@ contains
          ! both series in order of position: merge them
          na = size(acc%position)
          nr = size(r%position)
-         allocate(pos(na + nr), from(na + nr))
+         allocate(pos(na + nr), from(na + nr), stat=stat)
+         if (stat /= 0) return
          ia = 1
          ir = 1
          do i = 1, na + nr
@@ -459,10 +471,11 @@ contains
                pos(i) = r%position(-from(i)) + offset
             end if
          end do
-         call merge_series(acc%mu_inst, r%mu_inst, a2)
-         call merge_series(acc%hydro_load, r%hydro_load, b2)
-         call merge_series(acc%penetration, r%penetration, c2)
-         allocate(k2(na + nr, size(acc%contact_elements, 2)))
+         call merge_series(acc%mu_inst, r%mu_inst, a2, stat)
+         if (stat == 0) call merge_series(acc%hydro_load, r%hydro_load, b2, stat)
+         if (stat == 0) call merge_series(acc%penetration, r%penetration, c2, stat)
+         if (stat == 0) allocate(k2(na + nr, size(acc%contact_elements, 2)), stat=stat)
+         if (stat /= 0) return
          do i = 1, na + nr
             if (from(i) > 0) then
                k2(i, :) = acc%contact_elements(from(i), :)
@@ -475,8 +488,9 @@ contains
          call move_alloc(c2, acc%penetration)
          call move_alloc(k2, acc%contact_elements)
          if (allocated(acc%film_thickness) .and. allocated(r%film_thickness)) then
-            call merge_series(acc%film_thickness, r%film_thickness, d2)
-            call merge_series(acc%local_friction, r%local_friction, e2)
+            call merge_series(acc%film_thickness, r%film_thickness, d2, stat)
+            if (stat == 0) call merge_series(acc%local_friction, r%local_friction, e2, stat)
+            if (stat /= 0) return
             call move_alloc(d2, acc%film_thickness)
             call move_alloc(e2, acc%local_friction)
          end if
@@ -489,11 +503,13 @@ contains
          real(wp), intent(in) :: b(:)
          a = (wa * a + wr * b) / (wa + wr)
       end subroutine mean_in
-      pure subroutine merge_series(a, b, c)
+      pure subroutine merge_series(a, b, c, st)
          real(wp), intent(in) :: a(:,:), b(:,:)
          real(wp), allocatable, intent(out) :: c(:,:)
+         integer, intent(out) :: st
          integer :: q
-         allocate(c(size(from), size(a, 2)))
+         allocate(c(size(from), size(a, 2)), stat=st)
+         if (st /= 0) return
          do q = 1, size(from)
             if (from(q) > 0) then
                c(q, :) = a(from(q), :)
@@ -795,8 +811,8 @@ contains
       if (maxval(abs(z)) > max_height) then
          j = maxloc(abs(z), dim=1)
          call fatal_error(error, "profile height " // to_str(j) // " = " // to_str(z(j)) // &
-            & " m: beyond +-" // to_str(max_height) // " m, not a texture (are the heights " // &
-            & "in the unit declared?)")
+            & " m: beyond +-" // to_str(max_height) // " m, not a texture; are the heights " // &
+            & "in the unit declared (&surface height_unit, or the file's header)?")
          return
       end if
       n_el = pad_elements(m, dx)
@@ -814,10 +830,12 @@ contains
                & ": the refined profile of " // to_str(size(z)) // " points would have more " // &
                & "than 2e9 samples, or the pad more than 2e9 elements", stat_memory)
          else
-            call fatal_error(error, "&surface profile_file: the profile has " // &
-               & to_str(size(z)) // " points, fewer than the pad's " // to_str(n_el) // &
-               & " elements (&pad length = " // to_str(m%length) // " m at dx = " // &
-               & to_str(dx) // " m)")
+            call fatal_error(error, "the profile has " // to_str(size(z)) // " points (" // &
+               & to_str(round_sig(size(z) * dx, 4)) // " m), fewer than the pad's " // &
+               & to_str(n_el) // " elements (&pad length = " // to_str(m%length) // &
+               & " m at dx = " // to_str(dx) // " m); give a profile of at least " // &
+               & to_str(n_el) // " points, or &pad length <= " // &
+               & to_str(round_sig(size(z) * dx, 3)) // " m")
          end if
          return
       end if
@@ -885,7 +903,7 @@ contains
       type(rubber_step_type) :: rstep
       type(geometry_type) :: geo
       real(wp) :: extra, fine, kel, per_step
-      integer :: j, spin
+      integer :: j, spin, stat
       logical :: short
       if (.not. closed .or. c%element_steps <= 0) return
       if (allocated(m%friction_scheme)) then
@@ -898,7 +916,8 @@ contains
       geo%n_spin = (geo%n_el * m%substeps + geo%stride - 1) / geo%stride
       geo%advance = dx / fine * real(m%position_stride, wp)
       call make_components(m, rubber, film)
-      call rubber%prepare(speeds_kmh * kmh_to_ms, geo%advance, geo%n_el, rstep)
+      call rubber%prepare(speeds_kmh * kmh_to_ms, geo%advance, geo%n_el, rstep, stat)
+      if (stat /= 0) return     ! (the run itself will say that memory is short)
       extra = 0.0_wp
       do j = 1, size(speeds_kmh)
          if (.not. rstep%memory(j)) cycle
@@ -1141,7 +1160,11 @@ contains
       v(1:nl) = speeds
       v(nl+1:) = speeds(nl)
       series = present(mu_inst)
-      call rubber%prepare(v(1:nl), geo%advance, n, rstep)
+      call rubber%prepare(v(1:nl), geo%advance, n, rstep, stat)
+      if (stat /= 0) then
+         out%failed = 1
+         return
+      end if
       ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
       kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
       kel(nl+1:) = kel(nl)

@@ -416,7 +416,8 @@ GOOD = "surface,speed_kmh,mu,source\nGSS,20,0.6,dft\nGSS,60,0.3,dft\nGSSB,20,0.7
     (GOOD, ["--profile", "beta"], ["--profile beta: not a fitted parameter"]),
     (GOOD, ["--max-evaluations", "0"], ["--max-evaluations 0: must be >= 1"]),
     (GOOD, ["--fit", "alpha", "beta", "viscosity", "mu_loc"],
-     ["4 parameters cannot be fitted to 3 measurement(s)"]),
+     ["--fit gives 4 parameters (alpha, beta, viscosity, mu_loc) but the data hold 3 "
+      "measurement(s): fit at most 3, or add measurements"]),
     (GOOD, ["-o", "{data}"], ["is an input"]),
 ])
 def test_cli_clean_errors(tmp_path, capsys, text, args, needles):

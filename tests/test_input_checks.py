@@ -6,6 +6,7 @@ by the next run that writes the same output."""
 import os
 import signal
 import subprocess
+import sys
 
 import netCDF4
 import numpy as np
@@ -13,7 +14,7 @@ import pytest
 import xarray as xr
 
 import pavefric
-from conftest import run_program, write_scene
+from conftest import DX, run_program, write_scene
 from test_files import program, wait_stopped
 
 WAVE = np.sin(np.arange(300) * 0.3) * 0.5
@@ -193,3 +194,33 @@ def test_a_default_given_again_is_no_reason_to_warn(tmp_path):
     ds = pavefric.load_scene(scene).simulate()
     with xr.open_dataset(out) as f:
         assert f.attrs.get("warnings", "") == ds.attrs.get("warnings", "")
+
+
+def test_python_writers_share_the_programs_temporaries(tmp_path, profile_m):
+    """Issue 19: one implementation of 'a temporary beside the output, then a
+    rename' for every writer. A Python writer killed outright (SIGKILL) leaves
+    path.tmpPID, as the program would; the next writer of that path, from any
+    interface, removes it; a live process's temporary stays."""
+    out = tmp_path / "p.nc"
+    code = ("import os, signal, numpy as np, pavefric\n"
+            "from pavefric.core import atomic_output\n"
+            f"with atomic_output({str(out)!r}) as tmp:\n"
+            "    tmp.write_bytes(b'half a file')\n"
+            "    os.kill(os.getpid(), signal.SIGKILL)\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, timeout=120)
+    assert proc.returncode == -signal.SIGKILL
+    left = list(tmp_path.glob("p.nc.tmp*"))
+    assert len(left) == 1 and left[0].read_bytes() == b"half a file"
+    alive = tmp_path / f"p.nc.tmp{os.getppid()}"    # a live process, not this one
+    alive.write_bytes(b"being written")
+    pavefric.write_profiles(out, [profile_m, profile_m[:500]], names=["a", "b"], dx=DX)
+    assert not left[0].exists() and alive.exists()
+    assert [e.name for e in pavefric.list_profiles(out)] == ["a", "b"]
+    # the merge and the example write through the same helper
+    stale = tmp_path / "ex" / f"ctm_dry.nml.tmp{_dead_pid()}"
+    stale.parent.mkdir()
+    stale.write_bytes(b"stale")
+    from pavefric.example import write_example
+    write_example(tmp_path / "ex")
+    assert not stale.exists() and (tmp_path / "ex" / "ctm_dry.nml").is_file()
+    assert not list((tmp_path / "ex").glob("*.tmp*"))

@@ -69,8 +69,9 @@ def test_a_group_given_twice_is_an_error(tmp_path):
 
 @pytest.mark.parametrize("body,needles", [
     ("depth = 1e-3, depth = 2e-3", ["&water depth", "given twice"]),
-    ("depth = 1-3", ["&water depth = 1-3", "cannot be read as a number"]),
-    ("depth = 1e-3 viscosity = '1e-3'", ["&water viscosity", "cannot be read as a number"]),
+    ("depth = 1-3", ["&water depth = 1-3", "not a number (write one such as 0.5, 1e-3",
+                     "must be finite and >= 0 and <= 100 m"]),
+    ("depth = 1e-3 viscosity = '1e-3'", ["&water viscosity", "not a number (write one"]),
     ("depth = 1e-3,, alpha = 1", ["&water depth", "empty value"]),
     ("depth = 1e-3 &end junk", ["junk", "outside a namelist group"]),
 ])

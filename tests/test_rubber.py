@@ -260,8 +260,8 @@ def test_extreme_rubbers_give_finite_results(short_profile_m, case, depth):
 
 
 BAD = [
-    (dict(rubber_model="maxwell"), "&rubber model = 'maxwell': prony_stiffness and prony_times "
-     "are empty"),
+    (dict(rubber_model="maxwell"), "rubber_model = 'maxwell' (&rubber model): prony_stiffness "
+     "and prony_times are empty"),
     (dict(rubber_model="maxwell", prony_stiffness=[1e8, 1e8], prony_times=[1e-4]),
      "&rubber prony_stiffness has 2 values and prony_times 1"),
     (dict(prony_stiffness=[1e8], prony_times=[1e-4, 1e-3]),
@@ -276,8 +276,8 @@ BAD = [
      "&rubber prony_times(1) = 1e31: must be finite and > 0 and <= 1e30 s"),
     (dict(rubber_model="maxwell", prony_stiffness=[1e8] * 101, prony_times=[1e-4] * 101),
      "&rubber prony_stiffness: more than 100 values"),
-    (dict(rubber_model="prony"), "&rubber model = 'prony': unknown (expected 'kelvin_voigt' or "
-     "'maxwell')"),
+    (dict(rubber_model="prony"), "rubber_model = 'prony' (&rubber model): unknown (expected "
+     "'kelvin_voigt' or 'maxwell')"),
     (dict(temperature=-81.6), "&rubber temperature = -81.6: T - reference_temperature = "
      "-101.6 K must be > -wlf_c2 = -101.6 K"),
     (dict(temperature=-100.0), "the WLF equation diverges"),

@@ -248,7 +248,15 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "plot":
             from .plot import plot_mu_speed
 
-            print(f"wrote {plot_mu_speed(args.files, args.output, title=args.title)}")
+            for f in args.files:
+                if not Path(f).is_file():
+                    raise PavefricError(f"plot: '{f}': no such file (give NetCDF outputs of "
+                                        "pavefric runs)")
+            try:
+                print(f"wrote {plot_mu_speed(args.files, args.output, title=args.title)}")
+            except OSError as exc:
+                raise PavefricError(f"plot: cannot read {args.files} as pavefric outputs "
+                                    f"({exc}); give NetCDF outputs of pavefric runs") from None
         elif args.command == "accuracy":
             from .reports import accuracy_report
 
@@ -324,11 +332,27 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "surface":
             from .surfaces import spectral_profile, write_profile
 
-            z = spectral_profile(args.points, args.dx_mm * 1e-3, rms=args.rms_mm * 1e-3,
-                                 exponent=args.exponent,
-                                 wavelength_min=args.wavelength_min_mm * 1e-3,
-                                 wavelength_max=args.wavelength_max_mm * 1e-3, skew=args.skew,
-                                 seed=args.seed)
+            for opt, value, ok, rule in (
+                    ("--points", args.points, args.points >= 4, "must be >= 4"),
+                    ("--dx-mm", args.dx_mm, args.dx_mm > 0, "must be > 0"),
+                    ("--rms-mm", args.rms_mm, args.rms_mm >= 0, "must be >= 0"),
+                    ("--wavelength-min-mm", args.wavelength_min_mm,
+                     0 < args.wavelength_min_mm < args.wavelength_max_mm,
+                     f"must be > 0 and < --wavelength-max-mm {args.wavelength_max_mm:g}")):
+                if not ok:
+                    raise PavefricError(f"surface {opt} {value:g}: {rule}")
+            try:
+                z = spectral_profile(args.points, args.dx_mm * 1e-3, rms=args.rms_mm * 1e-3,
+                                     exponent=args.exponent,
+                                     wavelength_min=args.wavelength_min_mm * 1e-3,
+                                     wavelength_max=args.wavelength_max_mm * 1e-3, skew=args.skew,
+                                     seed=args.seed)
+            except ValueError as exc:
+                raise PavefricError(f"surface: {exc} (--points {args.points}, --dx-mm "
+                                    f"{args.dx_mm:g}, --wavelength-min-mm "
+                                    f"{args.wavelength_min_mm:g}, --wavelength-max-mm "
+                                    f"{args.wavelength_max_mm:g}); widen the band of wavelengths "
+                                    "or give more --points") from None
             header = (f"pavefric synthetic profile: spectral_profile(n={args.points}, "
                       f"dx={args.dx_mm} mm, rms={args.rms_mm} mm, exponent={args.exponent}, "
                       f"wavelengths {args.wavelength_min_mm}-{args.wavelength_max_mm} mm, "

@@ -590,7 +590,7 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
         "elements": scaling_elements(ref, log, points=4096 if quick else 8192),
         "length": scaling_length(log, largest),
         "threads": threads(log, tile=tile),
-        "api_threads": api_threads(log, tile=4 if quick else 32, repeats=1 if quick else 5),
+        "api_threads": api_threads(log, tile=4 if quick else 32, repeats=1 if quick else 9),
         "mpi": mpi_batch(log),
         "reading": bench_io.reading(log, largest, small=min(largest, 1_000_000)),
         "batch": bench_mpi.run(log, quick=quick),

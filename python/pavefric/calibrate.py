@@ -513,7 +513,9 @@ def fit(rows: Sequence[dict], scenes_dir: str | os.PathLike, names: Sequence[str
         model.scene(r["surface"], where=f"line {r['line']}" if r.get("line") else "")
     n, p = len(rows), len(targets)
     if n < p:
-        raise CalibrationError(f"{p} parameters cannot be fitted to {n} measurement(s)")
+        raise CalibrationError(f"--fit gives {p} parameters ({', '.join(t.name for t in targets)}) "
+                               f"but the data hold {n} measurement(s): fit at most {n}, or add "
+                               "measurements")
     if max_evaluations is not None and not (int(max_evaluations) >= 1):
         raise CalibrationError(f"--max-evaluations {max_evaluations}: must be >= 1")
     for name in profile:
@@ -808,14 +810,16 @@ def _check_output(path: Path, inputs: Sequence[Path]) -> None:
 
 def _write_json(path: Path, data: dict) -> None:
     """Write beside the final name, then rename: no partial file under the name."""
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
+    from .core import PavefricError, atomic_output
+
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
-        os.replace(tmp, path)
+        with atomic_output(path) as tmp:
+            tmp.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
     except OSError as exc:
-        tmp.unlink(missing_ok=True)
         raise CalibrationError(f"-o {path}: cannot write ({exc.strerror})") from None
+    except PavefricError as exc:
+        raise CalibrationError(f"-o {path}: {exc}") from None
 
 
 def main_calibrate(args) -> int:
@@ -844,5 +848,7 @@ def main_calibrate(args) -> int:
         print(f"pavefric: warning: {w}", file=sys.stderr)
     if not result.converged:
         raise CalibrationError(f"the fit did not converge (status {result.status}: "
-                               f"{result.message}); the report above is of the last point")
+                               f"{result.message}); raise --max-evaluations, or give --start "
+                               "values nearer the solution; the report above is of the last "
+                               "point")
     return 0

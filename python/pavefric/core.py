@@ -7,6 +7,7 @@ core's status and message into a Python exception.
 """
 from __future__ import annotations
 
+import contextlib
 import functools
 import os
 import shlex
@@ -88,11 +89,25 @@ def _b(text: str | os.PathLike) -> bytes:
     return str(text).encode("utf-8")
 
 
-def _check(status: int, message: Any) -> None:
+def _check(status: int, message: Any, keywords: bool = False) -> None:
+    """Raise the core's error, if any. ``keywords``: the values came as
+    ``simulate`` keywords, so a message about a variable whose keyword is not
+    its namelist name names the keyword first (``water_viscosity = 0 (&water
+    viscosity): ...``; ``viscosity`` is the rubber's keyword)."""
+    if int(status) == 0:
+        return
+    text = _text(message)
+    if keywords:
+        for key, (group, name) in PARAMETERS.items():
+            head = f"&{group} {name}"
+            if key != name and text.startswith(head) and text[len(head):len(head) + 1] in " (:":
+                rest = text[len(head):]
+                value, sep, tail = rest.partition(": ")
+                text = f"{key}{value} ({head}): {tail}" if sep else f"{key} ({head}){rest}"
+                break
     if int(status) == _STAT_MEMORY:
-        raise MemoryError(_text(message))
-    if int(status) != 0:
-        raise PavefricError(_text(message))
+        raise MemoryError(text)
+    raise PavefricError(text)
 
 
 def check_output(path: str | os.PathLike, inputs=()) -> None:
@@ -113,6 +128,38 @@ def check_output(path: str | os.PathLike, inputs=()) -> None:
     joined = "\n".join(os.fspath(p) for p in inputs if p)
     status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n")
     _check(status, message)
+
+
+@contextlib.contextmanager
+def atomic_output(path: str | os.PathLike, inputs=()):
+    """Write ``path`` whole or not at all, as every pavefric writer does:
+    ``check_output(path, inputs)``, then the caller writes the temporary this
+    yields (``path.tmpPID`` beside ``path``, the program's own name, so that a
+    later writer removes it if this process is killed outright), which is
+    renamed onto ``path`` when the ``with`` block ends without an exception and
+    removed otherwise.
+
+    Parameters
+    ----------
+    path : path-like
+        The file to write.
+    inputs : iterable of path-like
+        The files the data written came from (never overwritten).
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary file to write.
+    """
+    check_output(path, inputs)
+    text, _ = _core.pf_temporary_name(_b(os.fspath(path)))
+    tmp = Path(_text(text))
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if os.path.lexists(tmp):
+            tmp.unlink()
 
 
 def _warn(text: str) -> None:
@@ -311,7 +358,8 @@ def _heights(heights_m) -> np.ndarray:
         raise PavefricError(f"heights: a 1-D array of heights is expected, got shape {z.shape} "
                             "(pass one profile at a time)")
     if z.size == 0:
-        raise PavefricError("&surface profile_file: the profile holds no heights")
+        raise PavefricError("heights: an empty array; give the profile's heights (m), at least "
+                            "as many as the pad has elements")
     return np.ascontiguousarray(z)
 
 
@@ -329,7 +377,7 @@ def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> 
                                                _flag(closed, "closed"), "closed"),
                 ("operation", "speeds_kmh"): "0"}
     n_el, n_pos, _, status, message = _core.pf_layout(_b(_settings_text(settings)), int(n_points))
-    _check(status, message)
+    _check(status, message, keywords=True)
     return int(n_el), int(n_pos)
 
 
@@ -368,6 +416,8 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     if speeds.ndim != 1 or speeds.dtype.kind not in "iuf":
         raise PavefricError(f"&operation speeds_kmh = {speeds_kmh!r}: a list of numbers "
                             "is expected")
+    if speeds.size == 0:
+        raise PavefricError("speeds_kmh = []: give at least one speed (km/h)")
     settings = {**_parameters(parameters),
                 ("surface", "dx"): _format(_spec("surface", "dx"), dx, "dx"),
                 ("surface", "closed"): _format(_spec("surface", "closed"),
@@ -379,7 +429,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     npos, n_series = 1, 1
     if series:
         n_el, npos, n_series, status, message = _core.pf_layout(_b(text), z.size)
-        _check(status, message)
+        _check(status, message, keywords=True)
         npos = max(npos, 1)
     _, _, outputs = _tables()
     ntext = 4096 + 2 * len(text)
@@ -387,7 +437,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         (speed, speed_kmh, values, series_values, present, position, counts, texture, estimate,
          ifi, texts, lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
                                                         n_series, ntext)
-        _check(status, message)
+        _check(status, message, keywords=True)
         if series and int(counts[1]) != npos:
             # a tolerance run chose finer steps: more positions (run again)
             npos = int(counts[1])

@@ -45,7 +45,7 @@ def write_example(directory: str | os.PathLike = DEFAULT_DIRECTORY, force: bool 
     ``force`` (nothing is written then), and PavefricError when a path may
     not be written (a directory, a FIFO, a device: pavefric's writer rule).
     """
-    from .core import check_output
+    from .core import atomic_output, check_output
 
     root = Path(directory)
     targets = [root / name for name in FILES]
@@ -57,13 +57,8 @@ def write_example(directory: str | os.PathLike = DEFAULT_DIRECTORY, force: bool 
         check_output(target)
     for name, target in zip(FILES, targets):
         target.parent.mkdir(parents=True, exist_ok=True)
-        tmp = target.with_name(f".{target.name}.tmp{os.getpid()}")
-        try:
+        with atomic_output(target) as tmp:
             tmp.write_bytes(shipped(name))
-            os.replace(tmp, target)
-        finally:
-            if tmp.exists():
-                tmp.unlink()
     return targets
 
 

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 from pathlib import Path
 from typing import Sequence
 
@@ -90,7 +89,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
     """
     import xarray as xr
 
-    from .core import (PavefricError, check_output, restore_long_attributes,
+    from .core import (PavefricError, atomic_output, check_output, restore_long_attributes,
                        store_long_attributes)
 
     paths = [Path(p) for p in parts]
@@ -175,16 +174,8 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             [f"pavefric merge of {len(paths)} parts: " + " ".join(str(p) for p in paths)] +
             [str(ds.attrs.get("history", "")) for ds in sets])
         merged.attrs["merged_parts"] = " ".join(str(p) for p in paths)
-        fd, tmp = tempfile.mkstemp(prefix=out.name + ".", suffix=".tmp",
-                                   dir=str(out.parent.resolve()))
-        os.close(fd)
-        try:
+        with atomic_output(out, paths) as tmp:
             store_long_attributes(merged).to_netcdf(tmp, format="NETCDF4")
-            os.replace(tmp, out)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
     finally:
         for ds in opened:
             ds.close()

@@ -166,11 +166,12 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
     """
     import netCDF4
 
-    from .core import check_output
+    from .core import atomic_output, check_output
 
     # never over a file the profiles came from, never onto a FIFO or device
-    check_output(path, [getattr(h, "path", None) for h in
-                        (heights if isinstance(heights, (list, tuple)) else [heights])])
+    sources = [getattr(h, "path", None) for h in
+               (heights if isinstance(heights, (list, tuple)) else [heights])]
+    check_output(path, sources)
     heights = ([getattr(h, "heights", h) for h in heights] if isinstance(heights, (list, tuple))
                else getattr(heights, "heights", heights))
     if units not in _UNITS:
@@ -213,8 +214,7 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
             raise PavefricError(f"write_profiles chainage: {n} finite values expected")
 
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
+    with atomic_output(path, sources) as tmp:
         with netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
             nc.Conventions = "CF-1.10"
             nc.title = title
@@ -261,8 +261,4 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
                 var.units = "m"
                 var.long_name = "distance along the road of the profile (chainage)"
                 var[:] = chainage
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path

@@ -73,13 +73,24 @@ def wlf_log10_shift(temperature, reference: float = T_REF, c1: float = WLF_C1,
     log_at, why = _core.pf_wlf_log10_shift(np.ascontiguousarray(t.ravel()), float(reference),
                                             float(c1), float(c2))
     if np.any(why == 1):
-        raise ValueError(f"WLF shift: T - Tref must be > -C2 = {-c2} K (got "
-                         f"{np.min(t) - reference} K)")
+        low = float(np.min(t))
+        raise ValueError(f"WLF shift: the data reach T - Tref = {low - reference:g} K "
+                         f"({low:g} C against the reference temperature {reference:g} C), where "
+                         f"the WLF equation with C2 = {c2:g} K diverges (T - Tref must be > "
+                         f"-C2); give C2 > {reference - low:g} K (prony --c2) or a lower "
+                         "reference temperature (--reference-temperature)")
     if np.any(why == 2):
-        raise ValueError(f"WLF shift: C1 = {c1}, C2 = {c2} shift the data by more than 100 "
-                         f"decades between {np.min(t)} and {np.max(t)} C")
+        raise ValueError(f"WLF shift: C1 = {c1:g}, C2 = {c2:g} K shift the data by more than "
+                         f"100 decades between {np.min(t):g} and {np.max(t):g} C; give the WLF "
+                         "constants of a fit over these temperatures (prony --c1, --c2, "
+                         "--fit-wlf)")
     out = np.asarray(log_at, dtype=float).reshape(t.shape)
     return out if out.ndim else float(out)
+
+
+def cells_of(text: str) -> list[str]:
+    """The cells of one CSV line, stripped."""
+    return [c.strip() for c in next(csv.reader([text]))]
 
 
 @dataclass
@@ -104,6 +115,10 @@ def read_dma(path: str | os.PathLike, modulus: str = "tensile",
     G', G'' to E', E'' (E = 3 G). Without a temperature column every row is
     at ``temperature`` (default the reference temperature)."""
     path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such DMA CSV file (columns temperature_c, frequency_hz, "
+                         "storage_pa, loss_pa; python -m pavefric prony --write-representative "
+                         "PATH writes an example)")
     lines = path.read_text(encoding="utf-8").splitlines()
     comments = [ln[1:].strip() for ln in lines if ln.lstrip().startswith("#")]
     rows = [(k + 1, ln) for k, ln in enumerate(lines) if ln.strip() and
@@ -144,7 +159,10 @@ def read_dma(path: str | os.PathLike, modulus: str = "tensile",
     if a.shape[0] == 0:
         raise ValueError(f"{path}: no data rows")
     if not np.all(np.isfinite(a)):
-        raise ValueError(f"{path}: a value is not finite")
+        r, c = np.argwhere(~np.isfinite(a))[0]
+        raise ValueError(f"{path}:{rows[1 + r][0]}: {names[c]} = {cells_of(rows[1 + r][1])[c]!r} "
+                         "is not finite; give finite numbers (drop the row if it was not "
+                         "measured)")
     freq = a[:, i_f] / (2.0 * np.pi) if f_name == "omega_rad_s" else a[:, i_f]
     scale = 1e6 if s_name.endswith("mpa") else 1.0
     storage = a[:, i_s] * scale
@@ -242,7 +260,8 @@ def fit_prony(data: DMAData, reference: float = T_REF, c1: float = WLF_C1,
     from scipy.optimize import minimize, nnls
 
     if per_decade <= 0:
-        raise ValueError(f"per_decade = {per_decade}: must be > 0")
+        raise ValueError(f"per_decade = {per_decade:g} (prony --per-decade): must be > 0 "
+                         "(candidate relaxation times per decade; default 1)")
 
     def solve(c1_, c2_):
         w = data.omega * 10.0 ** wlf_log10_shift(data.temperature, reference, c1_, c2_)

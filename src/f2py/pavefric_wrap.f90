@@ -749,6 +749,22 @@ subroutine pf_check_output(path, inputs, status, message)
    end if
 end subroutine pf_check_output
 
+!> The temporary a writer of `path` uses (path.tmpPID, the program's own
+!> name), after removing those that writers killed outright left beside
+!> `path` (their process is gone): one naming and one clean-up for every
+!> writer, Python's included.
+subroutine pf_temporary_name(path, tmp, removed)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_fsys, only: remove_stale_temporaries, process_id
+   use pavefric_format, only: to_str
+   implicit none
+   character(len=*), intent(in) :: path
+   character(len=4096), intent(out) :: tmp
+   integer(c_int), intent(out) :: removed
+   removed = remove_stale_temporaries(path)
+   tmp = path // ".tmp" // to_str(process_id())
+end subroutine pf_temporary_name
+
 !> Points of the profile the pad's elements see (&pad element_length) at a
 !> phase of their grid: pavefric_heights' resampled_points.
 subroutine pf_resampled_points(n, dx, closed, length, phase, m)

@@ -1,0 +1,277 @@
+"""Error messages say what was wrong and what to change (issue 19: an attack
+run found messages that did not). Each case is a reproducer from the audit of
+every message (program, Python library, Python commands): the one line names
+the group and variable (or the file and line, or the option) and gives the
+remedy."""
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pavefric
+from conftest import DX, program, run_program, write_scene
+
+HEIGHTS = [f"{math.sin(i) * 0.5:.3f}" for i in range(100)]
+
+
+def profile_file(tmp_path, name, lines):
+    path = tmp_path / "p" / name
+    path.parent.mkdir(exist_ok=True)
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def scene_text(tmp_path, text, name="s.nml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def one_error(tmp_path, scene, *args, status=1):
+    """Run the program; the one stderr line (no output written)."""
+    out = tmp_path / "out" / "r.nc"
+    out.parent.mkdir(exist_ok=True)
+    r = run_program(scene, "-q", "-o", out, *args)
+    assert r.returncode == status, r.stdout + r.stderr
+    lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1, r.stderr
+    assert not out.exists()
+    return lines[0]
+
+
+def with_profile(tmp_path, lines, extra="", name="x.txt"):
+    p = profile_file(tmp_path, name, lines)
+    return scene_text(tmp_path, f"&surface profile_file = 'p/{p.name}' /\n"
+                                f"&operation speeds_kmh = 10 /\n{extra}")
+
+
+BASE = "&surface profile_file = 'p/ok.txt' /\n&operation speeds_kmh = 10 /\n"
+
+
+@pytest.fixture
+def base(tmp_path):
+    profile_file(tmp_path, "ok.txt", HEIGHTS)
+    return tmp_path
+
+
+def test_no_profile_file(tmp_path):
+    line = one_error(tmp_path, scene_text(tmp_path, "&operation speeds_kmh = 10 /\n"))
+    assert "&surface profile_file: not given in" in line
+    assert "relative to the scene's directory" in line and "&batch" in line
+
+
+@pytest.mark.parametrize("extra,needles", [
+    ("&water depth = 1-3 /", ["&water depth = 1-3: not a number (write one such as 0.5, 1e-3",
+                              "must be finite and >= 0 and <= 100 m", "s.nml:3"]),
+    # a NaN or an Infinity written out is a number, out of range: the range alone
+    ("&rubber stiffness = nan /", ["&rubber stiffness = nan: must be finite and > 0"]),
+    ("&rubber stiffness = -Infinity /", ["&rubber stiffness = -Infinity: must be finite"]),
+    # an overflow is named as such, with the value as written
+    ("&rubber stiffness = 1e400 /", ["&rubber stiffness = 1e400: too large for double precision",
+                                     "(it would be read as Infinity)", "must be finite and > 0"]),
+    ("&numerics substeps = 2.5 /", ["&numerics substeps = 2.5: must be a whole number from 1 to"]),
+    ("&operation speeds_kmh(1) = 10, speeds_kmh(3) = 20 /",
+     ["&operation speeds_kmh: element 2 is not given", "give speeds_kmh(2) too",
+      "number the elements from 1 without gaps"]),
+    ("&pad length = /", ["&pad length = : no value given; give one, or remove the assignment "
+                         "to keep the default"]),
+    ("&rubber temperature = -80 /", ["&rubber temperature = -80", "log10 a_T = 553.8,",
+                                     "give a temperature nearer reference_temperature"]),
+    ("&preprocess resample_dx = 0.0001 /",
+     ["&preprocess resample_dx = 0.0001: finer than the data's spacing",
+      "give resample_dx >= the data's spacing, or 0 to keep it"]),
+    ("&pad element_length = 1e-13 /", ["&pad element_length = 1e-13", "give a larger "
+                                       "element_length (default 0.87e-3 m) or 0"]),
+])
+def test_scene_values(base, extra, needles):
+    text = BASE.replace("&operation speeds_kmh = 10 /\n", "") if "speeds_kmh(" in extra else BASE
+    line = one_error(base, scene_text(base, text + extra + "\n"))
+    for needle in needles:
+        assert needle in line, (needle, line)
+
+
+def test_more_than_one_scene_file(base):
+    scene = scene_text(base, BASE)
+    r = run_program(scene, scene.parent / "out.nc")
+    assert r.returncode == 2
+    assert "more than one scene file given" in r.stderr
+    assert f"name the output with -o (pavefric {scene} -o out.nc)" in r.stderr
+
+
+def test_max_profiles_not_a_count(base):
+    line = one_error(base, scene_text(base, BASE), "--max-profiles", "x", status=2)
+    assert "--max-profiles 'x': must be a whole number >= 0" in line and "0: no limit" in line
+
+
+@pytest.mark.parametrize("bad,needles", [
+    ("n/a", ["p/x.txt:11: 'n/a' is not a number", "mark a dropout as NaN",
+             "&preprocess dropouts = 'interpolate'"]),
+    ("0,5", ["p/x.txt:11: 2 columns where earlier lines have 1",
+             "a height, or a distance and a height (a decimal comma? write 0.5)"]),
+    ("2e9", ["height 11 = 2e6 m", "are the heights in the unit declared (&surface "
+                                      "height_unit"]),
+])
+def test_profile_lines(tmp_path, bad, needles):
+    line = one_error(tmp_path, with_profile(tmp_path, HEIGHTS[:10] + [bad] + HEIGHTS[10:]))
+    for needle in needles:
+        assert needle in line, (needle, line)
+
+
+def test_profile_shorter_than_the_pad(tmp_path):
+    line = one_error(tmp_path, with_profile(tmp_path, HEIGHTS[:8]))
+    assert line.startswith("pavefric: error: &surface profile_file = '") and "p/x.txt'" in line
+    assert "8 points (0.00696 m), fewer than the pad's 23 elements" in line
+    assert "give a profile of at least 23 points, or &pad length <= 0.00696 m" in line
+
+
+def test_empty_and_all_dropout_profiles(tmp_path):
+    line = one_error(tmp_path, with_profile(tmp_path, ["# nothing"]))
+    assert "holds no heights (only comments or blank lines); give one height a line" in line
+    line = one_error(tmp_path, with_profile(tmp_path, ["nan"] * 50,
+                                            "&preprocess dropouts = 'interpolate' /\n"))
+    assert "every height is a dropout" in line and "check the height column" in line
+
+
+def test_uneven_plain_distances_can_be_resampled(tmp_path):
+    """A two-column plain file's uneven step is preprocessing's to judge (as a
+    table's), so the remedy the message gives, resample_dx, works."""
+    rows, x = ["# distance_mm height_mm"], 0.0
+    for i in range(200):
+        x += 0.87 if i != 50 else 1.5
+        rows.append(f"{x:.3f} {math.sin(i) * 0.5:.3f}")
+    line = one_error(tmp_path, with_profile(tmp_path, rows))
+    assert "p/x.txt:52: spacing 0.0015 m against the mean 0.0008732 m (more than 5 % off)" in line
+    assert "resample it (&preprocess resample_dx)" in line
+    scene = with_profile(tmp_path, rows, "&preprocess resample_dx = 0.001 /\n", name="y.txt")
+    r = run_program(scene, "-q", "-o", tmp_path / "ok.nc")
+    assert r.returncode == 0, r.stderr
+
+
+def test_dx_against_the_file(tmp_path):
+    rows = [f"{i * 0.87:.2f} {math.sin(i) * 0.5:.3f}" for i in range(200)]
+    p = profile_file(tmp_path, "withx.txt", rows)
+    scene = scene_text(tmp_path, f"&surface profile_file = 'p/{p.name}', dx = 1e-3 /\n"
+                                 "&operation speeds_kmh = 10 /\n")
+    line = one_error(tmp_path, scene)
+    assert "&surface dx = 0.001: disagrees (by more than 1 %) with the spacing" in line
+    assert "remove dx to take the file's spacing, or correct it" in line
+
+
+@pytest.mark.parametrize("fmt,needles", [
+    ("captif", ["no '*****DATA*****' line, so not a laser profiler export",
+                "set &surface format = 'auto'"]),
+    ("netcdf", ["cannot open as NetCDF", "a text profile? set &surface format = 'auto'"]),
+])
+def test_format_mismatch(tmp_path, fmt, needles):
+    p = profile_file(tmp_path, "t.txt", HEIGHTS)
+    scene = scene_text(tmp_path, f"&surface profile_file = 'p/{p.name}', format = '{fmt}' /\n"
+                                 "&operation speeds_kmh = 10 /\n")
+    line = one_error(tmp_path, scene)
+    for needle in needles:
+        assert needle in line, (needle, line)
+
+
+def test_batch_pattern_that_matches_nothing(tmp_path):
+    scene = scene_text(tmp_path, "&batch profiles = 'nomatch/*.txt' /\n"
+                                 "&operation speeds_kmh = 10 /\n")
+    line = one_error(tmp_path, scene)
+    # the pattern as the program read it: relative to the scene's directory
+    assert f"&batch profiles = '{tmp_path}/nomatch/*.txt': matches no file; check the " \
+           "pattern, or give a directory or &batch profile_list" in line
+
+
+def test_short_profile_under_the_low_pass_filter(tmp_path):
+    line = one_error(tmp_path, with_profile(tmp_path, HEIGHTS[:8],
+                                            "&preprocess lowpass_wavelength = 0.0024 /\n"))
+    assert "&preprocess lowpass_wavelength: the low-pass filter needs more than" in line
+    assert "give a longer profile, or lowpass_wavelength = 0 (off)" in line
+
+
+# --- Python -----------------------------------------------------------------
+
+def test_python_names_the_keyword_it_was_given(profile_m):
+    with pytest.raises(pavefric.PavefricError) as e:
+        pavefric.simulate(profile_m, DX, [10.0], water_viscosity=0.0)
+    assert str(e.value).startswith("water_viscosity = 0 (&water viscosity): must be finite")
+    with pytest.raises(pavefric.PavefricError) as e:
+        pavefric.simulate(profile_m, DX, [10.0], rubber_model="prony")
+    assert str(e.value).startswith("rubber_model = 'prony' (&rubber model): unknown")
+    # a keyword that is its namelist name keeps the namelist's words
+    with pytest.raises(pavefric.PavefricError) as e:
+        pavefric.simulate(profile_m, DX, [10.0], depth=-1.0)
+    assert str(e.value).startswith("&water depth = -1: must be finite and >= 0")
+
+
+def test_python_empty_inputs(profile_m):
+    with pytest.raises(pavefric.PavefricError, match=r"^heights: an empty array; give the "):
+        pavefric.simulate([], DX, [10.0])
+    with pytest.raises(pavefric.PavefricError, match=r"^speeds_kmh = \[\]: give at least one"):
+        pavefric.simulate(profile_m, DX, [])
+    z = np.array(profile_m, dtype=float)
+    z[5] = np.nan
+    with pytest.raises(pavefric.PavefricError, match=r"profile height 6 = NaN: heights must "
+                                                      r"be finite; fill or remove the dropouts"):
+        pavefric.simulate(z, DX, [10.0])
+
+
+def command(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "pavefric", *map(str, args)],
+                          capture_output=True, text=True, timeout=300, cwd=cwd)
+
+
+@pytest.mark.parametrize("args,needles", [
+    (["plot", "nothere.nc", "-o", "x.png"], ["plot: 'nothere.nc': no such file (give NetCDF "
+                                             "outputs of pavefric runs)"]),
+    (["plot", "s.nml", "-o", "x.png"], ["plot: cannot read", "give NetCDF outputs"]),
+    (["prony", "nothere.csv"], ["nothere.csv: no such DMA CSV file", "--write-representative"]),
+    (["surface", "-o", "s.txt", "--points", "2"], ["surface --points 2: must be >= 4"]),
+    (["surface", "-o", "s.txt", "--points", "16", "--wavelength-min-mm", "1.8",
+      "--wavelength-max-mm", "1.9"], ["no Fourier mode", "--points 16",
+                                      "widen the band of wavelengths or give more --points"]),
+])
+def test_python_commands_give_one_line_not_a_traceback(tmp_path, args, needles):
+    (tmp_path / "s.nml").write_text(BASE)
+    r = command(*args, cwd=tmp_path)
+    assert r.returncode == 1, r.stderr
+    assert "Traceback" not in r.stderr
+    line = r.stderr.strip()
+    assert line.startswith("pavefric: error: ") and len(line.splitlines()) == 1, r.stderr
+    for needle in needles:
+        assert needle in line, (needle, line)
+
+
+def test_prony_messages_name_the_line_and_the_options(tmp_path):
+    from conftest import ROOT
+
+    rows = [ln for ln in (ROOT / "inputs" / "data" / "tread_compound_dma.csv").read_text()
+            .splitlines() if not ln.startswith("#")]
+    cells = rows[3].split(",")
+    header = [h.strip() for h in rows[0].split(",")]
+    cells[header.index("storage_pa")] = "nan"
+    bad = tmp_path / "dma_nan.csv"
+    bad.write_text("\n".join(rows[:3] + [",".join(cells)] + rows[4:]) + "\n")
+    r = command("prony", bad)
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    assert f"{bad}:4: storage_pa = 'nan' is not finite; give finite numbers" in r.stderr
+    good = tmp_path / "dma.csv"
+    good.write_text("\n".join(rows) + "\n")
+    r = command("prony", good, "--c2", "5")
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    assert "where the WLF equation with C2 = 5 K diverges" in r.stderr
+    assert "(prony --c2) or a lower reference temperature (--reference-temperature)" in r.stderr
+    r = command("prony", good, "--per-decade", "0")
+    assert "per_decade = 0 (prony --per-decade): must be > 0" in r.stderr
+
+
+def test_calibration_with_more_parameters_than_data(tmp_path):
+    from conftest import ROOT
+
+    data = tmp_path / "meas.csv"
+    data.write_text("surface,speed_kmh,mu\nGSSB,20,0.5\nGSSB,40,0.45\n")
+    r = command("calibrate", data, "--scenes", ROOT / "inputs" / "surfaces", "--fit", "alpha",
+                "beta", "viscosity")
+    assert r.returncode != 0 and "Traceback" not in r.stderr
+    assert "--fit gives 3 parameters (alpha, beta, viscosity) but the data hold 2 " \
+           "measurement(s): fit at most 2, or add measurements" in r.stderr
