@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from . import bench_mpi, rubber_report
+from .config import program
 
 DX = 0.87e-3
 
@@ -264,7 +265,8 @@ def mpi_batch(log, root: Path | None = None) -> dict:
 
     log("\n== MPI batch: demo profiles, 1 rank against 2 ranks (OMP_NUM_THREADS=1) ==")
     mpirun = shutil.which("mpirun")
-    exe = shutil.which("pavefric", path=str(Path(sys.executable).parent))
+    # the executable itself, not the launcher on PATH (no Python start-up in the times)
+    exe = shutil.which(str(program()))
     root = root or Path.cwd()
     demo_dir = root / "inputs" / "batch_demo"
     if mpirun is None or exe is None or not demo_dir.exists():
@@ -430,7 +432,7 @@ def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3
 
     from .surfaces import spectral_profile, write_profile
 
-    exe = Path(sys.executable).parent / "pavefric"
+    exe = program()   # the executable, not the launcher (no Python start-up in the time)
     speeds = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0, 100.0]
     out: dict = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -521,7 +523,7 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
 
     from .surfaces import spectral_profile, write_profile
 
-    exe = Path(sys.executable).parent / "pavefric"
+    exe = program()   # the executable, not the launcher (no Python start-up in the time)
     log(f"\n== Cost estimate against the measured time (the program on a {points:,}-point "
         f"open profile, or a closed one of a quarter of that, one thread; best of "
         f"{repeats}) ==")
