@@ -560,18 +560,32 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
     return rows
 
 
-def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False) -> dict:
+#: The benchmark's sections, in the order they run (the progress counts them).
+SECTIONS = ("sweep", "program", "throughput", "elements", "length", "threads", "api_threads",
+            "mpi", "reading", "batch", "rubber", "estimate")
+
+
+def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False,
+        quiet: bool = False) -> dict:
     """Every figure, printed as measured; with ``report``, docs/performance.md.
     ``quick``: small sizes and one repeat (minutes to seconds), to check that
-    the benchmark runs, not to measure."""
+    the benchmark runs, not to measure. Progress (sections done, elapsed,
+    left) on stderr unless ``quiet``."""
     from . import bench_io
+    from .progress import Progress
     from .reports import machine_description
 
     lines: list[str] = []
+    progress = Progress("bench", len(SECTIONS), "sections", quiet=quiet)
 
     def log(text=""):
+        progress.clear()
         print(text, flush=True)
         lines.append(text)
+
+    def section(name, value):
+        progress.advance(what=name)
+        return value
 
     log(f"pavefric benchmark on {machine_description()}")
     ref = _reference()
@@ -580,26 +594,33 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
     with tempfile.TemporaryDirectory() as tmp:
         plain = PlainLoop(Path(tmp))
         results = {
-            "sweep": sweep(ref, plain, log, repeats=1 if quick else 5, tile=4 if quick else 64),
-            "program": whole_program(plain, log, points=40_000 if quick else 400_000,
-                                     repeats=1 if quick else 3),
+            "sweep": section("sweep", sweep(ref, plain, log, repeats=1 if quick else 5,
+                                            tile=4 if quick else 64)),
+            "program": section("program", whole_program(
+                plain, log, points=40_000 if quick else 400_000, repeats=1 if quick else 3)),
         }
     if quick:
         largest = min(largest, 100_000)
     tile = 4 if quick else 64
+    # one at a time, in this order (a dict display evaluates in order)
     results |= {
-        "throughput": throughput(ref, log, tile=tile),
-        "elements": scaling_elements(ref, log, points=4096 if quick else 8192),
-        "length": scaling_length(log, largest),
-        "threads": threads(log, tile=tile),
-        "api_threads": api_threads(log, tile=4 if quick else 32, repeats=1 if quick else 5),
-        "mpi": mpi_batch(log),
-        "reading": bench_io.reading(log, largest, small=min(largest, 1_000_000)),
-        "batch": bench_mpi.run(log, quick=quick),
-        "rubber": rubber_report.cost(log, repeats=1 if quick else 7),
-        "estimate": estimate_accuracy(log, points=8192 if quick else 65_536,
-                                      repeats=1 if quick else 3),
+        "throughput": section("throughput", throughput(ref, log, tile=tile)),
+        "elements": section("elements", scaling_elements(ref, log,
+                                                         points=4096 if quick else 8192)),
+        "length": section("length", scaling_length(log, largest)),
+        "threads": section("threads", threads(log, tile=tile)),
+        "api_threads": section("api_threads", api_threads(
+            log, tile=4 if quick else 32, repeats=1 if quick else 5)),
+        "mpi": section("mpi", mpi_batch(log)),
+        "reading": section("reading", bench_io.reading(log, largest,
+                                                       small=min(largest, 1_000_000))),
+        "batch": section("batch", bench_mpi.run(log, quick=quick)),
+        "rubber": section("rubber", rubber_report.cost(log, repeats=1 if quick else 7)),
+        "estimate": section("estimate", estimate_accuracy(
+            log, points=8192 if quick else 65_536, repeats=1 if quick else 3)),
     }
+    progress.close()
+    assert list(results) == list(SECTIONS)
     if report:
         from .reports import performance_report
 
