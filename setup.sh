@@ -82,7 +82,7 @@ install_python() {
     "numpy>=1.26" "meson>=1.1" "meson-python>=0.17" ninja \
     "xarray>=2023.1" "netCDF4>=1.6" "matplotlib>=3.6" \
     "pytest>=7" "hypothesis>=6" "pandas>=2.2" scipy "pydantic>=2,<3" psutil click parse unsync \
-    compliance-checker pyyaml jsonschema
+    compliance-checker pyyaml jsonschema build
   # captif-slp (an established ISO 13473-1 implementation, a test reference)
   # and its reader pyrsona 1.x pin pandas<2.2 and numpy<2, which would break
   # xarray and the extension: install them without their pins (their other

@@ -32,6 +32,18 @@ CAPTIF = DATA / "captif"
 TABLE = DATA / "kane2017_tables.csv"
 
 
+def import_captif_slp():
+    """captif-slp, the independent ISO 13473-1 implementation the texture
+    tests compare with. It and its reader pyrsona pin pandas<2.2 and numpy<2,
+    so they are not in the [test] extra: setup.sh and .ci/run install them
+    with --no-deps. Without them these tests skip, saying so, and CI
+    (PAVEFRIC_NO_SKIP) counts that skip as a failure."""
+    return pytest.importorskip(
+        "captif_slp", reason="captif-slp is not installed: pip install --no-deps "
+        "'pyrsona>=1.1,<2' 'captif-slp>=0.22' (they pin pandas<2.2 and numpy<2; their other "
+        "requirements: pandas pydantic psutil click parse unsync; setup.sh does this)")
+
+
 def program() -> str:
     exe = Path(sys.executable).parent / "pavefric"
     if not exe.exists():

@@ -20,6 +20,8 @@ import pavefric
 from conftest import ROOT, run_program
 
 API = ROOT / "tests" / "api"
+# the users' examples (examples/api/, with their build script); check_api.c stays here
+EXAMPLES = ROOT / "examples" / "api"
 BIN = Path(sys.executable).parent
 WET = ROOT / "inputs" / "ctm_wet.nml"
 CAPTIF = ROOT / "inputs" / "captif" / "station0.nml"
@@ -52,10 +54,11 @@ def pkg_config(env: dict, *args: str) -> list[str]:
 
 
 def build(tmp: Path, source: str, env: dict, *, static: bool = False) -> Path:
-    """Copy tests/api/<source> to tmp and build it there with pkg-config's flags."""
+    """Copy examples/api/<source> (or tests/api/<source>) to tmp and build it
+    there with pkg-config's flags."""
     tmp.mkdir(parents=True, exist_ok=True)
     src = tmp / source
-    shutil.copy(API / source, src)
+    shutil.copy(EXAMPLES / source if (EXAMPLES / source).is_file() else API / source, src)
     exe = tmp / (src.stem + ("_static" if static else ""))
     flags = pkg_config(env, "--cflags") + pkg_config(env, *(["--static"] if static else []),
                                                      "--libs")

@@ -468,6 +468,13 @@ def test_validate_reduced(tmp_path, paper):
                         "--outdir", str(tmp_path / "out")],
                        capture_output=True, text=True, timeout=900, cwd=ROOT)
     assert r.returncode == 0, r.stderr
+    # progress on stderr (not a terminal: a line per tenth), sections counted
+    progress = [line for line in r.stderr.splitlines() if line.startswith("validate: ")
+                and " elapsed, about " in line]
+    assert 1 <= len(progress) <= 10, r.stderr
+    assert progress[-1].startswith("validate: 11/11 sections (100 %), ")
+    assert progress[-1].endswith("about 0:00 left: figures and report")
+    assert " elapsed, about " not in r.stdout
     text = report.read_text()
     assert "## Statistics" in text and "| all speeds | 18 |" in text
     assert "wet at 20 km/h |" in text and "bearing acts at GSP" in text
@@ -571,3 +578,15 @@ def test_null_direction_has_one_sign_whatever_the_svd_returns():
     w = np.array([1.0, -1.0]) / np.sqrt(2)        # equal magnitudes: the first is +1
     np.testing.assert_allclose(null_direction(w), [1.0, -1.0], rtol=1e-15)
     np.testing.assert_allclose(null_direction(-w), [1.0, -1.0], rtol=1e-15)
+
+
+def test_validate_quiet_has_no_progress(tmp_path):
+    """-q drops the progress lines only: the results still go to stdout."""
+    r = subprocess.run([sys.executable, "-m", "pavefric", "validate", "--quick", "-q",
+                        "--table", str(TABLE), "--report", str(tmp_path / "validation.md"),
+                        "--outdir", str(tmp_path / "out")],
+                       capture_output=True, text=True, timeout=900, cwd=ROOT)
+    assert r.returncode == 0, r.stderr
+    assert " elapsed, about " not in r.stderr + r.stdout
+    assert "validate: alpha = " in r.stdout and "validate: wrote " in r.stdout
+    assert (tmp_path / "validation.md").is_file()

@@ -62,6 +62,7 @@ def scratch(tmp_path_factory) -> Path:
     shutil.copytree(ROOT / "inputs", d / "inputs")
     (d / "tests").mkdir()
     shutil.copytree(ROOT / "tests" / "api", d / "tests" / "api")
+    shutil.copytree(ROOT / "examples", d / "examples")
     for name in ("reference.py", "plain_loop.f90"):
         shutil.copy(ROOT / "tests" / name, d / "tests" / name)
     (d / "outputs").mkdir()

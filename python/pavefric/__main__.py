@@ -4,11 +4,11 @@ Commands:
   run SCENE.nml [-o OUT.nc] [--plot PNG] [-q]  run a scene (same core as the program)
   plot OUT.nc [OUT.nc ...] -o PNG           friction against speed
   surface -o FILE [--seed N --rms-mm R ...] write a seeded CTM-like profile
-  accuracy SCENE.nml [...] [--report docs/accuracy.md]  accuracy-cost study
-  bench [--report docs/performance.md]      benchmark against the NumPy reference
+  accuracy SCENE.nml [...] [--report docs/accuracy.md] [-q]  accuracy-cost study
+  bench [--report docs/performance.md] [-q] benchmark against the NumPy reference
   calibrate DATA.csv --fit alpha ...        least-squares calibration (core runs)
   surfaces [--outdir inputs/surfaces]       regenerate the six reference surfaces
-  validate [--report docs/validation.md]    calibrate at 20 km/h, compare, report
+  validate [--report docs/validation.md] [-q]  calibrate at 20 km/h, compare, report
   profile FILE [--dropouts interpolate ...] read, preprocess, report, plot a profile
   docs [--inputs docs/inputs.md] [--outputs docs/outputs.md]  regenerate the references
   speed-gradient [--report docs/speed_gradient.md]  wet models against the PIARC speed gradient
@@ -90,6 +90,8 @@ def main(argv: list[str] | None = None) -> int:
                        help="also study each scene with its water removed")
     p_acc.add_argument("--report", default=None,
                        help="also write a Markdown report here (e.g. docs/accuracy.md)")
+    p_acc.add_argument("-q", "--quiet", action="store_true",
+                       help="no progress on stderr (runs done, elapsed, left)")
 
     p_bench = sub.add_parser("bench", help="benchmark the core against the NumPy reference")
     p_bench.add_argument("--report", default=None, help="write docs/performance.md here")
@@ -97,6 +99,8 @@ def main(argv: list[str] | None = None) -> int:
                          help="small sizes, one repeat: check that it runs (not a measurement)")
     p_bench.add_argument("--largest", type=int, default=10_000_000,
                          help="largest profile of the length scaling (points)")
+    p_bench.add_argument("-q", "--quiet", action="store_true",
+                         help="no progress on stderr (sections done, elapsed, left)")
 
     p_cal = sub.add_parser("calibrate", help="fit model parameters to measured friction (CSV)",
                            description="Least-squares fit (scipy least_squares, parameters "
@@ -134,6 +138,8 @@ def main(argv: list[str] | None = None) -> int:
     p_val.add_argument("--report", default="docs/validation.md")
     p_val.add_argument("--outdir", default="outputs/validation")
     p_val.add_argument("--quick", action="store_true", help="fewer speeds in the curves")
+    p_val.add_argument("-q", "--quiet", action="store_true",
+                       help="no progress on stderr (sections done, elapsed, left)")
 
     p_prof = sub.add_parser("profile", help="read and preprocess a profile file; report and plot")
     p_prof.add_argument("file")
@@ -261,11 +267,11 @@ def main(argv: list[str] | None = None) -> int:
             from .reports import accuracy_report
 
             accuracy_report(args.scenes, args.outdir, speeds=args.speeds, repeats=args.repeats,
-                            report=args.report, also_dry=args.also_dry)
+                            report=args.report, also_dry=args.also_dry, quiet=args.quiet)
         elif args.command == "bench":
             from .bench import run as bench_run
 
-            bench_run(args.report, args.largest, quick=args.quick)
+            bench_run(args.report, args.largest, quick=args.quick, quiet=args.quiet)
         elif args.command == "calibrate":
             from .calibrate import main_calibrate
 
@@ -280,7 +286,8 @@ def main(argv: list[str] | None = None) -> int:
         elif args.command == "validate":
             from .validation import validate
 
-            validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick)
+            validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick,
+                     quiet=args.quiet)
         elif args.command == "speed-gradient":
             from .speed_gradient import run_study
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 import time
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -42,7 +42,8 @@ def _timed(scene, speeds, repeats, **knob):
 
 def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = None,
           knobs: dict[str, list] | None = None, repeats: int = 3,
-          overrides: dict | None = None, label: str | None = None):
+          overrides: dict | None = None, label: str | None = None,
+          on_step: Callable[[str], None] | None = None):
     """Run the study on one scene; return an ``xarray.Dataset`` with one row
     per (knob, setting): ``mu`` per speed, ``error`` (largest |mu - mu_finest|
     over the speeds), ``time_s``, ``element_steps``."""
@@ -68,6 +69,8 @@ def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = No
                                   "position_stride")})
             results.append((value, ds["mu"].values.copy(), seconds,
                             n_el * (n_pos + ds.attrs["spinup_positions"]) * speeds.size))
+            if on_step:
+                on_step(f"{knob} = {value:g}")
         finest = results[-1][1]
         for value, mu, seconds, steps in results:
             rows.append((knob, float(value), mu, float(np.max(np.abs(mu - finest))), seconds,
@@ -115,7 +118,8 @@ TOLERANCES = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
 
 def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequence[float],
                     tolerances: Sequence[float] = TOLERANCES, repeats: int = 3,
-                    overrides: dict | None = None) -> list[dict]:
+                    overrides: dict | None = None,
+                    on_step: Callable[[str], None] | None = None) -> list[dict]:
     """The cost of each ``&numerics tolerance`` on one scene: for each
     tolerance, the error the run reports (``mu_error_estimate``), its actual
     error against ``mu_limit`` (the converged limit from :func:`study`), the
@@ -126,9 +130,13 @@ def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequenc
     scene.parameters.update(overrides or {})
     speeds = np.asarray(speeds_kmh, dtype=float)
     _, t_default = _timed(scene, speeds, repeats)
+    if on_step:
+        on_step("default settings")
     rows = []
     for tol in tolerances:
         ds, seconds = _timed(scene, speeds, repeats, tolerance=float(tol))
+        if on_step:
+            on_step(f"tolerance = {tol:g}")
         rows.append({
             "tolerance": float(tol),
             "estimate": float(np.max(ds["mu_error_estimate"].values)),

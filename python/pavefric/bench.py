@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from . import bench_mpi, rubber_report
+from .config import program
 
 DX = 0.87e-3
 
@@ -264,7 +265,8 @@ def mpi_batch(log, root: Path | None = None) -> dict:
 
     log("\n== MPI batch: demo profiles, 1 rank against 2 ranks (OMP_NUM_THREADS=1) ==")
     mpirun = shutil.which("mpirun")
-    exe = shutil.which("pavefric", path=str(Path(sys.executable).parent))
+    # the executable itself, not the launcher on PATH (no Python start-up in the times)
+    exe = shutil.which(str(program()))
     root = root or Path.cwd()
     demo_dir = root / "inputs" / "batch_demo"
     if mpirun is None or exe is None or not demo_dir.exists():
@@ -430,7 +432,7 @@ def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3
 
     from .surfaces import spectral_profile, write_profile
 
-    exe = Path(sys.executable).parent / "pavefric"
+    exe = program()   # the executable, not the launcher (no Python start-up in the time)
     speeds = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0, 100.0]
     out: dict = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -521,7 +523,7 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
 
     from .surfaces import spectral_profile, write_profile
 
-    exe = Path(sys.executable).parent / "pavefric"
+    exe = program()   # the executable, not the launcher (no Python start-up in the time)
     log(f"\n== Cost estimate against the measured time (the program on a {points:,}-point "
         f"open profile, or a closed one of a quarter of that, one thread; best of "
         f"{repeats}) ==")
@@ -558,18 +560,32 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
     return rows
 
 
-def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False) -> dict:
+#: The benchmark's sections, in the order they run (the progress counts them).
+SECTIONS = ("sweep", "program", "throughput", "elements", "length", "threads", "api_threads",
+            "mpi", "reading", "batch", "rubber", "estimate")
+
+
+def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False,
+        quiet: bool = False) -> dict:
     """Every figure, printed as measured; with ``report``, docs/performance.md.
     ``quick``: small sizes and one repeat (minutes to seconds), to check that
-    the benchmark runs, not to measure."""
+    the benchmark runs, not to measure. Progress (sections done, elapsed,
+    left) on stderr unless ``quiet``."""
     from . import bench_io
+    from .progress import Progress
     from .reports import machine_description
 
     lines: list[str] = []
+    progress = Progress("bench", len(SECTIONS), "sections", quiet=quiet)
 
     def log(text=""):
+        progress.clear()
         print(text, flush=True)
         lines.append(text)
+
+    def section(name, value):
+        progress.advance(what=name)
+        return value
 
     log(f"pavefric benchmark on {machine_description()}")
     ref = _reference()
@@ -578,26 +594,33 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
     with tempfile.TemporaryDirectory() as tmp:
         plain = PlainLoop(Path(tmp))
         results = {
-            "sweep": sweep(ref, plain, log, repeats=1 if quick else 5, tile=4 if quick else 64),
-            "program": whole_program(plain, log, points=40_000 if quick else 400_000,
-                                     repeats=1 if quick else 3),
+            "sweep": section("sweep", sweep(ref, plain, log, repeats=1 if quick else 5,
+                                            tile=4 if quick else 64)),
+            "program": section("program", whole_program(
+                plain, log, points=40_000 if quick else 400_000, repeats=1 if quick else 3)),
         }
     if quick:
         largest = min(largest, 100_000)
     tile = 4 if quick else 64
+    # one at a time, in this order (a dict display evaluates in order)
     results |= {
-        "throughput": throughput(ref, log, tile=tile),
-        "elements": scaling_elements(ref, log, points=4096 if quick else 8192),
-        "length": scaling_length(log, largest),
-        "threads": threads(log, tile=tile),
-        "api_threads": api_threads(log, tile=4 if quick else 32, repeats=1 if quick else 9),
-        "mpi": mpi_batch(log),
-        "reading": bench_io.reading(log, largest, small=min(largest, 1_000_000)),
-        "batch": bench_mpi.run(log, quick=quick),
-        "rubber": rubber_report.cost(log, repeats=1 if quick else 7),
-        "estimate": estimate_accuracy(log, points=8192 if quick else 65_536,
-                                      repeats=1 if quick else 3),
+        "throughput": section("throughput", throughput(ref, log, tile=tile)),
+        "elements": section("elements", scaling_elements(ref, log,
+                                                         points=4096 if quick else 8192)),
+        "length": section("length", scaling_length(log, largest)),
+        "threads": section("threads", threads(log, tile=tile)),
+        "api_threads": section("api_threads", api_threads(
+            log, tile=4 if quick else 32, repeats=1 if quick else 9)),
+        "mpi": section("mpi", mpi_batch(log)),
+        "reading": section("reading", bench_io.reading(log, largest,
+                                                       small=min(largest, 1_000_000))),
+        "batch": section("batch", bench_mpi.run(log, quick=quick)),
+        "rubber": section("rubber", rubber_report.cost(log, repeats=1 if quick else 7)),
+        "estimate": section("estimate", estimate_accuracy(
+            log, points=8192 if quick else 65_536, repeats=1 if quick else 3)),
     }
+    progress.close()
+    assert list(results) == list(SECTIONS)
     if report:
         from .reports import performance_report
 

@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .config import program
+
 # The reader before the single-pass parser (commit b82ceed: a formatted read
 # per line, a list-directed conversion per token), measured once on the
 # 2-core development machine on files written as below: the sources of
@@ -73,7 +75,8 @@ def read_seconds(path, format: str = "auto", height_unit: str = "mm", profile_na
 def _program_run(scene: Path) -> dict:
     """Wall time and peak RSS of the pavefric program on a scene, measured in
     a fresh child (RUSAGE_CHILDREN then holds only the program)."""
-    exe = Path(sys.executable).parent / "pavefric"
+    # the executable, not the launcher: no Python start-up in the time or the peak memory
+    exe = program()
     code = (
         "import json, resource, subprocess, sys, time\n"
         f"t0 = time.perf_counter()\n"

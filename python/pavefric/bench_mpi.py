@@ -17,11 +17,14 @@ from pathlib import Path
 
 import numpy as np
 
+from .config import program
+
 DX = 0.87e-3
 
 
 def _program() -> str | None:
-    return shutil.which("pavefric", path=str(Path(sys.executable).parent))
+    # the executable, not the launcher on PATH (no Python start-up in the times)
+    return shutil.which(str(program()))
 
 
 def _env() -> dict:

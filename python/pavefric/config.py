@@ -33,6 +33,15 @@ def includedir() -> Path:
     return _PACKAGE / "include"
 
 
+def program() -> Path:
+    """The Fortran program ``pavefric`` shipped inside the package (what the
+    ``pavefric`` command on PATH executes; in an editable install, the build
+    directory's)."""
+    from _pavefric_program import program_path
+
+    return program_path()
+
+
 def main(argv: list[str] | None = None) -> int:
     from . import __version__
 
@@ -45,9 +54,13 @@ def main(argv: list[str] | None = None) -> int:
                              "--pkgconfigdir) pkg-config --cflags --libs pavefric")
     parser.add_argument("--libdir", action="store_true", help="directory of libpavefric")
     parser.add_argument("--includedir", action="store_true", help="directory of pavefric.h")
+    parser.add_argument("--program", action="store_true",
+                        help="the Fortran program that the pavefric command runs")
     parser.add_argument("--version", action="store_true", help="pavefric's version")
     args = parser.parse_args(argv)
     lines = []
+    if args.program:
+        lines.append(str(program()))
     if args.pkgconfigdir:
         lines.append(str(pkgconfigdir()))
     if args.libdir:
@@ -59,7 +72,8 @@ def main(argv: list[str] | None = None) -> int:
     if not lines:
         parser.print_help()
         return 2
-    if not (pkgconfigdir() / "pavefric.pc").is_file():
+    wants_library = args.pkgconfigdir or args.libdir or args.includedir
+    if wants_library and not (pkgconfigdir() / "pavefric.pc").is_file():
         print(f"pavefric-config: {pkgconfigdir() / 'pavefric.pc'} is missing (the library is "
               "installed with 'pip install .', not with an editable install)", file=sys.stderr)
         return 1

@@ -55,9 +55,18 @@ class PavefricWarning(UserWarning):
 class ProfilesFailedWarning(UserWarning):
     """A batch finished but some of its profiles failed (the program's exit
     status 4): the output is written, its ``status`` (2) and ``error_message``
-    variables say which and why. ``path`` is the output file, ``failed`` maps
-    each failed profile's name to its message. Make it an error with
-    ``warnings.simplefilter("error", pavefric.ProfilesFailedWarning)``."""
+    variables say which and why. Make it an error with
+    ``warnings.simplefilter("error", pavefric.ProfilesFailedWarning)``.
+
+    Parameters
+    ----------
+    message : str
+        The warning's text.
+    path : pathlib.Path or None, optional
+        The output file.
+    failed : dict of str to str or None, optional
+        Each failed profile's name and its message.
+    """
 
     def __init__(self, message: str, path: Path | None = None,
                  failed: dict[str, str] | None = None):
@@ -112,18 +121,26 @@ def _check(status: int, message: Any, keywords: bool = False) -> None:
 
 def check_output(path: str | os.PathLike, inputs=()) -> None:
     """The rule every pavefric writer follows, from the core (the program's
-    and the C API's own): ``path`` must be missing or a regular file (never
-    a FIFO, a device or a directory) and not the same file as any of
-    ``inputs`` (symbolic and hard links seen through). Raises
-    PavefricError naming the path and why; the caller then writes through a
+    and the C API's own): ``path`` must be missing or a regular file (never a
+    FIFO, a device or a directory) and not the same file as any of ``inputs``
+    (symbolic and hard links seen through). The caller then writes through a
     temporary in the same directory and a rename.
 
     Parameters
     ----------
-    path : path-like
+    path : str or os.PathLike
         The file about to be written.
-    inputs : iterable of path-like
+    inputs : iterable of path-like, optional
         The files the data written came from.
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    PavefricError
+        Naming the path and why it may not be written.
     """
     joined = "\n".join(os.fspath(p) for p in inputs if p)
     status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n")
@@ -252,12 +269,24 @@ def _tables() -> tuple:
 
 
 def parameters() -> tuple:
-    """Every namelist variable's declaration (``Parameter``), from the core."""
+    """Every namelist variable's declaration, from the core.
+
+    Returns
+    -------
+    tuple of Parameter
+        Name, group, unit, default, range and description of each variable.
+    """
     return _tables()[0]
 
 
 def groups() -> tuple:
-    """The namelist groups (``Group``), from the core."""
+    """The namelist groups, from the core's declarations.
+
+    Returns
+    -------
+    tuple of Group
+        Each group's name and description, in the namelist's order.
+    """
     return _tables()[1]
 
 
@@ -283,7 +312,13 @@ CTM_DX = float(_core.pf_version()[1])
 
 
 def defaults() -> dict[str, Any]:
-    """The model's default parameters (simulate keywords), from the core (SI units)."""
+    """The model's default parameters, from the core's declarations.
+
+    Returns
+    -------
+    dict of str to Any
+        ``simulate`` keyword -> default value (SI units).
+    """
     return {k: p.default for k, p in _keywords("model").items()}
 
 
@@ -370,7 +405,30 @@ def _flag(value, name: str) -> bool:
 
 
 def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> tuple[int, int]:
-    """(pad elements, averaged positions) of a profile; 0 positions if the pad does not fit."""
+    """The pad's elements and the averaged positions of a profile.
+
+    Parameters
+    ----------
+    n_points : int
+        Number of profile points.
+    dx : float
+        Their spacing (m).
+    closed : bool, optional
+        A closed profile (default) or an open one.
+    **parameters : Any
+        ``simulate`` keywords that change the layout (``length``,
+        ``elements_per_sample``, ``substeps``, ``position_stride``, ...).
+
+    Returns
+    -------
+    tuple of (int, int)
+        (pad elements, averaged positions); 0 positions if the pad does not fit.
+
+    Raises
+    ------
+    PavefricError
+        If a parameter is out of its range.
+    """
     settings = {**_parameters(parameters),
                 ("surface", "dx"): _format(_spec("surface", "dx"), dx, "dx"),
                 ("surface", "closed"): _format(_spec("surface", "closed"),
@@ -392,22 +450,41 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
              closed: bool = True, series: bool = False, **parameters: Any):
     """Run the friction model on a profile and return an ``xarray.Dataset``.
 
-    Parameters
-    ----------
-    heights_m : profile heights in metres (1-D), at uniform spacing ``dx`` (m).
-    speeds_kmh : sliding speeds in km/h.
-    closed : a closed Circular Track Meter circle (True) or an open profile.
-    series : also return per-position ``mu_inst``, ``hydro_load``,
-        ``penetration`` and ``contact_elements``.
-    **parameters : the namelist's model variables (SI units); ``viscosity`` is
-        the rubber's C, ``water_viscosity`` the water's eta. See ``defaults()``
-        and docs/inputs.md.
-
     The values go to the core as namelist text and are read, checked and
     run exactly as the program reads a scene file, so the variables and
     attributes are those of the program's NetCDF output, bit for bit.
     Suspicious values raise a ``PavefricWarning`` (also in
     ``ds.attrs["warnings"]``).
+
+    Parameters
+    ----------
+    heights_m : iterable of float
+        Profile heights in metres (1-D), at uniform spacing ``dx``.
+    dx : float
+        The spacing (m).
+    speeds_kmh : iterable of float or float
+        Sliding speeds in km/h.
+    closed : bool, optional
+        A closed Circular Track Meter circle (default) or an open profile.
+    series : bool, optional
+        Also return per-position ``mu_inst``, ``hydro_load``, ``penetration``
+        and ``contact_elements``.
+    **parameters : Any
+        The namelist's model variables (SI units); ``viscosity`` is the
+        rubber's C, ``water_viscosity`` the water's eta. See ``defaults()``
+        and docs/inputs.md.
+
+    Returns
+    -------
+    xarray.Dataset
+        The program's output variables and attributes (docs/outputs.md).
+
+    Raises
+    ------
+    PavefricError
+        If a value is bad (naming the group, the variable and the value).
+    PavefricKeywordError
+        If a keyword is not a model variable.
     """
     import xarray as xr
 
@@ -559,11 +636,30 @@ def hydro_load(h_out, h_in: float, prefactor: float = 1.0):
 
 def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
         progress: bool | None = None) -> Path:
-    """Run the scene namelist at ``path`` as the program does; return the output path.
+    """Run the scene namelist at ``path`` as the program does.
 
     A batch scene (with a ``&batch`` group) is computed profile by profile
-    through the core, with a progress bar (``progress``: default when
-    stderr is a terminal), resuming from the journal of an interrupted run.
+    through the core, with a progress bar, resuming from the journal of an
+    interrupted run.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scene namelist.
+    output : str or os.PathLike, optional
+        The NetCDF file to write (default: the scene's ``&output file``).
+    progress : bool, optional
+        A batch's progress bar on stderr (default: when stderr is a terminal).
+
+    Returns
+    -------
+    pathlib.Path
+        The output written.
+
+    Raises
+    ------
+    PavefricError
+        If the scene is bad or the run fails (nothing is written then).
     """
     command = "pavefric.run(" + shlex.quote(str(path)) + (
         f", output={shlex.quote(str(output))})" if output else ")")
@@ -727,8 +823,26 @@ def store_long_attributes(ds):
 
 
 def open_dataset(path: str | os.PathLike):
-    """Read a pavefric NetCDF output into memory as an ``xarray.Dataset``
-    (long attributes restored: ``restore_long_attributes``)."""
+    """Read a pavefric NetCDF output into memory.
+
+    Long attributes, stored as variables, are restored
+    (``restore_long_attributes``). ``pavefric.open`` is the same function.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A scene's or a batch's output file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The file's variables and attributes, loaded (the file is closed).
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no such file.
+    """
     import xarray as xr
 
     with xr.open_dataset(path, engine="netcdf4") as ds:
@@ -751,9 +865,29 @@ def _text_coordinates(ds):
 
 @dataclass
 class Scene:
-    """A scene namelist as the core reads it: the profile (heights in m,
-    spacing dx in m), the speeds, and the model parameters as ``simulate``
-    keywords."""
+    """A scene namelist as the core reads it (``load_scene``).
+
+    Parameters
+    ----------
+    name : str
+        The scene's name (its file's stem).
+    heights : numpy.ndarray
+        The profile's heights (m), preprocessed as the scene says.
+    dx : float
+        Their spacing (m).
+    closed : bool
+        A closed Circular Track Meter circle (True) or an open profile.
+    speeds_kmh : numpy.ndarray
+        The sliding speeds (km/h).
+    parameters : dict
+        The model parameters as ``simulate`` keywords (SI units).
+    series : bool
+        Whether per-position series are written.
+    profile_file : str
+        The profile file the scene reads.
+    output_file : str
+        The scene's output file (``&output file``).
+    """
 
     name: str
     heights: np.ndarray
@@ -779,7 +913,24 @@ def load_scene(path: str | os.PathLike) -> Scene:
 
     ``parameters`` holds the scene's model variables (every ``simulate``
     keyword, defaults included) exactly as the core read them, so
-    ``scene.simulate()`` gives the program's numbers bit for bit."""
+    ``scene.simulate()`` gives the program's numbers bit for bit.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scene namelist.
+
+    Returns
+    -------
+    Scene
+        The profile, speeds and parameters.
+
+    Raises
+    ------
+    PavefricError
+        If the scene or its profile is missing or bad (the message names the
+        group, the variable and the value).
+    """
     (np_, ns, dx, closed, series, ntext, profile_file, output_file,
      status, message) = _core.pf_scene_info(_b(os.fspath(path)))
     _check(status, message)
@@ -796,12 +947,28 @@ def load_scene(path: str | os.PathLike) -> Scene:
 
 @dataclass
 class Profile:
-    """A profile as the core reads and preprocesses it.
+    """A profile as the core reads and preprocesses it (``read_profile``).
 
-    ``heights`` (m) at spacing ``dx`` (m) are fit for analysis; ``report``
-    says what preprocessing did; ``raw_x``, ``raw_heights`` (m, NaN at
-    dropouts) are the file's points for checking; ``dropout_fraction`` and
-    ``spike`` are per-sample quality flags (used for texture validity)."""
+    Parameters
+    ----------
+    heights : numpy.ndarray
+        Heights (m) at spacing ``dx``, fit for analysis.
+    dx : float
+        Spacing of ``heights`` (m).
+    path : str
+        The file read.
+    report : dict
+        What preprocessing did (points read, trimmed, dropouts, ...;
+        ``chainage`` (m) for a NetCDF profile).
+    raw_x : numpy.ndarray
+        The file's positions (m), for checking.
+    raw_heights : numpy.ndarray
+        The file's heights (m), NaN at dropouts.
+    dropout_fraction : numpy.ndarray
+        Per sample of ``heights``: the fraction interpolated over dropouts.
+    spike : numpy.ndarray
+        Per sample of ``heights``: whether it was a spike (texture validity).
+    """
 
     heights: np.ndarray
     dx: float

@@ -12,10 +12,26 @@ def is_batch(ds) -> bool:
 
 def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
                   labels: Sequence[str] | None = None, title: str | None = None) -> str:
-    """Friction coefficient against sliding speed, one curve per dataset (or path).
+    """Friction coefficient against sliding speed, one curve per dataset.
 
-    A batch output (one file) is drawn by :func:`plot_batch` instead: friction
-    along the road. Returns the PNG path.
+    A batch output (one file) is drawn by ``plot_batch`` instead: friction
+    along the road.
+
+    Parameters
+    ----------
+    datasets : sequence of xarray.Dataset or path-like
+        Outputs of ``simulate`` or ``run``, or their files.
+    output : str or os.PathLike
+        The PNG file to write.
+    labels : sequence of str, optional
+        One label per dataset (default: from the files or the datasets).
+    title : str, optional
+        The figure's title.
+
+    Returns
+    -------
+    str
+        The PNG path.
     """
     import matplotlib
 
@@ -127,7 +143,25 @@ def plot_batch(ds, output: str | os.PathLike, title: str | None = None) -> str:
 
 def plot_profile(profile, output: str | os.PathLike, title: str | None = None,
                  xlim: tuple | None = None) -> str:
-    """Raw points (dropouts as gaps) against the cleaned profile, in mm."""
+    """Raw points (dropouts as gaps) against the cleaned profile, in mm.
+
+    Parameters
+    ----------
+    profile : Profile
+        A profile from ``read_profile``.
+    output : str or os.PathLike
+        The PNG file to write.
+    title : str, optional
+        The upper panel's title (default: the file's name, format, points and
+        dropouts).
+    xlim : tuple, optional
+        The distance range shown (mm).
+
+    Returns
+    -------
+    str
+        The PNG path.
+    """
     import matplotlib
 
     matplotlib.use("Agg")

@@ -24,12 +24,35 @@ __all__ = ["read_profile", "list_profiles", "write_profiles", "ProfileEntry", "e
 
 def element_profile(heights, dx: float, element_length: float = 0.87e-3, *,
                     closed: bool = True, phase: float = 0.0) -> tuple[np.ndarray, float]:
-    """The profile the pad's elements see (``&pad element_length``): the core's
-    own box filter and resampling of ``heights`` (m, spacing ``dx`` m) to
-    ``element_length``, the grid starting ``phase`` (a fraction in [0, 1)) of
-    an element along. Returns (heights, spacing); a closed profile's spacing
-    is adjusted to a whole number of elements round it. ``simulate`` runs
-    four phases of this and averages them (docs/model.md)."""
+    """The profile the pad's elements see (``&pad element_length``).
+
+    The core's own box filter and resampling; ``simulate`` runs four phases
+    of this and averages them (docs/model.md).
+
+    Parameters
+    ----------
+    heights : array_like
+        Heights (m).
+    dx : float
+        Their spacing (m).
+    element_length : float, optional
+        The pad's element length (m), default the CTM's 0.87 mm.
+    closed : bool, optional
+        A closed profile (default) or an open one.
+    phase : float, optional
+        Where the element grid starts, as a fraction of an element in [0, 1).
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, float)
+        The heights (m) at the elements, and their spacing (m); a closed
+        profile's spacing is adjusted to a whole number of elements round it.
+
+    Raises
+    ------
+    PavefricError
+        If an argument is out of range.
+    """
     z = np.ascontiguousarray(heights, dtype=float).ravel()
     if z.size < 1 or not np.all(np.isfinite(z)):
         raise PavefricError("element_profile: heights must be finite and not empty")
@@ -64,16 +87,45 @@ def read_profile(path: str | os.PathLike, height_unit: str | None = None, *,
     """Read a profile file and make it fit for analysis with the core's ISO
     13473-1 preprocessing, exactly as a scene reads its profile.
 
-    Formats (``format='auto'`` detects them): plain text, CSV, laser profiler
-    export, NetCDF (one or many profiles; ``profile_name`` chooses one, empty
-    means the file's only profile). Keywords of ``&preprocess``: dropouts,
-    trim_plates, plate_threshold, plate_min_length, plate_buffer,
-    spike_slope, resample_dx, lowpass_wavelength. ``dx`` (m) is
-    ``&surface dx``: the spacing when the file gives neither distances nor a
-    spacing (default: the CTM's 0.87 mm), else it must agree with the file's.
     The arguments go to the core as &surface and &preprocess namelist text,
     read and checked by the same code as a scene file's (defaults from its
-    declarations). ``report['chainage']`` holds a NetCDF profile's chainage (m).
+    declarations).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The profile file: plain text, CSV, a laser profiler's export, or
+        NetCDF (one or many profiles).
+    height_unit : str, optional
+        The file's height unit (``'m'``, ``'mm'``, ``'um'``) when it does not
+        say.
+    format : str, optional
+        ``'auto'`` (default: detected), or the format by name.
+    x_column : str, optional
+        The column of distances (CSV).
+    z_column : str, optional
+        The column of heights (CSV).
+    dx : float, optional
+        ``&surface dx`` (m): the spacing when the file gives neither distances
+        nor a spacing (default: the CTM's 0.87 mm), else it must agree with
+        the file's.
+    profile_name : str, optional
+        Which profile of a NetCDF file (empty: the file's only one).
+    **preprocess
+        Keywords of ``&preprocess``: dropouts, trim_plates, plate_threshold,
+        plate_min_length, plate_buffer, spike_slope, resample_dx,
+        lowpass_wavelength.
+
+    Returns
+    -------
+    Profile
+        Heights (m), spacing, the raw points and the preprocessing report
+        (``report['chainage']``: a NetCDF profile's chainage, m).
+
+    Raises
+    ------
+    PavefricError
+        If the file is missing or bad, or a keyword is unknown or out of range.
     """
     known = {p.name for p in parameters() if p.group == "preprocess"}
     unknown = sorted(set(preprocess) - known)
@@ -115,8 +167,15 @@ def read_profile(path: str | os.PathLike, height_unit: str | None = None, *,
 
 @dataclass(frozen=True)
 class ProfileEntry:
-    """One profile of a NetCDF profile file: its name and chainage (m; None
-    when the file gives none)."""
+    """One profile of a NetCDF profile file.
+
+    Parameters
+    ----------
+    name : str
+        The profile's name.
+    chainage : float or None
+        Its distance along the road (m; None when the file gives none).
+    """
 
     name: str
     chainage: float | None
@@ -124,7 +183,23 @@ class ProfileEntry:
 
 def list_profiles(path: str | os.PathLike) -> list[ProfileEntry]:
     """The profiles of a NetCDF profile file, in file order, as the core
-    reads them (names, chainage)."""
+    reads them.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A NetCDF profile file (``write_profiles``).
+
+    Returns
+    -------
+    list of ProfileEntry
+        Each profile's name and chainage.
+
+    Raises
+    ------
+    PavefricError
+        If the file is missing or not a profile file.
+    """
     n, nchars, has_chainage, status, message = _core.pf_profile_list_info(_b(os.fspath(path)))
     _check(status, message)
     codes, ends, chainage, status, message = _core.pf_profile_list(_b(os.fspath(path)), int(n),
@@ -152,17 +227,42 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
     """Write profiles to one NetCDF file that ``read_profile``, scenes
     (``&surface profile_file``) and batches read.
 
-    ``heights``: a 2-D array (profiles x points; one length for all) or a
-    list of 1-D arrays (any lengths: the CF contiguous ragged layout); a
-    1-D array is one profile; a ``Profile`` from ``read_profile`` stands for
-    its heights. The file is never written over a file the profiles came
-    from, nor onto a FIFO, a device or a directory (the rule of every
-    pavefric writer). Values in ``units`` ('m', 'mm' or 'um'); NaN
-    marks a dropout. ``dx``: the spacing (m), one number or one per profile
-    (None: the reader's default or the scene's dx). ``names``: one per
-    profile (default '1', '2', ...), ``chainage``: distance along the road
-    (m) of each profile. Written to a temporary name and renamed, so a failed
-    write leaves no partial file. Returns the path.
+    The file is never written over a file the profiles came from, nor onto a
+    FIFO, a device or a directory (the rule of every pavefric writer); it is
+    written to a temporary name and renamed, so a failed write leaves no
+    partial file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    heights : array_like, list of array_like or Profile
+        A 2-D array (profiles x points), or a list of 1-D arrays (any lengths:
+        the CF contiguous ragged layout); a 1-D array is one profile; a
+        ``Profile`` stands for its heights. NaN marks a dropout.
+    dx : float or sequence of float, optional
+        The spacing (m), one number or one per profile (None: the reader's
+        default or the scene's dx).
+    names : sequence of str, optional
+        One name per profile (default '1', '2', ...).
+    chainage : sequence of float, optional
+        Distance along the road (m) of each profile.
+    units : str, optional
+        The heights' unit: 'm' (default), 'mm' or 'um'.
+    title : str, optional
+        The file's title attribute.
+    compress : bool, optional
+        Compress the heights (zlib).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    PavefricError
+        If the path may not be written or the arguments disagree.
     """
     import netCDF4
 

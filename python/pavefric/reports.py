@@ -25,10 +25,14 @@ def machine_description() -> str:
 
 
 def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats: int = 3,
-                    report: str | None = None, also_dry: bool = False) -> list:
+                    report: str | None = None, also_dry: bool = False,
+                    quiet: bool = False) -> list:
     """Run the accuracy-cost study on each scene; write CSV, NetCDF and a plot
-    under ``outdir``; with ``report``, a Markdown page and its figure."""
+    under ``outdir``; with ``report``, a Markdown page and its figure.
+    Progress (runs done, elapsed, left) on stderr unless ``quiet``."""
     from . import accuracy
+    from .core import load_scene
+    from .progress import Progress
 
     out = Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
@@ -38,19 +42,32 @@ def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats:
         runs.append((scene, None, Path(scene).stem))
         if also_dry:
             runs.append((scene, {"depth": 0.0}, Path(scene).stem + "_dry"))
+    # the runs to make: each knob's settings (a dry scene has no wet
+    # tolerance), the default settings and each tolerance
+    steps = 0
+    for scene, overrides, _ in runs:
+        depth = (overrides or {}).get("depth", load_scene(scene).parameters["depth"])
+        steps += sum(len(v) for k, v in accuracy.KNOBS.items()
+                     if depth > 0 or k != "wet_tolerance")
+        steps += 1 + len(accuracy.TOLERANCES)
+    progress = Progress("accuracy", steps, "runs", quiet=quiet)
     for scene, overrides, stem in runs:
         t0 = time.perf_counter()
         table = accuracy.study(scene, speeds_kmh=speeds, repeats=repeats, overrides=overrides,
-                               label=stem)
+                               label=stem,
+                               on_step=lambda what: progress.advance(what=f"{stem}, {what}"))
         accuracy.to_csv(table, out / f"accuracy_{stem}.csv")
         accuracy.to_netcdf(table, out / f"accuracy_{stem}.nc")
+        progress.clear()
         print(f"accuracy: {stem}: {table.sizes['setting']} settings in "
               f"{time.perf_counter() - t0:.1f} s -> {out}/accuracy_{stem}.csv")
         tables.append(table)
         t0 = time.perf_counter()
         table.attrs["tolerance_rows"] = accuracy.tolerance_study(
             scene, table["mu_limit"].values, table["speed_kmh"].values, repeats=repeats,
-            overrides=overrides)
+            overrides=overrides,
+            on_step=lambda what: progress.advance(what=f"{stem}, {what}"))
+        progress.clear()
         with open(out / f"tolerance_{stem}.csv", "w", encoding="utf-8") as fh:
             fh.write("tolerance,estimate,actual,substeps,time_s,cost,met\n")
             for r in table.attrs["tolerance_rows"]:
@@ -58,6 +75,7 @@ def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats:
                          f"{r['substeps']},{r['time_s']:.6g},{r['cost']:.4g},{int(r['met'])}\n")
         print(f"accuracy: {stem}: tolerances in {time.perf_counter() - t0:.1f} s "
               f"-> {out}/tolerance_{stem}.csv")
+    progress.close()
     png = accuracy.plot(tables, out / "accuracy.png", title="error against cost, per knob")
     print(f"accuracy: wrote {png}")
     rec = accuracy.recommend(tables)

@@ -14,12 +14,31 @@ def texture(heights_m, dx: float | None = None, *, closed: bool = True,
             segment_length: float = 0.1, slope_suppression: bool = True) -> dict:
     """Mean profile depth (ISO 13473-1 / ASTM E1845), RMS height and RMS slope.
 
-    ``heights_m`` is an array (with ``dx`` in m) or a ``Profile`` from
-    ``read_profile``, whose dropout and spike flags then make segments with
-    more than 10 % dropouts or 5 % spikes invalid (not averaged), as ISO
-    13473-1 says. Returns a dict with ``mpd`` (m), ``n_segments``,
-    ``n_valid``, ``msd`` (m, per segment, valid or not), ``rms_height`` (m)
-    and ``rms_slope`` (-).
+    Parameters
+    ----------
+    heights_m : array_like or Profile
+        Heights (m), or a ``Profile`` from ``read_profile``, whose dropout and
+        spike flags then make segments with more than 10 % dropouts or 5 %
+        spikes invalid (not averaged), as ISO 13473-1 says.
+    dx : float, optional
+        The spacing (m); not needed with a ``Profile``.
+    closed : bool, optional
+        A closed profile (default): segments wrap round.
+    segment_length : float, optional
+        Segment length (m), 0.1 by the standard.
+    slope_suppression : bool, optional
+        Remove each segment's linear trend (the standard's slope suppression).
+
+    Returns
+    -------
+    dict
+        ``mpd`` (m), ``n_segments``, ``n_valid``, ``msd`` (m, per segment,
+        valid or not), ``rms_height`` (m) and ``rms_slope`` (-).
+
+    Raises
+    ------
+    PavefricError
+        If the profile is shorter than one segment or the spacing is bad.
     """
     use_quality = 0
     if hasattr(heights_m, "dropout_fraction"):
@@ -57,7 +76,21 @@ def speed_constant(mpd_m: float) -> float:
 
 def ifi(dft20: float, mpd_m: float) -> dict:
     """International Friction Index (ASTM E1960) from a DFT value at 20 km/h
-    and the mean profile depth (m): ``{"F60": ..., "Sp": ...}`` (Sp in km/h)."""
+    and the mean profile depth.
+
+    Parameters
+    ----------
+    dft20 : float
+        DFT friction at 20 km/h.
+    mpd_m : float
+        Mean profile depth (m).
+
+    Returns
+    -------
+    dict
+        ``{"F60": ..., "Sp": ...}``: the friction number and the speed
+        constant (km/h).
+    """
     sp = speed_constant(mpd_m)
     fr60 = dft20 * math.exp((20.0 - 60.0) / sp)
     return {"F60": F60_A + F60_B * fr60, "Sp": sp}

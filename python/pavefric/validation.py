@@ -58,8 +58,12 @@ def statistics(measured, model) -> dict:
 
 def validate(table: str | None = None, report: str = "docs/validation.md",
              outdir: str = "outputs/validation", quick: bool = False,
-             surfaces_dir: str = "inputs/surfaces") -> dict:
+             surfaces_dir: str = "inputs/surfaces", quiet: bool = False) -> dict:
+    """Regenerate the reference surfaces, calibrate alpha on the 20 km/h
+    measurements, compare at every measured point and write the report.
+    Progress (sections done, elapsed, left) on stderr unless ``quiet``."""
     from . import calibrate as cal
+    from .progress import Progress
     from .reference_surfaces import DESCRIPTION, MPD_MM, NAMES, paper_table, write_surfaces
     from .texture import ifi
 
@@ -67,13 +71,18 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
     out = Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
+    # sections: surfaces, fit, comparison, diagnostic fit, a curve per
+    # surface, figures and report
+    progress = Progress("validate", 5 + len(NAMES), "sections", quiet=quiet)
 
     # 1. the reference surfaces, regenerated from scratch
     regen = out / "surfaces"
     write_surfaces(regen, table, alpha=CALIBRATED_ALPHA, log=lambda *a: None)
     same = all((regen / f"{n}.txt").read_text() == (Path(surfaces_dir) / f"{n}.txt").read_text()
                for n in NAMES if (Path(surfaces_dir) / f"{n}.txt").exists())
+    progress.clear()
     print(f"validate: surfaces regenerated in {regen} (identical to {surfaces_dir}: {same})")
+    progress.advance(what="surfaces")
 
     # 2. calibration on the 20 km/h measurements only
     rows = cal.read_measurements(table, source="dft")
@@ -86,9 +95,12 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
     alpha = fit.values["alpha"]
     lin = fit.interval["alpha"]
     prof = fit.profile["alpha"]
+    progress.clear()
     print(f"validate: alpha = {alpha:.4g}, {100 * fit.level:g}% interval "
           f"{_interval_text(lin)} (linearised), {_interval_text(prof['interval'], prof)} "
           f"(profile likelihood); {fit.runs} model runs")
+
+    progress.advance(what="calibration of alpha")
 
     # 3. the comparison at every measured point
     model = cal.Model(regen, overrides)
@@ -106,11 +118,14 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
     stats["predicted (40, 60 km/h)"] = statistics(meas[speeds != FIT_SPEED],
                                                   pred[speeds != FIT_SPEED])
 
+    progress.advance(what="comparison")
+
     # 4. a diagnostic, not a validation: alpha and beta fitted on all points
     diag = cal.fit(rows, regen, ["alpha", "beta"], start={"alpha": alpha, "beta": 1.75},
                    overrides=overrides)
     diag_pred = cal.Model(regen, overrides).predict(rows, diag.values)
     diag_stats = statistics(meas, diag_pred)
+    progress.advance(what="diagnostic fit of alpha and beta")
 
     # 5. curves and texture
     # both lists hold 20 km/h: the report quotes the wet fraction there
@@ -137,6 +152,7 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
                              dry["mu"].values[np.isin(curve_speeds, list(paper['model_dry'][name]))]
                              - np.array([paper["model_dry"][name][float(s)] for s in curve_speeds
                                          if float(s) in paper["model_dry"][name]]))))}
+        progress.advance(what=f"curves of {name}")
     figs = _figures(Path(report).parent / "figures", rows, pred, curves, paper, alpha)
     result = {"alpha": alpha, "alpha_interval": lin,
               "alpha_profile_interval": prof["interval"],
@@ -147,6 +163,8 @@ def validate(table: str | None = None, report: str = "docs/validation.md",
               "seconds": time.perf_counter() - t0}
     (out / "validation.json").write_text(json.dumps(result, indent=2, default=float))
     _write_report(Path(report), result, rows, pred, figs, DESCRIPTION, MPD_MM, table, quick)
+    progress.advance(what="figures and report")
+    progress.close()
     print(f"validate: wrote {report}, {out / 'comparison.csv'} "
           f"({result['seconds']:.0f} s)")
     return result
