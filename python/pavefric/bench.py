@@ -610,7 +610,7 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
         "length": section("length", scaling_length(log, largest)),
         "threads": section("threads", threads(log, tile=tile)),
         "api_threads": section("api_threads", api_threads(
-            log, tile=4 if quick else 32, repeats=1 if quick else 9)),
+            log, tile=4 if quick else 32, repeats=1 if quick else 25)),
         "mpi": section("mpi", mpi_batch(log)),
         "reading": section("reading", bench_io.reading(log, largest,
                                                        small=min(largest, 1_000_000))),
