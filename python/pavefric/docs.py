@@ -249,7 +249,8 @@ def outputs_markdown() -> str:
         "## Batch files",
         "",
         "A batch scene (`&batch`) writes one file over many profiles with dimensions "
-        "`(profile, water_depth, speed_kmh)`, per-profile `status` and "
+        "`(profile, water_depth, speed_kmh)` (`profile` numbers the profiles 1, 2, ...; "
+        "their names are the label `profile_name`), per-profile `status` and "
         "`error_message`, `n_warnings` and `warning_message` (the warnings a scene "
         "of the profile alone records), and `chainage` when the profile list gives it: "
         "docs/cluster.md.",
