@@ -14,7 +14,7 @@ module pavefric_fsys
       & join_path, is_absolute
    public :: output_guard_type, check_output_path, canonical_path, os_message
    public :: register_temporary, release_temporary, install_signal_cleanup, test_pause
-   public :: remove_stale_temporaries
+   public :: remove_stale_temporaries, setting
 
    !> Kinds of file (pavefric_file_id in pavefric_posix.c).
    integer, parameter :: kind_missing = 0, kind_regular = 1

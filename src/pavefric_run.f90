@@ -15,7 +15,7 @@ module pavefric_run
    use pavefric_outputs, only: output_metadata_type
    use pavefric_netcdf, only: write_results, temporary_name
    use pavefric_fsys, only: make_directory, dir_name, remove_file, output_guard_type, &
-      & check_output_path, release_temporary
+      & check_output_path, release_temporary, setting
    use pavefric_texture, only: texture_metrics
    use pavefric_ifi, only: ifi_from_sweep
    use pavefric_model, only: parameter_table, parameters_namelist
@@ -407,7 +407,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
       character(len=512) :: msg
-      character(len=:), allocatable :: reason, head
+      character(len=:), allocatable :: reason
       integer :: unit, ios, k
       logical :: ok
       call temporary_name(path, tmp)
@@ -422,12 +422,7 @@ contains
          else
             reason = trim(msg)
          end if
-         if (what == "-o") then
-            head = "-o '" // path // "'"
-         else
-            head = what // " = '" // path // "'"
-         end if
-         call fatal_error(error, head // ": cannot write in directory '" // &
+         call fatal_error(error, setting(what, path) // ": cannot write in directory '" // &
             & dir_name(path) // "' (" // reason // "); create the directory " // &
             & "or give another path", stat_io)
          return

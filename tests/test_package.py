@@ -107,15 +107,20 @@ def test_a_broken_citation_fails_the_schema():
         raise AssertionError("CITATION.cff without authors passed the schema")
 
 
-def _imported_modules() -> set[str]:
+def _top_level_imports(directory: Path) -> set[str]:
+    """The top-level modules the .py files of `directory` import (absolute imports)."""
     found = set()
-    for path in PACKAGE.glob("*.py"):
+    for path in directory.glob("*.py"):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.Import):
                 found |= {a.name.split(".")[0] for a in node.names}
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 found.add(node.module.split(".")[0])
     return found
+
+
+def _imported_modules() -> set[str]:
+    return _top_level_imports(PACKAGE)
 
 
 def test_every_runtime_dependency_is_imported():
@@ -162,13 +167,7 @@ NO_DEPS_INSTALLS = {"captif-slp"}
 
 
 def _test_imports() -> set[str]:
-    found = set()
-    for path in HERE.glob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-            if isinstance(node, ast.Import):
-                found |= {a.name.split(".")[0] for a in node.names}
-            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-                found.add(node.module.split(".")[0])
+    found = _top_level_imports(HERE)
     local = {p.stem for p in HERE.glob("*.py")}
     return {m for m in found - local if m not in sys.stdlib_module_names and m != "pavefric"}
 

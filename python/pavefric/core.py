@@ -169,8 +169,7 @@ def atomic_output(path: str | os.PathLike, inputs=()):
         The temporary file to write.
     """
     check_output(path, inputs)
-    text, _ = _core.pf_temporary_name(_b(os.fspath(path)))
-    tmp = Path(_text(text))
+    tmp = Path(_text(_core.pf_temporary_name(_b(os.fspath(path)))))
     try:
         yield tmp
         os.replace(tmp, path)

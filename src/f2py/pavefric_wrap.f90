@@ -753,16 +753,18 @@ end subroutine pf_check_output
 !> name), after removing those that writers killed outright left beside
 !> `path` (their process is gone): one naming and one clean-up for every
 !> writer, Python's included.
-subroutine pf_temporary_name(path, tmp, removed)
-   use, intrinsic :: iso_c_binding, only: c_int
-   use pavefric_fsys, only: remove_stale_temporaries, process_id
-   use pavefric_format, only: to_str
+subroutine pf_temporary_name(path, tmp)
+   use pavefric_netcdf, only: temporary_name
+   use pavefric_fsys, only: release_temporary
    implicit none
    character(len=*), intent(in) :: path
    character(len=4096), intent(out) :: tmp
-   integer(c_int), intent(out) :: removed
-   removed = remove_stale_temporaries(path)
-   tmp = path // ".tmp" // to_str(process_id())
+   character(len=:), allocatable :: name
+   call temporary_name(path, name)
+   ! the caller (Python's atomic_output) removes or renames it, not the
+   ! program's signal handlers
+   call release_temporary(name)
+   tmp = name
 end subroutine pf_temporary_name
 
 !> Points of the profile the pad's elements see (&pad element_length) at a
