@@ -26,7 +26,7 @@ module pavefric_outputs
    !> Dimensions: per speed, or per position and speed (series).
    integer, parameter :: dim_speed = 1, dim_position_speed = 2
 
-   integer, parameter :: n_outputs = 24
+   integer, parameter :: n_outputs = 25
 
    !> One result variable.
    type :: output_var_type
@@ -96,9 +96,10 @@ contains
          & "microtexture piercing the film, force-weighted over contacts and positions")
       t(14) = var("mean_film_thickness", "m", "water film left under the pad, averaged " // &
          & "over elements and positions")
-      t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step: " // &
-         & "twice the larger of its last two changes as the step was halved (&numerics " // &
-         & "tolerance)")
+      t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step " // &
+         & "(&numerics tolerance): twice the larger of its last two changes as the step " // &
+         & "was halved, or where mu is extrapolated, the larger of the extrapolated " // &
+         & "value's change and the last change")
       t(22) = var("substeps_used", "1", "time steps per element spacing the tolerance " // &
          & "reached (&numerics tolerance)", out_int64)
       t(23) = var("mu_hysteresis", "1", "the rubber's part of mu: the work of the facet " // &
@@ -108,6 +109,9 @@ contains
       t(24) = var("mu_adhesion", "1", "the local friction's part of mu: the work of " // &
          & "mu_loc on the facets per unit load and distance slid (0 with mu_loc = 0); " // &
          & "mu = mu_hysteresis + mu_adhesion")
+      t(25) = var("mu_extrapolated", "1", "1 where mu (and its parts) is the Richardson " // &
+         & "value 2 mu(s) - mu(s/2) of the last two passes, 0 where it is the finest " // &
+         & "pass (&numerics tolerance, time_scheme)", out_int64)
       t(15) = var("mu_inst", "1", "instantaneous friction coefficient (Kane et al. 2017, " // &
          & "Eq. 11)", dims=dim_position_speed)
       t(16) = var("hydro_load", "N", "load carried by the water film (Eq. 15)", &
@@ -181,7 +185,7 @@ contains
          output_present = allocated(res%mu_inst)
       case (19:20)
          output_present = allocated(res%film_thickness)
-      case (21:22)
+      case (21:22, 25)
          output_present = allocated(res%mu_error)
       case default
          output_present = .true.
@@ -261,6 +265,8 @@ contains
          values(1:ns) = res%mu_hysteresis
       case (24)
          values(1:ns) = res%mu_adhesion
+      case (25)
+         values(1:ns) = merge(1.0_wp, 0.0_wp, res%extrapolated)
       end select
    end subroutine output_values
 

@@ -115,6 +115,96 @@ def study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float] | None = No
 
 TOLERANCES = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
 
+# substeps of the order study, coarsest first; the reference is the
+# Richardson value of the two finest
+ORDER_SUBSTEPS = [1, 2, 4, 8, 16, 32, 64, 128, 256, 512]
+
+
+def fitted_order(dt, err, floor: float) -> float:
+    """Least-squares slope of log(err) against log(dt) over the points whose
+    error is above ``floor`` (the reference's own uncertainty) and whose time
+    step is at most a quarter of the coarsest (the asymptotic range); NaN
+    with fewer than three such points."""
+    dt = np.asarray(dt, dtype=float)
+    err = np.asarray(err, dtype=float)
+    keep = (err > floor) & (dt <= dt.max() / 4.0)
+    if keep.sum() < 3:
+        return float("nan")
+    return float(np.polyfit(np.log(dt[keep]), np.log(err[keep]), 1)[0])
+
+
+def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
+                substeps: Sequence[int] = ORDER_SUBSTEPS, overrides: dict | None = None,
+                label: str | None = None,
+                on_step: Callable[[str], None] | None = None) -> dict:
+    """The time integrator's order on one scene: mu at each ``substeps`` (one
+    backward-Euler pass each, ``tolerance = 0``), the Richardson value
+    2 mu(s) - mu(s/2) of each pair, and the largest error of either over the
+    speeds against the reference (the Richardson value of the two finest
+    passes; its own uncertainty, taken as the change of the extrapolated
+    value between the two finest pairs, is the floor below which no error is
+    fitted). The fitted slopes of log error against log dt are the orders."""
+    from .core import load_scene
+
+    scene = load_scene(scene_path)
+    scene.parameters.update(overrides or {})
+    speeds = np.asarray(speeds_kmh, dtype=float)
+    s = np.asarray(substeps, dtype=int)
+    mu = []
+    for k in s:
+        ds = scene.simulate(speeds_kmh=speeds, series=False, substeps=int(k), tolerance=0.0)
+        mu.append(ds["mu"].values.copy())
+        if on_step:
+            on_step(f"order, substeps = {k}")
+    mu = np.array(mu)
+    rich = 2.0 * mu[1:] - mu[:-1]
+    ref = rich[-1]
+    floor = float(np.max(np.abs(rich[-1] - rich[-2])))
+    err_e = np.max(np.abs(mu - ref), axis=1)
+    err_r = np.max(np.abs(rich - ref), axis=1)
+    dt = 1.0 / s          # in units of dx / V
+    return {"label": label or Path(scene_path).stem,
+            "wet_model": (str(scene.parameters.get("wet_model", "kane2017"))
+                          if scene.parameters["depth"] > 0 else "dry"),
+            "substeps": s.tolist(), "dt": dt.tolist(),
+            "euler_error": err_e.tolist(), "extrapolated_error": [np.nan] + err_r.tolist(),
+            "floor": floor,
+            "euler_order": fitted_order(dt[:-1], err_e[:-1], floor),
+            "extrapolated_order": fitted_order(dt[1:-1], err_r[:-1], floor)}
+
+
+def plot_order(rows: Sequence[dict], path: str | os.PathLike) -> str:
+    """Log-log error against the time step, backward Euler and extrapolated,
+    one colour per scene, with each fitted slope in the legend."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), dpi=110, sharey=True)
+    for i, r in enumerate(rows):
+        dt = np.asarray(r["dt"])
+        for ax, key, order in ((axes[0], "euler_error", r["euler_order"]),
+                               (axes[1], "extrapolated_error", r["extrapolated_order"])):
+            err = np.asarray(r[key], dtype=float)
+            keep = np.isfinite(err) & (err > 0)
+            ax.loglog(dt[keep], err[keep], marker="o", ms=3, lw=1, color=f"C{i % 10}",
+                      ls="--" if r["wet_model"] == "dry" else "-",
+                      label=f"{r['label']} ({r['wet_model']}): slope {order:.2f}")
+    for ax, title in zip(axes, ("backward Euler, one pass", "extrapolated, 2 mu(s) - mu(s/2)")):
+        x = np.array([1.0 / 512, 1.0])
+        ax.loglog(x, 1e-2 * x, color="0.6", lw=0.8, ls=":")
+        ax.loglog(x, 1e-2 * x**2, color="0.3", lw=0.8, ls=":")
+        ax.set_title(title + " (dotted: slopes 1 and 2)", fontsize=9)
+        ax.set_xlabel("time step (dx / V; 1 = the paper's)", fontsize=8)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=6, loc="lower right")
+    axes[0].set_ylabel("largest |mu - mu(limit)| over the speeds", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return str(path)
+
 
 def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequence[float],
                     tolerances: Sequence[float] = TOLERANCES, repeats: int = 3,
@@ -133,19 +223,22 @@ def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequenc
     if on_step:
         on_step("default settings")
     rows = []
-    for tol in tolerances:
-        ds, seconds = _timed(scene, speeds, repeats, tolerance=float(tol))
-        if on_step:
-            on_step(f"tolerance = {tol:g}")
-        rows.append({
-            "tolerance": float(tol),
-            "estimate": float(np.max(ds["mu_error_estimate"].values)),
-            "actual": float(np.max(np.abs(ds["mu"].values - np.asarray(mu_limit)))),
-            "substeps": int(np.max(ds["substeps_used"].values)),
-            "time_s": seconds,
-            "cost": seconds / t_default,
-            "met": bool(np.all(ds["mu_error_estimate"].values <= tol)),
-        })
+    for scheme in ("euler", "extrapolated"):
+        for tol in tolerances:
+            ds, seconds = _timed(scene, speeds, repeats, tolerance=float(tol),
+                                 time_scheme=scheme)
+            if on_step:
+                on_step(f"tolerance = {tol:g} ({scheme})")
+            rows.append({
+                "scheme": scheme,
+                "tolerance": float(tol),
+                "estimate": float(np.max(ds["mu_error_estimate"].values)),
+                "actual": float(np.max(np.abs(ds["mu"].values - np.asarray(mu_limit)))),
+                "substeps": int(np.max(ds["substeps_used"].values)),
+                "time_s": seconds,
+                "cost": seconds / t_default,
+                "met": bool(np.all(ds["mu_error_estimate"].values <= tol)),
+            })
     return rows
 
 
