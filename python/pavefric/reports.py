@@ -99,6 +99,8 @@ def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats:
 
 def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speeds, repeats,
                              also_dry=False, order_png: Path | None = None):
+    from . import accuracy
+
     figdir = report.parent / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
     shutil.copyfile(png, figdir / "accuracy.png")
@@ -172,11 +174,11 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         o = t.attrs.get("order")
         if not o:
             continue
-        s = list(o["substeps"])
+        at8 = list(o["substeps"]).index(8)
         e, r = o["euler_error"], o["extrapolated_error"]
         lines.append(f"| {o['label']} | {o['wet_model']} | {o['euler_order']:.2f} | "
-                     f"{o['extrapolated_order']:.2f} | {e[0]:.2g}, {e[s.index(8)]:.2g} | "
-                     f"{r[1]:.2g}, {r[s.index(8)]:.2g} |")
+                     f"{o['extrapolated_order']:.2f} | {e[0]:.2g}, {e[at8]:.2g} | "
+                     f"{r[1]:.2g}, {r[at8]:.2g} |")
     lines += [
         "",
         "Why not a higher order: the friction is the rubber's dissipation, and most "
