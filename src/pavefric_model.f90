@@ -404,11 +404,14 @@ contains
          & "two halvings the estimate is made of) (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
-         & "with tolerance > 0: 'extrapolated' reports the Richardson value of the last " // &
-         & "two backward-Euler passes, 2 mu(s) - mu(s/2), where the passes are in their " // &
-         & "first-order range and its estimate is the smaller (mu_extrapolated says where); " // &
-         & "'euler' reports the finest pass. The same tolerance is met at 2 to 4 times " // &
-         & "fewer substeps (docs/accuracy.md)", choices="extrapolated euler")
+         & "'exact': a Kelvin-Voigt rubber on a road without a film is integrated exactly " // &
+         & "in time, from contact event to event (other rubbers and films run backward " // &
+         & "Euler, with a warning); needs position_stride = 1. With tolerance > 0, " // &
+         & "'extrapolated' reports the Richardson value of the last two backward-Euler " // &
+         & "passes, 2 mu(s) - mu(s/2), where the passes are in their first-order range and " // &
+         & "its estimate is the smaller (mu_extrapolated says where), meeting a tolerance at " // &
+         & "2 to 4 times fewer substeps; 'euler' reports the finest pass (docs/accuracy.md)", &
+         & choices="extrapolated euler exact")
       s(p_friction_scheme) = text("numerics", "friction_scheme", "energy", "", "model", &
          & "'energy': the friction of a step is the work the facet forces do, the " // &
          & "elements' stored energy change plus their dissipation (trapezoidal in time), " // &
@@ -1266,6 +1269,23 @@ contains
             & to_str(max_substeps) // "; give substeps <= " // to_str(max_substeps / 4) // &
             & " (or tolerance = 0 to run substeps as given)")
          return
+      end if
+      if (allocated(m%time_scheme)) then
+         if (m%time_scheme == "exact" .and. m%position_stride /= 1) then
+            call fatal_error(error, "&numerics time_scheme = 'exact' with position_stride = " // &
+               & to_str(m%position_stride) // ": the exact integrator follows the road " // &
+               & "through every position; give position_stride = 1 (or another time_scheme)")
+            return
+         end if
+         if (m%time_scheme == "exact" .and. allocated(m%friction_scheme)) then
+            if (m%friction_scheme == "paper") then
+               call fatal_error(error, "&numerics time_scheme = 'exact' with friction_scheme " // &
+                  & "= 'paper': the exact integrator gives the energy scheme's friction " // &
+                  & "(the facets' work); give friction_scheme = 'energy' (or another " // &
+                  & "time_scheme)")
+               return
+            end if
+         end if
       end if
       call validate_rubber(m, error)
    end subroutine validate_model

@@ -26,7 +26,7 @@ module pavefric_outputs
    !> Dimensions: per speed, or per position and speed (series).
    integer, parameter :: dim_speed = 1, dim_position_speed = 2
 
-   integer, parameter :: n_outputs = 25
+   integer, parameter :: n_outputs = 26
 
    !> One result variable.
    type :: output_var_type
@@ -112,6 +112,10 @@ contains
       t(25) = var("mu_extrapolated", "1", "1 where mu (and its parts) is the Richardson " // &
          & "value 2 mu(s) - mu(s/2) of the last two passes, 0 where it is the finest " // &
          & "pass (&numerics tolerance, time_scheme)", out_int64)
+      t(26) = var("exact_integrator_ran", "", "whether the rubber was integrated exactly in " // &
+         & "time, from contact event to event (&numerics time_scheme = 'exact': a " // &
+         & "Kelvin-Voigt rubber with memory on a road without a film), else backward Euler", &
+         & out_flag)
       t(15) = var("mu_inst", "1", "instantaneous friction coefficient (Kane et al. 2017, " // &
          & "Eq. 11)", dims=dim_position_speed)
       t(16) = var("hydro_load", "N", "load carried by the water film (Eq. 15)", &
@@ -267,6 +271,8 @@ contains
          values(1:ns) = res%mu_adhesion
       case (25)
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%extrapolated)
+      case (26)
+         values(1:ns) = merge(1.0_wp, 0.0_wp, res%exact_integrator_ran)
       end select
    end subroutine output_values
 

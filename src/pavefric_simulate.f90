@@ -17,6 +17,7 @@ module pavefric_simulate
    use pavefric_squeeze, only: squeeze_film
    use pavefric_facet, only: facet_friction, facet_tangent
    use pavefric_balance, only: dry_roots, wet_roots, gap_field, lanes
+   use pavefric_kv_exact, only: kv_exact_lane, kv_exact_type
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
@@ -124,6 +125,8 @@ module pavefric_simulate
       integer(i8), allocatable :: memory_updates(:)
       !> Whether the elements carried memory at this speed.
       logical, allocatable :: viscous_memory_ran(:)
+      !> Whether the speed ran the exact Kelvin-Voigt integrator.
+      logical, allocatable :: exact_integrator_ran(:)
       !> Whether a load-carrying film took part in the balance at this speed.
       logical, allocatable :: bearing_ran(:)
       !> Whether a friction-changing film ran at this speed.
@@ -163,7 +166,12 @@ module pavefric_simulate
       logical :: spin_short = .false.
       logical :: viscous_memory_ran = .false., bearing_ran = .false.
       logical :: friction_film_ran = .false.
-      !> stat_memory when the speed's work arrays could not be allocated.
+      !> Whether the speed ran the exact Kelvin-Voigt integrator
+      !> (time_scheme = 'exact'), and the position where its events ran away.
+      logical :: exact_ran = .false.
+      integer :: exact_bad_position = 0
+      !> stat_memory when the speed's work arrays could not be allocated,
+      !> stat_internal when the exact integrator's events ran away.
       integer :: failed = 0
    end type speed_summary_type
 
@@ -418,6 +426,7 @@ contains
       acc%bearing_evaluations = acc%bearing_evaluations + r%bearing_evaluations
       acc%memory_updates = acc%memory_updates + r%memory_updates
       acc%viscous_memory_ran = acc%viscous_memory_ran .or. r%viscous_memory_ran
+      acc%exact_integrator_ran = acc%exact_integrator_ran .and. r%exact_integrator_ran
       acc%bearing_ran = acc%bearing_ran .or. r%bearing_ran
       acc%friction_film_ran = acc%friction_film_ran .or. r%friction_film_ran
       if (allocated(acc%mu_error) .and. allocated(r%mu_error)) then
@@ -608,7 +617,13 @@ contains
             res%substeps_used(j) = mm%substeps
             res%extrapolated(j) = .false.
             if (.not. active(j)) cycle
-            if (level >= 2) then
+            if (level == 1 .and. r%exact_integrator_ran(k)) then
+               ! exact in time: two grids give the same friction but for the
+               ! roots' rounding, which this measures (twice the change)
+               est = 2.0_wp * abs(change)
+               res%mu_error(j) = est
+               if (est <= m%tolerance) active(j) = .false.
+            else if (level >= 2) then
                est = 2.0_wp * max(abs(change), abs(last_change(j)))
                if (extrapolate .and. asymptotic(last_change(j), change) .and. &
                   & rich > -huge(1.0_wp)) then
@@ -666,6 +681,7 @@ contains
       to%bearing_evaluations(j) = from%bearing_evaluations(k)
       to%memory_updates(j) = from%memory_updates(k)
       to%viscous_memory_ran(j) = from%viscous_memory_ran(k)
+      to%exact_integrator_ran(j) = from%exact_integrator_ran(k)
       to%bearing_ran(j) = from%bearing_ran(k)
       to%friction_film_ran(j) = from%friction_film_ran(k)
       to%mean_local_friction(j) = from%mean_local_friction(k)
@@ -699,8 +715,8 @@ contains
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
       integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
-      integer, allocatable :: spinups(:)
-      logical, allocatable :: shorts(:)
+      integer, allocatable :: spinups(:), exact_bad(:)
+      logical, allocatable :: shorts(:), exact_ran(:)
       logical :: friction_film
       character(len=:), allocatable :: effect
 
@@ -733,7 +749,13 @@ contains
          & res%max_balance_residual(ns), res%mean_hydro_load(ns), res%max_compression(ns), &
          & res%n_clamped(ns), res%bearing_evaluations(ns), res%memory_updates(ns), &
          & res%viscous_memory_ran(ns), res%bearing_ran(ns), res%friction_film_ran(ns), &
-         & res%mean_local_friction(ns), res%mean_film_thickness(ns), spinups(ns), shorts(ns), stat=stat)
+         & res%exact_integrator_ran(ns), &
+         & res%mean_local_friction(ns), res%mean_film_thickness(ns), spinups(ns), shorts(ns), &
+         & exact_bad(ns), exact_ran(ns), stat=stat)
+      if (stat == 0) then
+         exact_bad = 0
+         exact_ran = .false.
+      end if
       if (stat == 0 .and. want_series) then
          allocate(res%mu_inst(geo%n_avg, ns), res%hydro_load(geo%n_avg, ns), &
             & res%penetration(geo%n_avg, ns), res%contact_elements(geo%n_avg, ns), &
@@ -756,6 +778,9 @@ contains
       ! result.
       n_chunks = (ns + lanes - 1) / lanes
       !$ n_chunks = max(n_chunks, min(ns, omp_get_max_threads()))
+      ! the exact integrator runs one speed at a time (its events are each
+      ! speed's own)
+      if (exact_scheme(m)) n_chunks = ns
       width = (ns + n_chunks - 1) / n_chunks
       n_chunks = (ns + width - 1) / width
       ! one thread on a thread whose OpenMP pool came through fork() (it
@@ -800,7 +825,11 @@ contains
                res%friction_film_ran(j) = summary%friction_film_ran
                res%mean_local_friction(j) = summary%mean_local_friction
                res%mean_film_thickness(j) = summary%mean_film_thickness
-               res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), summary%failed /= 0)
+               res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), &
+                  & summary%failed == stat_memory .or. summary%failed == 1)
+               if (summary%failed == stat_internal) exact_bad(j) = summary%exact_bad_position
+               exact_ran(j) = summary%exact_ran
+               res%exact_integrator_ran(j) = summary%exact_ran
                spinups(j) = summary%spinup
                shorts(j) = summary%spin_short
             end associate
@@ -811,6 +840,24 @@ contains
       if (any(res%memory_updates < 0)) then
          call fatal_error(error, "not enough memory for the work arrays of a speed", stat_memory)
          return
+      end if
+      if (any(exact_bad /= 0)) then
+         j = findloc(exact_bad /= 0, .true., dim=1)
+         call fatal_error(error, "&numerics time_scheme = 'exact': the contact events of one " // &
+            & "step ran away at " // to_str(speeds_kmh(j)) // " km/h, position " // &
+            & to_str(exact_bad(j)) // " of the pad's grid; run with time_scheme = " // &
+            & "'extrapolated' (and report the scene: it is a bug)", stat_internal)
+         return
+      end if
+      if (exact_scheme(m)) then
+         do j = 1, ns
+            if (exact_ran(j) .or. .not. res%viscous_memory_ran(j)) cycle
+            call add_warning(res%warnings, "&numerics time_scheme = 'exact' integrates the " // &
+               & "Kelvin-Voigt rubber on a road without a film; at " // to_str(speeds_kmh(j)) // &
+               & " km/h this scene's rubber or film ran backward Euler at substeps = " // &
+               & to_str(m%substeps) // " (use tolerance > 0 for its error)")
+            exit
+         end do
       end if
       res%n_spinup = maxval(spinups)
       if (any(shorts)) call add_warning(res%warnings, "the rubber's memory outlasts " // &
@@ -1234,6 +1281,15 @@ contains
       end if
       any_load = any(load_film)
       any_friction = any(friction_film)
+      if (nl == 1 .and. exact_scheme(m) .and. .not. any_load .and. .not. any_friction .and. &
+         & rstep%memory(1)) then
+         select type (rubber)
+         type is (kelvin_voigt_rubber)
+            call slide_exact(geo, m, rubber, v(1), out(1), mu_inst, hydro_load, penetration, &
+               & contact, film_thickness, local_friction)
+            return
+         end select
+      end if
 
       ns_state = rubber%state_size()
       ! the lane count as a run-time value: the lane loops then compile to
@@ -1786,6 +1842,85 @@ contains
          end do
       end do
    end subroutine lane_remember
+
+   !> Whether the scene asks for the exact Kelvin-Voigt integrator.
+   pure logical function exact_scheme(m)
+      type(model_type), intent(in) :: m
+      exact_scheme = .false.
+      if (allocated(m%time_scheme)) exact_scheme = m%time_scheme == "exact"
+   end function exact_scheme
+
+   !> One speed of a Kelvin-Voigt pad on a road without a film, integrated
+   !> exactly in time (pavefric_kv_exact); the summary and series as slide's.
+   subroutine slide_exact(geo, m, rubber, v, out, mu_inst, hydro_load, penetration, &
+         & contact, film_thickness, local_friction)
+      type(geometry_type), intent(in) :: geo
+      type(model_type), intent(in) :: m
+      type(kelvin_voigt_rubber), intent(in) :: rubber
+      real(wp), intent(in) :: v
+      type(speed_summary_type), intent(inout) :: out
+      real(wp), intent(out), optional :: mu_inst(:,:), hydro_load(:,:), penetration(:,:)
+      integer, intent(out), optional :: contact(:,:)
+      real(wp), intent(out), optional :: film_thickness(:,:), local_friction(:,:)
+      type(kv_exact_type) :: r
+      type(rubber_step_type) :: decay
+      real(wp) :: k, tau, dt
+      integer :: spin
+      logical :: short
+      k = m%width * geo%dx_el * rubber%stiffness
+      tau = rubber%viscosity / rubber%stiffness
+      dt = geo%advance / v
+      ! a closed profile spins up until the relaxed start no longer shows
+      ! (the memory decays by exp(-dt / tau) a step)
+      spin = geo%n_spin
+      short = .false.
+      if (geo%closed) then
+         allocate(decay%mode_decay(1, 1), decay%mode_weight(1, 1))
+         decay%mode_decay = exp(-dt / tau)
+         decay%mode_weight = 1.0_wp
+         call lap_spinup(decay, 1, geo, m%load / k, spin, short)
+      end if
+      if (present(mu_inst)) then
+         call kv_exact_lane(geo%z, geo%h, geo%adhesion, geo%clamped_at, geo%n_el, geo%spacing, &
+            & geo%npf, geo%closed, geo%n_avg, spin, k, tau, dt, geo%advance, m%load, r, &
+            & mu_inst(:, 1), penetration(:, 1), contact(:, 1))
+         hydro_load(:, 1) = 0.0_wp
+         if (present(film_thickness)) then
+            film_thickness(:, 1) = 0.0_wp
+            local_friction(:, 1) = merge(m%mu_loc, 0.0_wp, contact(:, 1) > 0)
+         end if
+      else
+         call kv_exact_lane(geo%z, geo%h, geo%adhesion, geo%clamped_at, geo%n_el, geo%spacing, &
+            & geo%npf, geo%closed, geo%n_avg, spin, k, tau, dt, geo%advance, m%load, r)
+      end if
+      if (r%status == 2) then
+         out%failed = 1
+         return
+      end if
+      if (r%status == 1) then
+         out%failed = stat_internal
+         out%exact_bad_position = r%bad_position
+         return
+      end if
+      out%mu_hysteresis = r%mu_hysteresis
+      out%mu_adhesion = r%mu_adhesion
+      out%mu = r%mu_hysteresis + r%mu_adhesion
+      out%hydroplaning_fraction = real(r%n_nocontact, wp) / real(max(geo%n_avg, 1), wp)
+      out%wet_fraction = 0.0_wp
+      out%max_balance_residual = r%max_balance_residual
+      out%mean_hydro_load = 0.0_wp
+      out%max_compression = r%max_compression
+      out%n_clamped = r%n_clamped
+      out%bearing_evaluations = 0
+      out%memory_updates = int(geo%n_el, i8) * int(geo%n_avg + spin, i8)
+      out%spinup = spin
+      out%spin_short = short
+      out%viscous_memory_ran = .true.
+      out%bearing_ran = .false.
+      out%friction_film_ran = .false.
+      out%mean_local_friction = m%mu_loc
+      out%exact_ran = .true.
+   end subroutine slide_exact
 
    !> The error of a refined profile that does not fit in memory.
    pure subroutine no_memory(n, fine, error)

@@ -142,11 +142,13 @@ def test_accuracy_command_progress_and_quiet(tmp_path):
     r = subprocess.run(args, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     lines = _progress_lines(r.stderr, "accuracy")
-    # a dry scene: 20 knob settings (no wet tolerance), the default, 5 tolerances
-    assert 1 <= len(lines) <= 10 and all(int(m["total"]) == 26 for m in lines), r.stderr
-    assert lines[-1]["done"] == "26" and lines[-1]["left"] == "0:00"
-    assert lines[-1]["what"] == "ctm_dry, tolerance = 0.0001"
-    assert "accuracy: 26/26" not in r.stdout                 # results only on stdout
+    # a dry scene: 20 knob settings (no wet tolerance), the default, 5
+    # tolerances for each of two time schemes, 10 passes of the order study
+    # and its exact run
+    assert 1 <= len(lines) <= 10 and all(int(m["total"]) == 42 for m in lines), r.stderr
+    assert lines[-1]["done"] == "42" and lines[-1]["left"] == "0:00"
+    assert lines[-1]["what"] == "ctm_dry, order, exact"
+    assert "accuracy: 42/42" not in r.stdout                 # results only on stdout
     q = subprocess.run([*args, "-q"], capture_output=True, text=True, timeout=600)
     assert q.returncode == 0, q.stderr
     assert _progress_lines(q.stderr, "accuracy") == [] and " elapsed, " not in q.stderr

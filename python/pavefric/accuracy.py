@@ -163,7 +163,18 @@ def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
     err_e = np.max(np.abs(mu - ref), axis=1)
     err_r = np.max(np.abs(rich - ref), axis=1)
     dt = 1.0 / s          # in units of dx / V
-    return {"label": label or Path(scene_path).stem,
+    # the exact integrator where the scene allows it (a Kelvin-Voigt rubber
+    # on a road without a film), its error and its cost against one pass
+    _, t_one = _timed(scene, speeds, 3, substeps=int(s[0]), tolerance=0.0, time_scheme="euler")
+    ex, t_exact = _timed(scene, speeds, 3, substeps=int(s[0]), tolerance=0.0,
+                         time_scheme="exact")
+    if on_step:
+        on_step("order, exact")
+    exact_ran = bool(np.all(ex["exact_integrator_ran"].values))
+    return {"exact_ran": exact_ran,
+            "exact_error": float(np.max(np.abs(ex["mu"].values - ref))) if exact_ran else None,
+            "exact_cost": t_exact / t_one,
+            "label": label or Path(scene_path).stem,
             "wet_model": (str(scene.parameters.get("wet_model", "kane2017"))
                           if scene.parameters["depth"] > 0 else "dry"),
             "substeps": s.tolist(), "dt": dt.tolist(),

@@ -1,0 +1,135 @@
+"""The exact Kelvin-Voigt integrator (&numerics time_scheme = 'exact', issue
+23): the pad stepped from contact event to event. Its answer is the limit
+backward Euler converges to as the time step shrinks; the test's reference
+is that limit, estimated independently from two very fine Euler passes
+(Richardson of substeps 512 and 1024, itself within ~3e-7 of the limit on
+these scenes: docs/accuracy.md)."""
+import os
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import ROOT, program, write_scene
+
+SPEEDS = [20.0, 60.0]
+
+
+def euler_limit(scene, **kw):
+    fine = [scene.simulate(speeds_kmh=SPEEDS, substeps=s, tolerance=0.0, time_scheme="euler",
+                           **kw) for s in (512, 1024)]
+    return {v: 2.0 * fine[1][v].values - fine[0][v].values
+            for v in ("mu", "mu_hysteresis", "mu_adhesion")}
+
+
+@pytest.mark.parametrize("name,viscosity", [("GSP", 100.0), ("GSS", 100.0), ("VTAC", 100.0),
+                                            ("RSBA", 1.0e4)])
+def test_exact_is_the_limit_of_backward_euler(name, viscosity):
+    scene = pavefric.load_scene(ROOT / "inputs" / "surfaces" / f"{name}.nml")
+    kw = dict(depth=0.0, viscosity=viscosity)
+    limit = euler_limit(scene, **kw)
+    exact = scene.simulate(speeds_kmh=SPEEDS, time_scheme="exact", tolerance=0.0, **kw)
+    one = scene.simulate(speeds_kmh=SPEEDS, time_scheme="euler", tolerance=0.0, **kw)
+    assert exact["exact_integrator_ran"].values.tolist() == [1, 1]
+    for v in ("mu", "mu_hysteresis", "mu_adhesion"):
+        np.testing.assert_allclose(exact[v].values, limit[v], rtol=0, atol=2e-6, err_msg=v)
+    # and the paper's single step is far from it (the point of the scheme)
+    if name != "RSBA":
+        assert np.abs(one["mu"].values - limit["mu"]).max() > 1e-2
+    np.testing.assert_allclose(exact["mu_hysteresis"].values + exact["mu_adhesion"].values,
+                               exact["mu"].values, rtol=0, atol=1e-15)
+    assert np.all(exact["max_balance_residual"].values < 1e-12)
+
+
+def test_exact_needs_no_refinement():
+    """The exact answer does not depend on the grid's substeps (the road is
+    the same piecewise-linear line), and a tolerance run stops after one
+    doubling with an estimate at rounding level."""
+    scene = pavefric.load_scene(ROOT / "inputs" / "ctm_dry.nml")
+    one = scene.simulate(time_scheme="exact", tolerance=0.0)
+    four = scene.simulate(time_scheme="exact", tolerance=0.0, substeps=4)
+    np.testing.assert_allclose(one["mu"].values, four["mu"].values, rtol=0, atol=1e-12)
+    tol = scene.simulate(time_scheme="exact", tolerance=1e-9)
+    assert np.all(tol["substeps_used"].values == 2)
+    assert np.all(tol["mu_error_estimate"].values <= 1e-12)
+
+
+@pytest.fixture(scope="module")
+def gsp():
+    return pavefric.load_scene(ROOT / "inputs" / "surfaces" / "GSP.nml")
+
+
+def test_a_vertical_shift_changes_nothing(gsp):
+    kw = dict(speeds_kmh=SPEEDS, depth=0.0, time_scheme="exact", tolerance=0.0)
+    base = pavefric.simulate(gsp.heights, gsp.dx, **kw)
+    up = pavefric.simulate(gsp.heights + 0.37e-3, gsp.dx, **kw)
+    np.testing.assert_allclose(up["mu"].values, base["mu"].values, rtol=1e-9)
+
+
+def test_series_are_the_steps_of_the_mean(gsp):
+    ds = gsp.simulate(speeds_kmh=SPEEDS, depth=0.0, time_scheme="exact", tolerance=0.0,
+                      series=True)
+    np.testing.assert_allclose(ds["mu_inst"].mean("position").values, ds["mu"].values,
+                               rtol=1e-12)
+    assert np.all(ds["contact_elements"].values >= 1)
+    assert np.all(np.isfinite(ds["penetration"].values))
+
+
+@pytest.mark.parametrize("closed", [True, False])
+def test_open_profiles_and_a_rounded_pad(gsp, closed):
+    """Open profiles and a rounded pad: the same limit as backward Euler
+    (open: the means differ by the first position's weight, O(1 / positions))."""
+    z = gsp.heights[:600]
+    kw = dict(depth=0.0, closed=closed, shape="rounded", radius=0.05)
+    exact = pavefric.simulate(z, gsp.dx, SPEEDS, time_scheme="exact", tolerance=0.0, **kw)
+    fine = [pavefric.simulate(z, gsp.dx, SPEEDS, substeps=s, tolerance=0.0,
+                              time_scheme="euler", **kw)["mu"].values for s in (256, 512)]
+    limit = 2.0 * fine[1] - fine[0]
+    atol = 1e-5 if closed else 3e-3
+    np.testing.assert_allclose(exact["mu"].values, limit, rtol=0, atol=atol)
+    assert np.all(exact["max_balance_residual"].values < 1e-12)
+
+
+def test_other_rubbers_and_films_run_euler_and_say_so(gsp):
+    with pytest.warns(pavefric.PavefricWarning, match="time_scheme = 'exact'.*backward Euler"):
+        wet = gsp.simulate(speeds_kmh=SPEEDS, time_scheme="exact", tolerance=0.0)   # 1 mm water
+    assert wet["exact_integrator_ran"].values.tolist() == [0, 0]
+    euler = gsp.simulate(speeds_kmh=SPEEDS, time_scheme="euler", tolerance=0.0)
+    assert np.array_equal(wet["mu"].values, euler["mu"].values)
+    # no memory (speed 0): nothing to integrate, no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        still = gsp.simulate(speeds_kmh=[0.0], depth=0.0, time_scheme="exact", tolerance=0.0)
+    assert still["exact_integrator_ran"].values.tolist() == [0]
+
+
+@pytest.mark.parametrize("setting,words", [
+    ("position_stride = 2", "position_stride = 2: the exact integrator"),
+    ("friction_scheme = 'paper'", "friction_scheme = 'paper': the exact integrator")])
+def test_settings_it_cannot_honour_are_errors(tmp_path, profile_m, setting, words):
+    scene = write_scene(tmp_path, profile=profile_m,
+                        groups={"numerics": f"time_scheme = 'exact', {setting}"})
+    r = subprocess.run([program(), str(scene), "-o", str(tmp_path / "o.nc")],
+                       capture_output=True, text=True)
+    assert r.returncode != 0
+    assert "&numerics time_scheme = 'exact'" in r.stderr and words in r.stderr
+    assert not (tmp_path / "o.nc").exists()
+
+
+def test_threads_change_no_bit(tmp_path, profile_m):
+    scene = write_scene(tmp_path, profile=profile_m, groups={
+        "numerics": "time_scheme = 'exact'", "operation": "speeds_kmh = 5, 20, 40, 60, 80",
+        "output": "series = .true."})
+    out = {}
+    for n in ("1", "2"):
+        path = tmp_path / f"t{n}.nc"
+        r = subprocess.run([program(), str(scene), "-o", str(path)], capture_output=True,
+                           text=True, env={**os.environ, "OMP_NUM_THREADS": n})
+        assert r.returncode == 0, r.stderr
+        out[n] = xr.open_dataset(path).load()
+    assert out["1"]["exact_integrator_ran"].values.all()
+    for var in ("mu", "mu_hysteresis", "mu_inst", "penetration", "max_balance_residual"):
+        assert np.array_equal(out["1"][var].values, out["2"][var].values), var
