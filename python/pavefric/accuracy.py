@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import time
+import warnings
 from pathlib import Path
 from typing import Callable, Sequence
 
@@ -166,8 +167,11 @@ def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
     # the exact integrator where the scene allows it (a Kelvin-Voigt rubber
     # on a road without a film), its error and its cost against one pass
     _, t_one = _timed(scene, speeds, 3, substeps=int(s[0]), tolerance=0.0, time_scheme="euler")
-    ex, t_exact = _timed(scene, speeds, 3, substeps=int(s[0]), tolerance=0.0,
-                         time_scheme="exact")
+    with warnings.catch_warnings():
+        # a scene the exact scheme does not cover says so; here it is expected
+        warnings.simplefilter("ignore")
+        ex, t_exact = _timed(scene, speeds, 3, substeps=int(s[0]), tolerance=0.0,
+                             time_scheme="exact")
     if on_step:
         on_step("order, exact")
     exact_ran = bool(np.all(ex["exact_integrator_ran"].values))

@@ -181,12 +181,22 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
                      f"{r[1]:.2g}, {r[at8]:.2g} | "
                      + (f"{o['exact_error']:.1g}, {o['exact_cost']:.2g}x |" if o["exact_ran"]
                         else "(backward Euler: a film or a Maxwell rubber) |"))
+    exact = [t.attrs["order"] for t in tables
+             if t.attrs.get("order") and t.attrs["order"]["exact_ran"]]
+    exact_note = ""
+    if exact:
+        exact_note = (f" ({min(o['exact_error'] for o in exact):.1g} to "
+                      f"{max(o['exact_error'] for o in exact):.1g} here; "
+                      "tests/test_exact.py compares it with a finer one, to 2e-6), at "
+                      f"{min(o['exact_cost'] for o in exact):.2g} to "
+                      f"{max(o['exact_cost'] for o in exact):.2g} times the cost of one "
+                      "Euler pass")
     lines += [
         "",
         "`time_scheme = 'exact'` (last column) integrates the Kelvin–Voigt pad on a "
         "road without a film exactly, from contact event to event (docs/model.md, "
-        "\"Exact time integration\"): its error is that of the reference itself "
-        "(about 1e-7 here), at about the cost of one Euler pass. Wet scenes (the "
+        "\"Exact time integration\"): its error is the reference's own uncertainty"
+        f"{exact_note}. Wet scenes (the "
         "paper's bearing, the drainage film) and the Maxwell compound still run "
         "backward Euler under it, and say so (`exact_integrator_ran`).",
         "",
