@@ -170,7 +170,7 @@ def test_bench_counts_its_sections(monkeypatch, capsys, quiet):
         return f
 
     for name in ("sweep", "whole_program", "throughput", "scaling_elements", "scaling_length",
-                 "threads", "api_threads", "mpi_batch", "estimate_accuracy"):
+                 "threads", "api_threads", "mpi_batch", "estimate_accuracy", "accuracy_cost"):
         monkeypatch.setattr(bench, name, stub(name))
     monkeypatch.setattr(bench, "_reference", lambda: None)
     monkeypatch.setattr(bench, "PlainLoop", lambda tmp: None)
@@ -178,13 +178,13 @@ def test_bench_counts_its_sections(monkeypatch, capsys, quiet):
     monkeypatch.setattr(bench_mpi, "run", stub("batch"))
     monkeypatch.setattr(rubber_report, "cost", stub("rubber"))
     results = bench.run(quick=True, quiet=quiet)
-    assert list(results) == list(bench.SECTIONS) and len(calls) == 12
+    assert list(results) == list(bench.SECTIONS) and len(calls) == 13
     err = capsys.readouterr().err
     lines = _progress_lines(err, "bench")
     if quiet:
         assert lines == [] and err == ""
     else:
-        assert 1 <= len(lines) <= 10 and lines[-1]["done"] == "12"
-        assert lines[-1]["what"] == "estimate" and lines[-1]["left"] == "0:00"
+        assert 1 <= len(lines) <= 10 and lines[-1]["done"] == "13"
+        assert lines[-1]["what"] == "accuracy" and lines[-1]["left"] == "0:00"
         named = [m["what"] for m in lines]
         assert named == [s for s in bench.SECTIONS if s in named]   # in order

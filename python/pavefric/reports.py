@@ -381,6 +381,33 @@ def _targets_now(results: dict) -> list[str]:
             f"on the {len(est)} test scenes the rates were not fitted on "
             f"({_span([r['ratio'] for r in fit], 1, '{:.2f}')} on the {len(fit)} training "
             f"scenes; the program, one thread) | — | — | {_met(worst <= 2)} |")
+    el = results.get("elements") or []
+    if dry and wet and el:
+        big = el[-1]
+        rows += [
+            f"| issue 23: dry, N = 23, ≥ 2.5x the plain loop | core "
+            f"{_span([r['core'] / r['plain'] for r in dry], 1, '{:.2f}')}x the plain loop | "
+            f"{_span([r['plain'] for r in dry])} M | — | "
+            f"{_met(min(r['core'] / r['plain'] for r in dry) >= 2.5)} |",
+            f"| issue 23: wet (`kane2017`), N = 23, ≥ 8x the plain loop | core "
+            f"{_span([r['core'] / r['plain'] for r in wet], 1, '{:.1f}')}x the plain loop | "
+            f"{_span([r['plain'] for r in wet], 1e-6, '{:.1f}')} M | — | "
+            f"{_met(min(r['core'] / r['plain'] for r in wet) >= 8)} |",
+            f"| issue 23: N = {big['N']} per element-step no worse than 2x N = 23 | dry "
+            f"{el[0]['dry'] / big['dry']:.2f}x, wet {el[0]['wet'] / big['wet']:.2f}x | — | — | "
+            f"{_met(max(el[0]['dry'] / big['dry'], el[0]['wet'] / big['wet']) <= 2)} |",
+        ]
+    acc = results.get("accuracy") or []
+    for r in acc:
+        rows.append(
+            f"| issue 23: the default scene `{r['scene']}` to tolerance = {r['tolerance']:g} "
+            f"≤ 10x its default run | {r['ratio']:.1f}x with `time_scheme = '{r['scheme']}'` "
+            f"(substeps {r['substeps']}, estimate {r['estimate']:.1e}"
+            + ("" if r["met"] else ", tolerance not met") + ") | — | — | "
+            f"{_met(r['ratio'] <= 10 and r['met'])} |")
+    if acc:
+        rows.append("| issue 23: the Reynolds film ≤ 3x `kane2017` per element-step | not "
+                    "built yet (issue 21) | — | — | |")
     api = results.get("api_threads")
     if api:
         rows.append(
