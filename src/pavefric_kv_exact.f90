@@ -70,8 +70,8 @@ contains
       real(wp), allocatable :: zc(:), s(:), u(:), f(:), a0(:), a1(:), f0(:), sl(:)
       logical, allocatable :: touch(:)
       real(wp) :: delta, a_coef, b_coef, theta, rem, hstep, e, t_ev, t_min, w_step, adh_int
-      real(wp) :: ad_a, ad_b, f1, tolf, wk, hyst_sum, adh_sum, lo, hi, c_min
-      integer :: t, i, i_ev, nc, kp, kn, n_ev, stat, segments
+      real(wp) :: ad_a, ad_b, f1, tolf, wk, hyst_sum, adh_sum
+      integer :: t, i, i_ev, nc, kp, kn, n_ev, stat, segments, last_el
       logical :: series
 
       series = present(mu_inst)
@@ -83,36 +83,38 @@ contains
       tolf = 1.0e-12_wp * load
       wk = load / k
 
-      ! the first position: relaxed elements, the elastic balance
+      ! the first position: relaxed elements, and the pad landing on the
+      ! highest of them (its dashpots take the load from there, as backward
+      ! Euler's first step does in the limit of small steps)
       kp = node(-n_spin)
       do i = 1, n
          zc(i) = z(kp + (i - 1) * spacing)
       end do
-      ! sum max(0, delta + z_i - h_i) = W / k: bisection on the bracket
-      ! [min c, min c + W/k] (c_i = h_i - z_i), which holds the root
-      c_min = minval(h - zc)
-      lo = c_min
-      hi = c_min + wk
-      do i = 1, 200
-         delta = 0.5_wp * (lo + hi)
-         if (delta <= lo .or. delta >= hi) exit
-         if (sum(max(0.0_wp, delta + zc - h)) > wk) then
-            hi = delta
-         else
-            lo = delta
-         end if
-      end do
-      delta = hi
-      u = max(0.0_wp, delta + zc - h)
-      touch = u > 0.0_wp
-      f = merge(k * u, 0.0_wp, touch)
+      u = 0.0_wp
+      f = 0.0_wp
+      touch = .false.
+      i_ev = minloc(h - zc, dim=1)
+      delta = h(i_ev) - zc(i_ev)
+      touch(i_ev) = .true.
 
       hyst_sum = 0.0_wp
       adh_sum = 0.0_wp
       segments = 0
       if (.not. closed .and. n_avg >= 1) then
-         ! an open profile starts at its first averaged position: the
-         ! adhesion there is the node's (no segment before it)
+         ! an open profile starts at its first averaged position: its forces
+         ! are those the landing pad starts the first segment with (the
+         ! right limit), and the adhesion there is the node's
+         s = 0.0_wp
+         if (n_avg >= 2) then
+            do i = 1, n
+               s(i) = (z(node(1) + (i - 1) * spacing) - zc(i)) / dt
+            end do
+         end if
+         theta = 0.0_wp
+         t = 0
+         call contact_set()
+         if (res%status /= 0) return
+         f = f0
          call record_node(0, 0.0_wp, 0.0_wp, .true.)
       end if
       do t = -n_spin + 1, n_avg - 1
@@ -128,6 +130,7 @@ contains
          w_step = 0.0_wp
          adh_int = 0.0_wp
          n_ev = 0
+         last_el = 0
          do
             call contact_set()
             if (res%status /= 0) return
@@ -146,6 +149,10 @@ contains
                   t_ev = free_root(u(i) - delta + a_coef, a_coef + zc(i) - h(i), &
                      & b_coef + s(i), rem)
                end if
+               ! the element that changed side at this instant does not
+               ! change back within a rounding of it (no zero-length
+               ! round trips at a grazing contact)
+               if (i == last_el .and. t_ev <= 1.0e-9_wp * dt) cycle
                if (t_ev < t_min) then
                   t_min = t_ev
                   i_ev = i
@@ -174,6 +181,7 @@ contains
                   u(i) = u(i) * e
                end if
             end do
+            if (hstep > 0.0_wp) last_el = 0
             if (t_min > rem) exit
             ! the event: its element changes side
             n_ev = n_ev + 1
@@ -186,6 +194,7 @@ contains
             touch(i_ev) = .not. touch(i_ev)
             u(i_ev) = delta + zc(i_ev) - h(i_ev)
             f(i_ev) = 0.0_wp
+            last_el = i_ev
             if (t_min >= rem) exit
          end do
          ! the node: the road exactly at its samples again
@@ -265,6 +274,7 @@ contains
             touch(iw) = .false.
             u(iw) = delta + zc(iw) - h(iw)
             f(iw) = 0.0_wp
+            last_el = iw
          end do
          res%status = 1
          res%bad_position = t

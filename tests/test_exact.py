@@ -81,14 +81,15 @@ def test_series_are_the_steps_of_the_mean(gsp):
 @pytest.mark.parametrize("closed", [True, False])
 def test_open_profiles_and_a_rounded_pad(gsp, closed):
     """Open profiles and a rounded pad: the same limit as backward Euler
-    (open: the means differ by the first position's weight, O(1 / positions))."""
+    (open: the means differ by the first position's weight, O(1 / positions):
+    3e-5 measured)."""
     z = gsp.heights[:600]
     kw = dict(depth=0.0, closed=closed, shape="rounded", radius=0.05)
     exact = pavefric.simulate(z, gsp.dx, SPEEDS, time_scheme="exact", tolerance=0.0, **kw)
     fine = [pavefric.simulate(z, gsp.dx, SPEEDS, substeps=s, tolerance=0.0,
                               time_scheme="euler", **kw)["mu"].values for s in (256, 512)]
     limit = 2.0 * fine[1] - fine[0]
-    atol = 1e-5 if closed else 3e-3
+    atol = 1e-5 if closed else 2e-4
     np.testing.assert_allclose(exact["mu"].values, limit, rtol=0, atol=atol)
     assert np.all(exact["max_balance_residual"].values < 1e-12)
 
@@ -117,6 +118,21 @@ def test_settings_it_cannot_honour_are_errors(tmp_path, profile_m, setting, word
     assert r.returncode != 0
     assert "&numerics time_scheme = 'exact'" in r.stderr and words in r.stderr
     assert not (tmp_path / "o.nc").exists()
+
+
+def test_slow_memory_and_an_open_start_follow_euler():
+    """A slowly relaxing pad on an open profile (memory of ~60 steps, no
+    spin-up): the start matters, and the exact scheme starts as backward
+    Euler's limit does (relaxed elements, the pad landing on the highest);
+    found by a random search: it started from the elastic balance, 0.05 off."""
+    z = pavefric.load_scene(ROOT / "inputs" / "surfaces" / "GSS.nml").heights[:300]
+    kw = dict(depth=0.0, closed=False, viscosity=321.0, stiffness=1.72e5, load=0.095)
+    exact = pavefric.simulate(z, 0.87e-3, [40.0, 100.0], time_scheme="exact", tolerance=0.0,
+                              **kw)
+    fine = [pavefric.simulate(z, 0.87e-3, [40.0, 100.0], substeps=s, tolerance=0.0,
+                              time_scheme="euler", **kw)["mu"].values for s in (256, 512)]
+    np.testing.assert_allclose(exact["mu"].values, 2.0 * fine[1] - fine[0], rtol=0, atol=2e-4)
+    assert np.all(exact["max_balance_residual"].values < 1e-12)
 
 
 def test_threads_change_no_bit(tmp_path, profile_m):
