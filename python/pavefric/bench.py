@@ -112,8 +112,10 @@ def scaling_elements(ref, log, points: int = 8192):
         dx = DX / r
         z = spectral_profile(points, dx, rms=0.5e-3, wavelength_min=max(2e-3, 4 * dx),
                              wavelength_max=min(50e-3, points * dx / 4), seed=5)
-        dry, _, ds = _rate_core(z, dx, repeats=2)
-        wet, _, _ = _rate_core(z, dx, repeats=2, depth=1e-3)
+        # one element a sample (element_length = 0): the pad's own default
+        # length would resample every profile to 23 elements
+        dry, _, ds = _rate_core(z, dx, repeats=2, element_length=0.0)
+        wet, _, _ = _rate_core(z, dx, repeats=2, depth=1e-3, element_length=0.0)
         nref = min(points, max(64, 40000 // (23 * r)))
         numpy_rate, _ = _rate_reference(ref, z[:max(nref, 23 * r + 40)], dx)
         n = ds.attrs["pad_elements"]
