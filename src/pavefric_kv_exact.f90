@@ -71,7 +71,7 @@ contains
       logical, allocatable :: touch(:)
       real(wp) :: delta, a_coef, b_coef, theta, rem, hstep, e, t_ev, t_min, w_step, adh_int
       real(wp) :: ad_a, ad_b, f1, tolf, wk, hyst_sum, adh_sum
-      integer :: t, i, i_ev, nc, kp, kn, n_ev, stat, segments, last_el
+      integer :: t, i, i_ev, nc, kp, kn, n_ev, stat, segments, last_el, graze
       logical :: series
 
       series = present(mu_inst)
@@ -138,6 +138,7 @@ contains
             ! the earliest event
             t_min = huge(1.0_wp)
             i_ev = 0
+            graze = 0
             do i = 1, n
                if (touch(i)) then
                   if (sl(i) < 0.0_wp) then
@@ -152,12 +153,29 @@ contains
                ! the element that changed side at this instant does not
                ! change back within a rounding of it (no zero-length
                ! round trips at a grazing contact)
-               if (i == last_el .and. t_ev <= 1.0e-9_wp * dt) cycle
+               if (i == last_el .and. t_ev <= 1.0e-9_wp * dt) then
+                  ! an element that has just touched with no force and would
+                  ! leave at once only grazed the road: it stays free
+                  if (touch(i) .and. nc > 1) graze = i
+                  cycle
+               end if
                if (t_ev < t_min) then
                   t_min = t_ev
                   i_ev = i
                end if
             end do
+            if (graze /= 0) then
+               n_ev = n_ev + 1               ! (counted: no loop without end)
+               if (n_ev > events_per_element * n + 100) then
+                  res%status = 1
+                  res%bad_position = t
+                  return
+               end if
+               touch(graze) = .false.
+               u(graze) = delta + zc(graze) - h(graze)
+               f(graze) = 0.0_wp
+               cycle
+            end if
             hstep = min(t_min, rem)
             ! the segment's work and local friction, exactly
             do i = 1, n
