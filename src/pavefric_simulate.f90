@@ -716,7 +716,7 @@ contains
       class(film_model), allocatable :: film
       integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
       integer, allocatable :: spinups(:), exact_bad(:)
-      logical, allocatable :: shorts(:), exact_ran(:)
+      logical, allocatable :: shorts(:)
       logical :: friction_film
       character(len=:), allocatable :: effect
 
@@ -751,10 +751,9 @@ contains
          & res%viscous_memory_ran(ns), res%bearing_ran(ns), res%friction_film_ran(ns), &
          & res%exact_integrator_ran(ns), &
          & res%mean_local_friction(ns), res%mean_film_thickness(ns), spinups(ns), shorts(ns), &
-         & exact_bad(ns), exact_ran(ns), stat=stat)
+         & exact_bad(ns), stat=stat)
       if (stat == 0) then
          exact_bad = 0
-         exact_ran = .false.
       end if
       if (stat == 0 .and. want_series) then
          allocate(res%mu_inst(geo%n_avg, ns), res%hydro_load(geo%n_avg, ns), &
@@ -828,7 +827,6 @@ contains
                res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), &
                   & summary%failed == stat_memory .or. summary%failed == 1)
                if (summary%failed == stat_internal) exact_bad(j) = summary%exact_bad_position
-               exact_ran(j) = summary%exact_ran
                res%exact_integrator_ran(j) = summary%exact_ran
                spinups(j) = summary%spinup
                shorts(j) = summary%spin_short
@@ -851,7 +849,7 @@ contains
       end if
       if (exact_scheme(m)) then
          do j = 1, ns
-            if (exact_ran(j) .or. .not. res%viscous_memory_ran(j)) cycle
+            if (res%exact_integrator_ran(j) .or. .not. res%viscous_memory_ran(j)) cycle
             call add_warning(res%warnings, "&numerics time_scheme = 'exact' integrates the " // &
                & "Kelvin-Voigt rubber on a road without a film; at " // to_str(speeds_kmh(j)) // &
                & " km/h this scene's rubber or film ran backward Euler at substeps = " // &
