@@ -186,10 +186,21 @@ contains
       & out_path
    write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &
       & ", averaged positions: ", res%n_positions, ", effects: " // effects_text(res)
-   write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
+   ! the last column: mu's estimated error from the time step, when the run made one
+   if (allocated(res%mu_error)) then
+      write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning  " // &
+         & "mu_error_estimate"
+   else
+      write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
+   end if
    do j = 1, size(res%mu)
-      write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
-         & res%wet_fraction(j), res%hydroplaning_fraction(j)
+      if (allocated(res%mu_error)) then
+         write(output_unit, '(f11.3, f12.5, f15.4, f14.4, es19.2)') res%speed_kmh(j), &
+            & res%mu(j), res%wet_fraction(j), res%hydroplaning_fraction(j), res%mu_error(j)
+      else
+         write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
+            & res%wet_fraction(j), res%hydroplaning_fraction(j)
+      end if
    end do
    end subroutine report_scene
 

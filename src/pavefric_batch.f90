@@ -72,7 +72,7 @@ module pavefric_batch
 
    character(len=*), parameter :: journal_magic = "pavefric-journal"
    !> Version of the journal's format (1: pavefric 0.1.0, no checksums).
-   character(len=*), parameter :: journal_version = "2"
+   character(len=*), parameter :: journal_version = "3"
 
 contains
 
@@ -698,6 +698,7 @@ contains
       call move_alloc(from%n_clamped, to%n_clamped)
       call move_alloc(from%mu_hysteresis, to%mu_hysteresis)
       call move_alloc(from%mu_adhesion, to%mu_adhesion)
+      call move_alloc(from%mu_error, to%mu_error)
       call move_alloc(from%message, to%message)
    end subroutine move_alloc_block
 
@@ -921,6 +922,7 @@ contains
             blk%mu(:, d) = res%mu
             blk%mu_hysteresis(:, d) = res%mu_hysteresis
             blk%mu_adhesion(:, d) = res%mu_adhesion
+            if (allocated(res%mu_error)) blk%mu_error(:, d) = res%mu_error
             blk%wet(:, d) = res%wet_fraction
             blk%hydroplaning(:, d) = res%hydroplaning_fraction
             blk%residual(:, d) = res%max_balance_residual
@@ -947,7 +949,7 @@ contains
          blk%status = status_failed
          blk%message = printable_utf8(error%message)
          blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
-         blk%mu_hysteresis = 0; blk%mu_adhesion = 0
+         blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1
          blk%viscous = .false.
          blk%bearing = .false.
          return

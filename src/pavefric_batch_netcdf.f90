@@ -44,7 +44,7 @@ contains
       type(nc_writer_type) :: w
       integer :: stat, d_p, d_d, d_s, d_name, d_msg, d_warn, np, nd, ns, lname, lmsg, lwarn, i, k
       integer :: v_warn, v_nwarn
-      integer :: v_muh, v_mua
+      integer :: v_muh, v_mua, v_mue
       integer :: v_num, v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -135,6 +135,10 @@ contains
       call w%def("mu_adhesion", nf90_double, [d_s, d_d, d_p], "1", &
          & "the local friction's part of mu: mu_loc's work on the facets per unit load " // &
          & "and distance slid (mu = mu_hysteresis + mu_adhesion)", v_mua)
+      call w%def("mu_error_estimate", nf90_double, [d_s, d_d, d_p], "1", &
+         & "estimated error of mu from the time step (&numerics error_estimate: three " // &
+         & "times the change at half the step; or the tolerance's estimate); missing where " // &
+         & "none was made", v_mue)
       call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
          & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
       call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
@@ -200,11 +204,12 @@ contains
       end do
       if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_ncl, 0, i8fill), &
          & "fill value")
-      do k = 1, 9
-         call fillatt([v_mu, v_muh, v_mua, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
+      do k = 1, 10
+         call fillatt([v_mu, v_muh, v_mua, v_mue, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
       end do
-      do k = 1, 7
-         call coordatt([v_mu, v_muh, v_mua, v_wet, v_hyd, v_res, v_ncl], k, result_coords)
+      do k = 1, 8
+         call coordatt([v_mu, v_muh, v_mua, v_mue, v_wet, v_hyd, v_res, v_ncl], k, &
+            & result_coords)
       end do
       do k = 1, 5
          call coordatt([v_mpd, v_rh, v_rs, v_status, v_err], k, profile_coords)
@@ -253,6 +258,10 @@ contains
          a(:, :, i) = merge(blocks(i)%mu_adhesion, fill, ok(i))
       end do
       call w%check(nf90_put_var(w%ncid, v_mua, a), "mu_adhesion")
+      do i = 1, np
+         a(:, :, i) = merge(blocks(i)%mu_error, fill, ok(i) .and. blocks(i)%mu_error >= 0.0_wp)
+      end do
+      call w%check(nf90_put_var(w%ncid, v_mue, a), "mu_error_estimate")
       do i = 1, np
          a(:, :, i) = merge(blocks(i)%wet, fill, ok(i))
       end do

@@ -67,6 +67,9 @@ module pavefric_batch_types
       real(wp), allocatable :: mu(:,:), wet(:,:), hydroplaning(:,:), residual(:,:)
       !> mu's parts: the rubber's (hysteresis) and the local friction's (adhesion).
       real(wp), allocatable :: mu_hysteresis(:,:), mu_adhesion(:,:)
+      !> mu's estimated error from the time step (&numerics error_estimate
+      !> or tolerance); -1 where the run made none.
+      real(wp), allocatable :: mu_error(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.
       !> Warnings about the profile and its results (those a single scene of
@@ -82,7 +85,7 @@ contains
    !> Number of reals in a packed block.
    pure integer function block_values(batch)
       type(batch_type), intent(in) :: batch
-      block_values = n_head + 7 * batch%n_speeds * batch%n_depths
+      block_values = n_head + 8 * batch%n_speeds * batch%n_depths
    end function block_values
 
    !> Result arrays of the batch's shape, zero.
@@ -95,10 +98,12 @@ contains
       if (allocated(blk%mu)) deallocate(blk%mu, blk%wet, blk%hydroplaning, blk%residual, &
          & blk%n_clamped)
       if (allocated(blk%mu_hysteresis)) deallocate(blk%mu_hysteresis, blk%mu_adhesion)
+      if (allocated(blk%mu_error)) deallocate(blk%mu_error)
       allocate(blk%mu(ns, nd), blk%wet(ns, nd), blk%hydroplaning(ns, nd), blk%residual(ns, nd), &
-         & blk%n_clamped(ns, nd), blk%mu_hysteresis(ns, nd), blk%mu_adhesion(ns, nd))
+         & blk%n_clamped(ns, nd), blk%mu_hysteresis(ns, nd), blk%mu_adhesion(ns, nd), &
+         & blk%mu_error(ns, nd))
       blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
-      blk%mu_hysteresis = 0; blk%mu_adhesion = 0
+      blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1
    end subroutine block_allocate
 
    !> A block as reals (for the journal and for MPI); the digest and the
@@ -122,7 +127,8 @@ contains
       values(k+1:k+m) = reshape(blk%residual, [m]);     k = k + m
       values(k+1:k+m) = reshape(blk%n_clamped, [m]);    k = k + m
       values(k+1:k+m) = reshape(blk%mu_hysteresis, [m]); k = k + m
-      values(k+1:k+m) = reshape(blk%mu_adhesion, [m])
+      values(k+1:k+m) = reshape(blk%mu_adhesion, [m]);   k = k + m
+      values(k+1:k+m) = reshape(blk%mu_error, [m])
    contains
       pure real(wp) function flag(yes)
          logical, intent(in) :: yes
@@ -178,7 +184,8 @@ contains
       blk%residual = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
       blk%n_clamped = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
       blk%mu_hysteresis = reshape(values(k+1:k+m), [ns, nd]); k = k + m
-      blk%mu_adhesion = reshape(values(k+1:k+m), [ns, nd])
+      blk%mu_adhesion = reshape(values(k+1:k+m), [ns, nd]);   k = k + m
+      blk%mu_error = reshape(values(k+1:k+m), [ns, nd])
       if (.not. allocated(blk%message)) blk%message = ""
    contains
       !> Whether v is a whole number in [lo, hi] (NaN is not).

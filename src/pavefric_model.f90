@@ -60,10 +60,10 @@ module pavefric_model
       & p_depth = 36, p_water_viscosity = 37, p_alpha = 38, p_beta = 39, p_speeds_kmh = 40, &
       & p_theta_max_deg = 41, p_substeps = 42, p_elements_per_sample = 43, &
       & p_position_stride = 44, p_wet_tolerance = 45, p_tolerance = 46, &
-      & p_time_scheme = 47, p_friction_scheme = 48, p_output_file = 49, p_series = 50, &
-      & p_batch_profiles = 51, p_batch_profile_list = 52, p_batch_depths = 53, &
-      & p_batch_restart = 54, p_batch_progress_every = 55
-   integer, parameter :: n_parameters = 55
+      & p_error_estimate = 47, p_time_scheme = 48, p_friction_scheme = 49, &
+      & p_output_file = 50, p_series = 51, p_batch_profiles = 52, p_batch_profile_list = 53, &
+      & p_batch_depths = 54, p_batch_restart = 55, p_batch_progress_every = 56
+   integer, parameter :: n_parameters = 56
    integer, parameter :: n_groups = 9
    !> Most arms of a generalised Maxwell element.
    integer, parameter, public :: max_arms = 100
@@ -145,11 +145,14 @@ module pavefric_model
       real(wp) :: theta_max_deg = 0.0_wp
       integer :: substeps = 1, elements_per_sample = 1, position_stride = 1
       real(wp) :: wet_tolerance = 0.0_wp, tolerance = 0.0_wp
+      !> &numerics error_estimate: with tolerance = 0, a second pass at half
+      !> the step estimates mu's error from the step (mu_error_estimate).
+      logical :: error_estimate = .true.
       !> How the facet friction is computed: 'energy' (the work of the facet
       !> forces balances the elements' stored energy and dissipation) or
       !> 'paper' (Eq. 10 on central-difference slopes).
       character(len=:), allocatable :: friction_scheme
-      !> &numerics time_scheme: 'extrapolated' or 'euler'.
+      !> &numerics time_scheme: 'extrapolated', 'euler' or 'exact'.
       character(len=:), allocatable :: time_scheme
    end type model_type
 
@@ -403,6 +406,12 @@ contains
          & "(below, double precision cannot meet it); needs substeps <= 1024 (room for the " // &
          & "two halvings the estimate is made of) (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
+      s(p_error_estimate) = logical_param("numerics", "error_estimate", ".true.", "model", &
+         & "with tolerance = 0, every speed's error from the time step is estimated from " // &
+         & "a second pass at half the step (substeps doubled; about twice the run's cost) " // &
+         & "as three times the change, recorded as mu_error_estimate, with a warning where it " // &
+         & "exceeds 0.1; speeds the exact integrator ran need no pass (estimate 0). " // &
+         & ".false.: no second pass and no estimate (docs/accuracy.md)")
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
          & "'exact': a Kelvin-Voigt rubber on a road without a film is integrated exactly " // &
          & "in time, from contact event to event (other rubbers and films run backward " // &
@@ -1209,6 +1218,7 @@ contains
       m%position_stride = set%v(p_position_stride)%i
       m%wet_tolerance = set%v(p_wet_tolerance)%r
       m%tolerance = set%v(p_tolerance)%r
+      m%error_estimate = set%v(p_error_estimate)%b
       m%friction_scheme = set%v(p_friction_scheme)%t
       m%time_scheme = set%v(p_time_scheme)%t
    end function model_from_parameters

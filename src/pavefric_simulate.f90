@@ -66,8 +66,9 @@ module pavefric_simulate
       !> Peak memory of the run (bytes): geometry, per-speed state, series
       !> and the output built in memory.
       real(wp) :: bytes = 0.0_wp
-      !> Seconds on one thread at the calibrated rates below; with
-      !> &numerics tolerance, of the first pass (each refinement doubles it).
+      !> Seconds on one thread at the calibrated rates below, with the
+      !> error estimate's pass (step_passes); with &numerics tolerance, of
+      !> the first pass (each refinement doubles it).
       real(wp) :: seconds = 0.0_wp
    end type cost_estimate_type
 
@@ -83,6 +84,9 @@ module pavefric_simulate
    real(wp), parameter :: sec_bearing_step = 1.2e-8_wp, sec_bearing_position = 4.7e-7_wp
    real(wp), parameter :: sec_squeeze_step = 2.2e-8_wp, sec_squeeze_position = 1.2e-7_wp
    real(wp), parameter :: sec_run = 1.0e-3_wp
+   !> mu's estimated error from the time step above which a run at
+   !> tolerance = 0 warns (&numerics error_estimate).
+   real(wp), parameter :: estimate_warning = 0.1_wp
 
    !> Results of one scene, per speed (and per position with `series`).
    type :: sim_result_type
@@ -331,6 +335,7 @@ contains
       integer :: stat, k
       if (.not. resamples(m, dx)) then
          call simulate_spaced(m, z, dx, res)
+         if (.not. allocated(error)) call warn_estimate(m, res)
          return
       end if
       ! the pad's own elements: the profile filtered and resampled to them
@@ -380,6 +385,7 @@ contains
             end if
          end if
       end do
+      call warn_estimate(m, res)
    contains
       subroutine simulate_spaced(mm, zz, dd, out)
          type(model_type), intent(in) :: mm
@@ -389,6 +395,8 @@ contains
             call simulate_to_tolerance(mm, zz, dd, closed, speeds_kmh, want_series, out, error)
          else
             call simulate_fixed(mm, zz, dd, closed, speeds_kmh, want_series, out, error)
+            if (.not. allocated(error) .and. mm%error_estimate) &
+               & call estimate_step_error(mm, zz, dd, closed, speeds_kmh, out)
          end if
          out%element_spacing = dd
       end subroutine simulate_spaced
@@ -663,6 +671,82 @@ contains
          asymptotic = abs(d1) >= 1.5_wp * abs(d2) .and. abs(d1) <= 3.0_wp * abs(d2)
       end function asymptotic
    end subroutine simulate_to_tolerance
+
+   !> The error estimate of a run at tolerance = 0 (&numerics
+   !> error_estimate): one more pass, without series, at half the step
+   !> (substeps doubled), and three times its change from `res`'s mu as the
+   !> estimate of the error of `res`'s mu (the result reported stays the
+   !> run's own). An error falling as the step to the power p is
+   !> 1 / (1 - 2^-p) times that change: 2 at first order, 3 at p = 0.59;
+   !> measured orders are 0.65 to 1.3 (docs/accuracy.md), and on the
+   !> reference surfaces the default run's error was at most two thirds of
+   !> the estimate at 5 to 100 km/h, dry and wet (tests/test_error_estimate.py).
+   !> The pass
+   !> costs about twice the first. A coarse pass (position_stride doubled,
+   !> half the cost) was measured and rejected: it keeps the pad stepping
+   !> from sample to sample, which is where most of the error of one step
+   !> per sample lies on a wet road, and underestimated it up to 17-fold on
+   !> ctm_wet (docs/accuracy.md). Speeds the exact integrator ran have no
+   !> time-step error (estimate 0, no pass). The pass's own warnings are
+   !> not repeated; if it fails (the run stands) the run has no estimate and
+   !> a warning says why; warn_estimate warns where the estimate is large.
+   subroutine estimate_step_error(m, z, dx, closed, speeds_kmh, res)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
+      logical, intent(in) :: closed
+      type(sim_result_type), intent(inout) :: res
+      type(model_type) :: mc
+      type(sim_result_type) :: r
+      type(error_type), allocatable :: err
+      integer, allocatable :: idx(:)
+      integer :: ns, j, k
+      ns = size(speeds_kmh)
+      allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns))
+      res%mu_error = 0.0_wp
+      res%substeps_used = m%substeps
+      res%extrapolated = .false.
+      idx = pack([(j, j = 1, ns)], .not. res%exact_integrator_ran)
+      if (size(idx) == 0) return
+      if (2 * m%substeps > max_substeps) then
+         deallocate(res%mu_error, res%substeps_used, res%extrapolated)
+         call add_warning(res%warnings, "&numerics error_estimate: no estimate of mu's " // &
+            & "error from the time step at substeps = " // to_str(m%substeps) // &
+            & " (its pass at half the step would pass " // to_str(max_substeps) // ")")
+         return
+      end if
+      mc = m
+      mc%substeps = 2 * m%substeps
+      mc%time_scheme = "euler"
+      mc%error_estimate = .false.
+      call simulate_fixed(mc, z, dx, closed, speeds_kmh(idx), .false., r, err)
+      if (allocated(err)) then
+         deallocate(res%mu_error, res%substeps_used, res%extrapolated)
+         call add_warning(res%warnings, "&numerics error_estimate: no estimate of mu's " // &
+            & "error from the time step, its pass at half the step failed: " // err%message)
+         return
+      end if
+      do k = 1, size(idx)
+         res%mu_error(idx(k)) = 3.0_wp * abs(res%mu(idx(k)) - r%mu(k))
+      end do
+   end subroutine estimate_step_error
+
+   !> After a run at tolerance = 0 (all of the pad's grid phases merged): a
+   !> warning where mu's estimated error exceeds `estimate_warning`.
+   subroutine warn_estimate(m, res)
+      type(model_type), intent(in) :: m
+      type(sim_result_type), intent(inout) :: res
+      integer :: worst
+      if (m%tolerance > 0.0_wp .or. .not. allocated(res%mu_error)) return
+      if (size(res%mu_error) == 0) return
+      worst = maxloc(res%mu_error, dim=1)
+      if (res%mu_error(worst) > estimate_warning) call add_warning(res%warnings, &
+         & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
+         & // " at " // to_str(res%speed_kmh(worst)) // " km/h from the pad's step along " // &
+         & "the road (mu_error_estimate: three times the change at half the step, " // &
+         & "substeps doubled): set &numerics " // &
+         & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry road " // &
+         & "(docs/accuracy.md)")
+   end subroutine warn_estimate
 
    !> Speed k of `from` into speed j of `to` (every per-speed result).
    pure subroutine copy_speed(from, k, to, j)
@@ -978,10 +1062,30 @@ contains
             per_position = sec_bearing_position
          end if
       end if
-      c%seconds = sec_run + sec_point * real(np, wp) + per_step * &
+      c%seconds = sec_run + sec_point * real(np, wp) + step_passes(m, n_state) * per_step * &
          & real(c%total_element_steps, wp)
-      if (n_el > 0.0_wp) c%seconds = c%seconds + per_position * real(c%element_steps, wp) / n_el
+      if (n_el > 0.0_wp) c%seconds = c%seconds + step_passes(m, n_state) * per_position * &
+         & real(c%element_steps, wp) / n_el
    end function estimate_cost
+
+   !> The cost of a run's element-steps in backward-Euler passes at its
+   !> substeps: 2 for the exact integrator (1.1 to 3.7 one pass,
+   !> docs/accuracy.md), 3 with the error estimate's pass at half the step
+   !> (&numerics error_estimate at tolerance = 0), else 1.
+   pure real(wp) function step_passes(m, n_state) result(passes)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: n_state
+      logical :: exact
+      exact = .false.
+      if (allocated(m%time_scheme)) exact = m%time_scheme == "exact" .and. &
+         & m%depth <= 0.0_wp .and. n_state == 1
+      passes = 1.0_wp
+      if (exact) then
+         passes = 2.0_wp
+      else if (m%tolerance <= 0.0_wp .and. m%error_estimate) then
+         passes = 3.0_wp
+      end if
+   end function step_passes
 
    !> The estimate `c` of a run at `speeds_kmh` (km/h) with each speed's own
    !> spin-up (lap_spinup: the energy scheme on a closed profile spins a
@@ -1023,7 +1127,7 @@ contains
       if (.not. extra > 0.0_wp) return
       c%total_element_steps = c%total_element_steps + int(extra, i8)
       per_step = sec_step + sec_arm * real(rubber%state_size() - 1, wp)
-      c%seconds = c%seconds + per_step * extra
+      c%seconds = c%seconds + step_passes(m, rubber%state_size()) * per_step * extra
    end subroutine add_spinup_cost
 
    !> Refuse a run, before allocating, whose estimated memory exceeds what

@@ -100,10 +100,13 @@ def test_other_rubbers_and_films_run_euler_and_say_so(gsp):
     assert wet["exact_integrator_ran"].values.tolist() == [0, 0]
     euler = gsp.simulate(speeds_kmh=SPEEDS, time_scheme="euler", tolerance=0.0)
     assert np.array_equal(wet["mu"].values, euler["mu"].values)
-    # no memory (speed 0): nothing to integrate, no warning
+    # no memory (speed 0): nothing to integrate, no warning (the error
+    # estimate's pass is off: its own warning, of the pad's sampling of this
+    # rough road, is tests/test_error_estimate.py's)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        still = gsp.simulate(speeds_kmh=[0.0], depth=0.0, time_scheme="exact", tolerance=0.0)
+        still = gsp.simulate(speeds_kmh=[0.0], depth=0.0, time_scheme="exact", tolerance=0.0,
+                             error_estimate=False)
     assert still["exact_integrator_ran"].values.tolist() == [0]
 
 

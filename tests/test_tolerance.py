@@ -70,9 +70,16 @@ def test_a_tighter_tolerance_costs_more_and_errs_less(profile_m):
     assert tight["mu_error_estimate"].values[0] < loose["mu_error_estimate"].values[0]
 
 
-def test_no_tolerance_no_estimate(profile_m):
+def test_no_tolerance_the_default_pass_estimates(profile_m):
+    """At tolerance = 0 the estimate is the default pass's
+    (tests/test_error_estimate.py): substeps as given, nothing extrapolated."""
     ds = pavefric.simulate(profile_m, 0.87e-3, [40.0])
-    assert "mu_error_estimate" not in ds and "substeps_used" not in ds
+    assert ds["substeps_used"].values.tolist() == [1]
+    assert ds["mu_extrapolated"].values.tolist() == [0]
+    assert 0.0 < ds["mu_error_estimate"].values[0] < 0.1
+    off = pavefric.simulate(profile_m, 0.87e-3, [40.0], error_estimate=False)
+    assert "mu_error_estimate" not in off and "substeps_used" not in off
+    assert np.array_equal(off["mu"].values, ds["mu"].values)
 
 
 def test_program_records_the_estimate_and_series_share_positions(tmp_path, profile_m):

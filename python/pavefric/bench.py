@@ -62,6 +62,7 @@ def _best(fn, repeats=3):
 def _rate_core(z, dx, closed=True, speeds=(60.0,), repeats=3, **kw):
     from .core import simulate
 
+    kw.setdefault("error_estimate", False)     # one pass, as the plain loop and the reference
     seconds, ds = _best(lambda: simulate(z, dx, list(speeds), closed=closed, **kw), repeats)
     n_el = ds.attrs["pad_elements"]
     steps = n_el * (ds.attrs["averaged_positions"] + ds.attrs["spinup_positions"]) * len(speeds)
@@ -136,7 +137,8 @@ z = 1e-4 * np.sin(np.arange(n) * 0.37) + 2e-4 * np.sin(np.arange(n) * 0.051)
 pavefric.simulate(z[:200], 0.87e-3, [60.0])
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0 = time.perf_counter()
-ds = pavefric.simulate(z, 0.87e-3, list(np.linspace(20, 80, nspeeds)), closed=False)
+ds = pavefric.simulate(z, 0.87e-3, list(np.linspace(20, 80, nspeeds)), closed=False,
+                       error_estimate=False)
 t = time.perf_counter() - t0
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 print(json.dumps({"n": n, "seconds": t, "extra_bytes": (peak - base) * 1024,
@@ -174,7 +176,7 @@ pavefric.simulate(z[:200], 0.87e-3, speeds)
 best = 1e9
 for _ in range(3):
     t0 = time.perf_counter()
-    ds = pavefric.simulate(z, 0.87e-3, speeds, depth=DEPTH)
+    ds = pavefric.simulate(z, 0.87e-3, speeds, depth=DEPTH, error_estimate=False)
     best = min(best, time.perf_counter() - t0)
 print(json.dumps({"seconds": best, "mu": ds["mu"].values.tolist()}))
 """
@@ -356,6 +358,7 @@ SWEEP_CHILD = """
 import json, sys, time, warnings, numpy as np, pavefric
 warnings.simplefilter("ignore")
 z = np.load(sys.argv[1]); speeds = json.loads(sys.argv[2]); kw = json.loads(sys.argv[3])
+kw.setdefault("error_estimate", False)
 pavefric.simulate(z[:4096], 0.87e-3, speeds, **kw)
 best = 1e9
 for _ in range(int(sys.argv[4])):
@@ -448,6 +451,7 @@ def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3
         zr = read_profile(tmp / "long.txt").heights
         scene = tmp / "long.nml"
         scene.write_text(f"&surface profile_file = 'long.txt', dx = {DX!r}, closed = .false. /\n"
+                         "&numerics error_estimate = .false. /\n"
                          "&operation speeds_kmh = " + ", ".join(f"{v:g}" for v in speeds)
                          + " /\n")
         pl = plain.run(zr, DX, speeds, False, 0.0)
@@ -510,6 +514,8 @@ ESTIMATE_SCENES = [
     ("test", "wet kane2017, 10 speeds, a 40 mm pad",
      "&water depth = 2e-3 / &pad length = 0.040 / "
      "&operation speeds_kmh = 5, 10, 20, 30, 40, 50, 60, 70, 80, 90 /"),
+    ("test", "dry, 6 speeds, no error estimate",
+     "&numerics error_estimate = .false. / &operation speeds_kmh = 10, 20, 30, 40, 60, 80 /"),
     ("test", "dry Maxwell 1 arm, 4 speeds, position_stride 2",
      "&rubber model = 'maxwell', prony_stiffness = 1e8, prony_times = 1e-3 / "
      "&numerics position_stride = 2, substeps = 2 / &operation speeds_kmh = 20, 40, 60, 80 /"),
@@ -556,11 +562,60 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
                     raise RuntimeError(f"{name}: {r.stderr}")
             with xr.open_dataset(d / "o.nc") as ds:
                 est = float(ds.attrs["estimated_seconds"])
+                features = _cost_features(ds, groups)
             rows.append({"set": which, "scene": name, "estimated": est, "measured": best,
-                         "ratio": est / best})
+                         "ratio": est / best, "features": features})
             log(f"  {which:8s} {name:56s} estimated {est:7.3f} s, measured {best:7.3f} s, "
                 f"ratio {est / best:5.2f}")
+    _log_refit(log, rows)
     return rows
+
+
+#: The cost model's rates (src/pavefric_simulate.f90) in the order of
+#: _cost_features; sec_run (1 ms) is fixed, not fitted (the training runs
+#: share one profile length, so it and sec_point cannot be told apart).
+COST_RATES = ("sec_point", "sec_step", "sec_arm", "sec_bearing_step", "sec_bearing_position",
+              "sec_squeeze_step", "sec_squeeze_position")
+SEC_RUN = 1.0e-3
+
+
+def _cost_features(ds, groups: str) -> list[float]:
+    """What each rate of the cost model multiplies in one run, from its
+    output's record (the estimate's element-steps, its pad and profile): the
+    terms of estimate_cost, with the passes of step_passes."""
+    steps = float(ds.attrs["estimated_element_steps"])
+    n_el = float(ds.attrs["pad_elements"])
+    ns = ds.sizes["speed_kmh"] if "speed_kmh" in ds.sizes else ds.sizes["speed"]
+    positions = steps / max(ns * n_el, 1.0)
+    passes = 1.0 if "error_estimate = .false." in groups else 3.0
+    arms = len(str(ds.attrs.get("param_rubber_prony_times", "")).split(",")) \
+        if "maxwell" in groups else 0
+    wet = "depth" in groups
+    squeeze = "squeeze" in groups
+    return [float(ds.attrs["profile_points"]), passes * steps, passes * steps * arms,
+            passes * steps * (wet and not squeeze), passes * positions * (wet and not squeeze),
+            passes * steps * squeeze, passes * positions * squeeze]
+
+
+def _log_refit(log, rows) -> None:
+    """The rates refitted on this run's training scenes (non-negative least
+    squares on the relative error), and how they would do on its test
+    scenes: how the constants in the core were obtained, regenerable."""
+    from scipy.optimize import nnls
+
+    train = [r for r in rows if r["set"] == "training"]
+    a = np.array([r["features"] for r in train], dtype=float)
+    b = np.array([r["measured"] - SEC_RUN for r in train])
+    w = 1.0 / np.array([r["measured"] for r in train])      # relative error
+    scale = np.maximum(np.abs(a).max(axis=0), 1e-300)
+    x, _ = nnls(a * w[:, None] / scale, b * w)
+    x = x / scale
+    log("  rates refitted on these training runs (src/pavefric_simulate.f90 holds the "
+        "ones in use): " + ", ".join(f"{n} = {v:.2e}" for n, v in zip(COST_RATES, x)))
+    ratios = {s: [(SEC_RUN + float(np.dot(x, r["features"]))) / r["measured"]
+                  for r in rows if r["set"] == s] for s in ("training", "test")}
+    log("  with them, estimated / measured: " + "; ".join(
+        f"{s} {min(v):.2f}-{max(v):.2f}" for s, v in ratios.items() if v))
 
 
 def accuracy_cost(log, quick: bool = False) -> list[dict]:
@@ -578,7 +633,8 @@ def accuracy_cost(log, quick: bool = False) -> list[dict]:
     for name, scheme in (("ctm_dry", "exact"), ("ctm_dry", "extrapolated"),
                          ("ctm_wet", "extrapolated")):
         scene = load_scene(_checkout_file(f"inputs/{name}.nml"))
-        t_default = _best(lambda: scene.simulate(speeds_kmh=speeds), 3)[0]
+        # the default run as the issue measured it: one pass, no estimate
+        t_default = _best(lambda: scene.simulate(speeds_kmh=speeds, error_estimate=False), 3)[0]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")        # a tolerance not met says so below
             (t_tol, ds) = _best(lambda: scene.simulate(speeds_kmh=speeds, tolerance=tol,
