@@ -97,11 +97,13 @@ contains
       t(14) = var("mean_film_thickness", "m", "water film left under the pad, averaged " // &
          & "over elements and positions")
       t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step " // &
-         & "(&numerics tolerance): twice the larger of its last two changes as the step " // &
-         & "was halved, or where mu is extrapolated, the larger of the extrapolated " // &
+         & "(the pad's step along the road). At tolerance = 0 (&numerics error_estimate): " // &
+         & "three times the change of mu at half the step, 0 where the exact integrator " // &
+         & "ran. With &numerics tolerance: twice the larger of its last two changes as the " // &
+         & "step was halved, or where mu is extrapolated, the larger of the extrapolated " // &
          & "value's change and the last change")
-      t(22) = var("substeps_used", "1", "time steps per element spacing the tolerance " // &
-         & "reached (&numerics tolerance)", out_int64)
+      t(22) = var("substeps_used", "1", "time steps per element spacing of the reported " // &
+         & "mu: the tolerance's choice, or substeps as given at tolerance = 0", out_int64)
       t(23) = var("mu_hysteresis", "1", "the rubber's part of mu: the work of the facet " // &
          & "forces on the rubber (its stored energy returned over a closed profile, its " // &
          & "dissipation kept) per unit load and distance slid; 0 for an elastic pad on " // &
