@@ -500,6 +500,11 @@ ESTIMATE_SCENES = [
     *[("training", f"wet squeeze, {n} speed(s)",
        f"&water depth = 1e-3, wet_model = 'squeeze' / &operation speeds_kmh = {_SPEEDS[n]} /")
       for n in (1, 12)],
+    ("training", "dry Kelvin-Voigt, 1 speed, no error estimate",
+     "&rubber viscosity = 3e3 / &numerics error_estimate = .false. / &operation speeds_kmh = 60 /"),
+    ("training", "wet kane2017, 3 speeds, no error estimate",
+     f"&water depth = 1e-3, alpha = 1.0 / &numerics error_estimate = .false. / "
+     f"&operation speeds_kmh = {_SPEEDS[3]} /"),
     *[("training", f"dry Maxwell 3 arms, {n} speed(s)",
        f"&rubber model = 'maxwell', {_PRONY} / &operation speeds_kmh = {_SPEEDS[n]} /")
       for n in (1, 12)],
@@ -574,7 +579,9 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
 #: The cost model's rates (src/pavefric_simulate.f90) in the order of
 #: _cost_features; sec_run (1 ms) is fixed, not fitted (the training runs
 #: share one profile length, so it and sec_point cannot be told apart).
-COST_RATES = ("sec_point", "sec_step", "sec_arm", "sec_bearing_step", "sec_bearing_position",
+#: sec_point is paid once per run (reading, preprocessing, texture,
+#: writing), sec_point_pass per pass (the refined geometry).
+COST_RATES = ("sec_point", "sec_point_pass", "sec_step", "sec_arm", "sec_bearing_step", "sec_bearing_position",
               "sec_squeeze_step", "sec_squeeze_position")
 SEC_RUN = 1.0e-3
 
@@ -588,11 +595,13 @@ def _cost_features(ds, groups: str) -> list[float]:
     ns = ds.sizes["speed_kmh"] if "speed_kmh" in ds.sizes else ds.sizes["speed"]
     positions = steps / max(ns * n_el, 1.0)
     passes = 1.0 if "error_estimate = .false." in groups else 3.0
-    arms = len(str(ds.attrs.get("param_rubber_prony_times", "")).split(",")) \
-        if "maxwell" in groups else 0
+    arms = int(np.size(ds.attrs["param_rubber_prony_times"])) if "maxwell" in groups else 0
     wet = "depth" in groups
     squeeze = "squeeze" in groups
-    return [float(ds.attrs["profile_points"]), passes * steps, passes * steps * arms,
+    points = float(ds.attrs["profile_points"])
+    fine = float(ds.attrs["param_numerics_substeps"]) * float(
+        ds.attrs["param_numerics_elements_per_sample"])
+    return [points, passes * points * fine, passes * steps, passes * steps * arms,
             passes * steps * (wet and not squeeze), passes * positions * (wet and not squeeze),
             passes * steps * squeeze, passes * positions * squeeze]
 
