@@ -75,8 +75,7 @@ module pavefric_simulate
    ! The cost model (one thread): a part per profile sample (reading,
    ! preprocessing, texture metrics, writing), a part per refined sample and
    ! pass (the geometry; the error estimate's pass counts), a part per pad
-   ! position that
-   ! the speeds' lanes share (the wet balance's iterations run until every
+   ! position that the speeds' lanes share (the wet balance's iterations run until every
    ! lane has converged), and a part per element-step of each speed. Fitted
    ! on the "training" runs of `python -m pavefric bench`'s cost-estimate
    ! section (a 65,536-point open profile at 1 to 12 speeds, each model) on
@@ -686,12 +685,11 @@ contains
    !> measured orders are 0.65 to 1.3 (docs/accuracy.md), and on the
    !> reference surfaces the default run's error was at most two thirds of
    !> the estimate at 5 to 100 km/h, dry and wet (tests/test_error_estimate.py).
-   !> The pass
-   !> costs about twice the first. A coarse pass (position_stride doubled,
+   !> The pass costs about twice the first. A coarse pass (position_stride doubled,
    !> half the cost) was measured and rejected: it keeps the pad stepping
    !> from sample to sample, which is where most of the error of one step
-   !> per sample lies on a wet road, and underestimated it up to 17-fold on
-   !> ctm_wet (docs/accuracy.md). Speeds the exact integrator ran have no
+   !> per sample lies on a wet road: on ctm_wet at 20 km/h its change was
+   !> 1/34 of the error (docs/accuracy.md). Speeds the exact integrator ran have no
    !> time-step error (estimate 0, no pass). The pass's own warnings are
    !> not repeated; if it fails (the run stands) the run has no estimate and
    !> a warning says why; warn_estimate warns where the estimate is large.
@@ -1045,6 +1043,9 @@ contains
          & real(m%position_stride, wp)), wp)
       ! geometry: z, tan_theta, clamped (+ slopes), and the refinement's copies
       c%bytes = n_ext * (8.0_wp + 8.0_wp + 4.0_wp) * 2.0_wp
+      ! the error estimate's pass at half the step: twice the geometry, once
+      ! the first pass's is freed
+      if (step_passes(m, n_state) > 2.5_wp) c%bytes = 2.0_wp * c%bytes
       if (friction_film) c%bytes = c%bytes + n_ext * 16.0_wp * real(min(ns, 64), wp)
       ! per speed (one per thread at most, counted for all): element arrays,
       ! the rubber's state and its coefficients per element (a Maxwell
