@@ -203,6 +203,9 @@ def _survey_scene(directory: Path, survey: Path, speeds: int, depths, tag: str) 
     scene = directory / f"survey_{tag}.nml"
     scene.write_text(f"&batch profiles = '{survey.name}', depths = {dep}, restart = .false. /\n"
                      "&surface closed = .false., mu_loc = 0.6 /\n"
+                     # a survey checks its accuracy on a sample of profiles
+                     # (docs/cluster.md), not with a second pass of each
+                     "&numerics error_estimate = .false. /\n"
                      f"&operation speeds_kmh = {kmh} /\n")
     return scene
 
