@@ -1081,12 +1081,8 @@ contains
    pure real(wp) function step_passes(m, n_state) result(passes)
       type(model_type), intent(in) :: m
       integer, intent(in) :: n_state
-      logical :: exact
-      exact = .false.
-      if (allocated(m%time_scheme)) exact = m%time_scheme == "exact" .and. &
-         & m%depth <= 0.0_wp .and. n_state == 1
       passes = 1.0_wp
-      if (exact) then
+      if (exact_scheme(m) .and. m%depth <= 0.0_wp .and. n_state == 1) then
          passes = 2.0_wp
       else if (m%tolerance <= 0.0_wp .and. m%error_estimate) then
          passes = 3.0_wp

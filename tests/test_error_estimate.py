@@ -149,3 +149,17 @@ def test_batch_records_the_estimate(tmp_path):
                 single = pavefric.simulate(one.heights, one.dx, [20.0, 60.0], depth=depth)
             np.testing.assert_allclose(est[i, j], single["mu_error_estimate"].values,
                                        rtol=1e-12, atol=1e-15)
+
+
+def test_no_room_for_the_half_step_pass_says_so(short_profile_m):
+    """substeps = 4096 (the largest): the pass at half the step would pass
+    the limit, so the run stands without an estimate and a warning says
+    why, naming error_estimate and the limit."""
+    with pytest.warns(pavefric.PavefricWarning, match="error_estimate: no estimate.*4096"):
+        ds = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], substeps=4096, closed=False,
+                               element_length=0.0)
+    assert "mu_error_estimate" not in ds and "substeps_used" not in ds
+    assert "error_estimate: no estimate" in ds.attrs["warnings"]
+    plain = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], substeps=4096, closed=False,
+                              element_length=0.0, error_estimate=False)
+    assert np.array_equal(ds["mu"].values, plain["mu"].values)
