@@ -163,3 +163,21 @@ def test_no_room_for_the_half_step_pass_says_so(short_profile_m):
     plain = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], substeps=4096, closed=False,
                               element_length=0.0, error_estimate=False)
     assert np.array_equal(ds["mu"].values, plain["mu"].values)
+
+
+def test_a_coarse_pass_would_miss_the_wet_error():
+    """Why the estimate's pass is at half the step and not at twice it
+    (docs/accuracy.md): on inputs/ctm_wet.nml at 20 km/h the change at
+    position_stride = 2 is 2.3e-4 where the error is 7.8e-3 (34 times), while
+    the change at substeps = 2 is 5.9e-3, three times which is 2.3 times the
+    error (measured here)."""
+    scene = pavefric.load_scene(ROOT / "inputs" / "ctm_wet.nml")
+    kw = dict(speeds_kmh=[20.0], error_estimate=False)
+    one = scene.simulate(**kw)["mu"].values[0]
+    coarse = scene.simulate(position_stride=2, **kw)["mu"].values[0]
+    half = scene.simulate(substeps=2, time_scheme="euler", **kw)["mu"].values[0]
+    limit = scene.simulate(speeds_kmh=[20.0], tolerance=1e-5)["mu"].values[0]
+    error = abs(one - limit)
+    assert 7e-3 < error < 9e-3
+    assert abs(coarse - one) < error / 20.0            # 34x too small
+    assert error < 3.0 * abs(half - one) < 3.0 * error  # the chosen pass bounds it

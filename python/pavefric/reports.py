@@ -225,7 +225,8 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "(`position_stride = 2`, half the cost) was tried first and rejected: it keeps the "
         "pad stepping from sample to sample, where most of the error of one step per "
         "sample lies on a wet road: on `inputs/ctm_wet.nml` at 20 km/h its change was 2.3e-4 "
-        "where the error was 7.8e-3, 34 times as much. Each scene's default run (one step per "
+        "where the error was 7.8e-3, 34 times as much (tests/test_error_estimate.py, "
+        "test_a_coarse_pass_would_miss_the_wet_error, measures it). Each scene's default run (one step per "
         "sample, Euler) against the reference limit above, per speed (`ratio` is estimate / "
         "actual error, below 1 an underestimate):",
         "",
