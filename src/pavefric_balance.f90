@@ -176,17 +176,24 @@ contains
    !> one pass over the lanes (their sums interleave). x holds the dry roots
    !> on entry and, for the wet lanes, the wet ones on exit; wh the film's
    !> load and evaluations the count added, per lane.
-   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x, wh, &
+   !> Warm start: a lane whose guess x0 lies strictly inside its bracket
+   !> (lo, x_dry) starts there (the previous position's wet root, in this
+   !> position's shifted coordinates), else at x_dry. The guess changes only
+   !> where the iteration starts: the root is the same to wet_tol.
+   pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
       & evaluations, gaps)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol
+      !> Per lane, the starting guess (anything outside the bracket: none).
+      real(wp), intent(in) :: x0(nl)
       class(film_model), intent(in) :: film
       type(film_step_type), intent(in) :: fsteps(nl)
       logical, intent(in) :: wet(nl)
       real(wp), intent(inout) :: x(nl)
       real(wp), intent(out) :: wh(nl)
       integer(i8), intent(inout) :: evaluations(nl)
-      !> Workspace (nl, n): the gap fields of the last evaluation.
+      !> Workspace (nl, n): the gap fields of the last evaluation (for films
+      !> that need the field; see film_model%sums_suffice).
       real(wp), intent(inout) :: gaps(nl, n)
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old
@@ -201,6 +208,7 @@ contains
          if (.not. wet(j)) cycle
          lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
          hi(j) = x(j)
+         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
       end do
       call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
          & gaps)
@@ -286,14 +294,19 @@ contains
       real(wp), intent(inout) :: f(nl), df(nl), wh(nl)
       integer(i8), intent(inout) :: evaluations(nl)
       real(wp), intent(inout) :: gaps(nl, n)
-      real(wp), dimension(lanes) :: xe, pushed, contacts, dwh
+      real(wp), dimension(lanes) :: xe, pushed, contacts, dwh, gap_total, n_open
       integer :: j
       ! the lanes not evaluated sit at a harmless penetration
       do j = 1, nl
          xe(j) = merge(x(j), 0.0_wp, mask(j))
       end do
-      call contact_sums(nl, n, d, xe, pushed, contacts, gaps)
-      call film%loads(nl, n, fsteps, gaps, mask, wh, dwh)
+      if (film%sums_suffice()) then
+         call contact_gap_sums(nl, n, d, xe, pushed, contacts, gap_total, n_open)
+         call film%loads_of_sums(nl, n, fsteps, gap_total, n_open, mask, wh, dwh)
+      else
+         call contact_sums(nl, n, d, xe, pushed, contacts, gaps)
+         call film%loads(nl, n, fsteps, gaps, mask, wh, dwh)
+      end if
       do j = 1, nl
          if (.not. mask(j)) cycle
          f(j) = kel(j) * pushed(j) + wh(j) - load
@@ -333,6 +346,48 @@ contains
          end do
       end do
    end subroutine contact_sums
+
+   !> contact_sums without the gap field: per lane, the sum of the gaps
+   !> max(0, d - x) in element order and the count of open ones (gap > 0),
+   !> the same numbers a pass over the stored field would give.
+   pure subroutine contact_gap_sums(nl, n, d, x, pushed, contacts, gap_total, n_open)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), x(nl)
+      real(wp), intent(out) :: pushed(nl), contacts(nl), gap_total(nl), n_open(nl)
+      integer :: i, j
+      real(wp) :: total, counted, g, gt, go
+      if (nl == 1) then
+         total = 0.0_wp                          ! one lane: a plain loop
+         counted = 0.0_wp
+         gt = 0.0_wp
+         go = 0.0_wp
+         do i = 1, n
+            total = total + merge(x(1) - d(1, i), 0.0_wp, d(1, i) < x(1))
+            counted = counted + merge(1.0_wp, 0.0_wp, d(1, i) < x(1))
+            g = max(0.0_wp, d(1, i) - x(1))
+            gt = gt + g
+            go = go + merge(1.0_wp, 0.0_wp, g > 0.0_wp)
+         end do
+         pushed(1) = total
+         contacts(1) = counted
+         gap_total(1) = gt
+         n_open(1) = go
+         return
+      end if
+      pushed = 0.0_wp
+      contacts = 0.0_wp
+      gap_total = 0.0_wp
+      n_open = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            pushed(j) = pushed(j) + merge(x(j) - d(j, i), 0.0_wp, d(j, i) < x(j))
+            contacts(j) = contacts(j) + merge(1.0_wp, 0.0_wp, d(j, i) < x(j))
+            g = max(0.0_wp, d(j, i) - x(j))
+            gap_total(j) = gap_total(j) + g
+            n_open(j) = n_open(j) + merge(1.0_wp, 0.0_wp, g > 0.0_wp)
+         end do
+      end do
+   end subroutine contact_gap_sums
 
    !> The gap under each element at penetration x: max(0, d_i - x); the film
    !> components see this whole field.

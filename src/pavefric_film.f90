@@ -47,6 +47,16 @@ module pavefric_film
       !> The default calls `load` lane by lane; a film may run the lanes
       !> together (their sums interleave).
       procedure :: loads => film_loads_by_lane
+      !> Whether the load depends on the gap field only through its sum and
+      !> the number of open gaps (gap_i > 0). The balance then sums both in
+      !> its own pass over the elements and calls `loads_of_sums` (one pass
+      !> over the pad fewer per evaluation, no gap field stored).
+      procedure :: sums_suffice => film_needs_the_field
+      !> `loads` from each lane's gap sum (in element order) and count of
+      !> open gaps, for films whose `sums_suffice`: each lane's numbers are
+      !> `loads`'s to the bit. (Not called for the others; the default
+      !> returns no load.)
+      procedure :: loads_of_sums => film_no_loads_of_sums
       !> Penetration below which the film carries nothing and no element
       !> touches, given the shifted clearances d (min d = 0): the wet
       !> balance's lower bracket is min(0, this).
@@ -100,6 +110,8 @@ module pavefric_film
       procedure :: engages => bearing_engages
       procedure :: load => bearing_load
       procedure :: loads => bearing_loads
+      procedure :: sums_suffice => bearing_sums_suffice
+      procedure :: loads_of_sums => bearing_loads_of_sums
       procedure :: lower_bound => bearing_lower_bound
    end type pseudo_bearing_film
 
@@ -150,6 +162,25 @@ contains
          call self%load(steps(j), row, wh(j), dwh_dx(j))
       end do
    end subroutine film_loads_by_lane
+
+   pure logical function film_needs_the_field(self)
+      class(film_model), intent(in) :: self
+      film_needs_the_field = .false.
+   end function film_needs_the_field
+
+   pure subroutine film_no_loads_of_sums(self, nl, n, steps, total, n_open, active, wh, &
+      & dwh_dx)
+      class(film_model), intent(in) :: self
+      integer, intent(in) :: nl, n
+      type(film_step_type), intent(in) :: steps(nl)
+      real(wp), intent(in) :: total(nl), n_open(nl)
+      logical, intent(in) :: active(nl)
+      real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
+      where (active)
+         wh = 0.0_wp
+         dwh_dx = 0.0_wp
+      end where
+   end subroutine film_no_loads_of_sums
 
    pure real(wp) function film_lower_zero(self, step, d)
       class(film_model), intent(in) :: self
@@ -255,15 +286,33 @@ contains
       real(wp), intent(in) :: gap(nl, n)
       logical, intent(in) :: active(nl)
       real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
-      real(wp) :: total(lanes), n_gap(lanes), dwh
-      integer :: j
+      real(wp) :: total(lanes), n_gap(lanes)
       call gap_sums(nl, n, gap, total, n_gap)
+      call self%loads_of_sums(nl, n, steps, total, n_gap, active, wh, dwh_dx)
+   end subroutine bearing_loads
+
+   !> Eq. 15 needs only the mean gap (H_out) and, for its derivative, the
+   !> share of open gaps.
+   pure logical function bearing_sums_suffice(self)
+      class(pseudo_bearing_film), intent(in) :: self
+      bearing_sums_suffice = .true.
+   end function bearing_sums_suffice
+
+   pure subroutine bearing_loads_of_sums(self, nl, n, steps, total, n_open, active, wh, dwh_dx)
+      class(pseudo_bearing_film), intent(in) :: self
+      integer, intent(in) :: nl, n
+      type(film_step_type), intent(in) :: steps(nl)
+      real(wp), intent(in) :: total(nl), n_open(nl)
+      logical, intent(in) :: active(nl)
+      real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
+      real(wp) :: dwh
+      integer :: j
       do j = 1, nl
          if (.not. active(j)) cycle
          call hydro_load(steps(j)%coef(1), self%depth, total(j) / real(n, wp), wh(j), dwh)
-         dwh_dx(j) = -(dwh * n_gap(j) / real(n, wp))
+         dwh_dx(j) = -(dwh * n_open(j) / real(n, wp))
       end do
-   end subroutine bearing_loads
+   end subroutine bearing_loads_of_sums
 
    !> Per lane, the sum of the gaps in element order and the open gaps
    !> (counted in a real): lanes innermost on explicit run-time shapes, a

@@ -5,7 +5,7 @@ module pavefric_format
    implicit none
    private
 
-   public :: to_str, to_lower, round_sig
+   public :: to_str, to_lower, round_sig, real_to_str_text
 
    !> Shortest faithful text of a number.
    interface to_str
@@ -44,7 +44,7 @@ contains
       character(len=12) :: fmt
       character(len=:), allocatable :: digits
       real(wp) :: back
-      integer :: p, ios, epos, expo, ndig
+      integer :: p, ios, epos, expo, ndig, lo, hi
       if (ieee_is_nan(x)) then
          s = "NaN"
          return
@@ -56,12 +56,24 @@ contains
          s = "0"
          return
       end if
-      do p = 1, 17
+      ! the fewest significant digits (1..17; 17 always read back) by
+      ! bisection: a text of more digits, correctly rounded, is no farther
+      ! from x (a handful of internal writes and reads, not up to 17 of each)
+      lo = 1
+      hi = 17
+      do while (lo < hi)
+         p = (lo + hi) / 2
          write(fmt, '(a, i0, a)') "(es30.", p - 1, "e3)"
          write(buf, fmt) x
          read(buf, *, iostat=ios) back
-         if (ios == 0 .and. back == x) exit
+         if (ios == 0 .and. back == x) then
+            hi = p
+         else
+            lo = p + 1
+         end if
       end do
+      write(fmt, '(a, i0, a)') "(es30.", lo - 1, "e3)"
+      write(buf, fmt) x
       buf = adjustl(buf)
       epos = scan(buf, "Ee")
       read(buf(epos+1:), *) expo

@@ -12,7 +12,7 @@ module pavefric_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type, fatal_error, add_warning
-   use pavefric_format, only: to_str, to_lower, round_sig
+   use pavefric_format, only: to_str, to_lower, round_sig, real_to_str_text
    use pavefric_numbers, only: parse_real, parse_integer
    use pavefric_namelist, only: nml_group_type, nml_item_type, nml_token_type, parse_namelist, at
    use pavefric_maxwell, only: wlf_check, max_log10_shift
@@ -22,7 +22,8 @@ module pavefric_model
    public :: model_type, validate_model, shape_flat, shape_rounded, shape_code
    public :: param_spec_type, param_value_type, param_set_type, group_spec_type
    public :: parameter_table, group_table, default_parameters, apply_namelist, find_parameter
-   public :: model_from_parameters, parameters_namelist, plausibility_warnings, format_value
+   public :: model_from_parameters, parameters_namelist, plausibility_warnings, format_value, &
+      & parameters_namelist_text
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
    public :: n_parameters, n_groups
 
@@ -750,7 +751,7 @@ contains
          call fatal_error(error, label // tok%text // ": " // not_a_number(spec, tok%text))
          return
       end if
-      call check_range(spec, v, label // to_str(v), error, tok%text)
+      call check_range(spec, v, label, error, tok%text)
    end subroutine list_element
 
    !> The elements given for list `id` become its value; gaps are errors.
@@ -810,7 +811,7 @@ contains
                call fatal_error(error, label // shown // ": " // not_a_number(spec, tok%text))
                return
             end if
-            call check_range(spec, r, label // to_str(r), error, tok%text)
+            call check_range(spec, r, label, error, tok%text)
             if (allocated(error)) return
             if (spec%kind == kind_real) then
                value%r = r
@@ -874,11 +875,13 @@ contains
       value%set = .true.
    end subroutine store_scalar
 
-   !> Hard range check, with the message style of every range error.
-   pure subroutine check_range(spec, r, label, error, text)
+   !> Hard range check, with the message style of every range error. The
+   !> message names the value as `prefix` followed by r (formatted only when
+   !> there is an error: a run reads every declared value through here).
+   pure subroutine check_range(spec, r, prefix, error, text)
       type(param_spec_type), intent(in) :: spec
       real(wp), intent(in) :: r
-      character(len=*), intent(in) :: label
+      character(len=*), intent(in) :: prefix
       type(error_type), allocatable, intent(out) :: error
       !> The value as written: a nonzero number that underflowed is refused.
       character(len=*), intent(in), optional :: text
@@ -907,7 +910,7 @@ contains
       end if
       if (spec%group == "numerics" .and. spec%name == "tolerance" .and. r > 0.0_wp .and. &
             & r < tolerance_floor) then
-         call fatal_error(error, label // ": below what double precision can meet (the " // &
+         call fatal_error(error, prefix // to_str(r) // ": below what double precision can meet (the " // &
             & "rounding of mu alone is about 1e-15, and each halving of the time step " // &
             & "doubles the run); use 0 (off) or a tolerance >= " // to_str(tolerance_floor))
          return
@@ -928,7 +931,7 @@ contains
          end if
       end if
       if (ok) return
-      call fatal_error(error, label // ": " // range_text(spec))
+      call fatal_error(error, prefix // to_str(r) // ": " // range_text(spec))
    end subroutine check_range
 
    !> Why a token is not a number, and what to write: the range for a NaN or
@@ -1382,10 +1385,11 @@ contains
       type(param_spec_type), intent(in) :: spec
       type(param_value_type), intent(in) :: value
       character(len=:), allocatable, intent(out) :: t
+      character(len=:), allocatable :: number
       integer :: k
       select case (spec%kind)
       case (kind_real)
-         t = to_str(value%r)
+         call real_to_str_text(value%r, t)
       case (kind_integer)
          t = to_str(value%i)
       case (kind_logical)
@@ -1396,7 +1400,8 @@ contains
          t = ""
          do k = 1, size(value%list)
             if (k > 1) t = t // ", "
-            t = t // to_str(value%list(k))
+            call real_to_str_text(value%list(k), number)
+            t = t // number
          end do
       end select
    end subroutine format_value_text
@@ -1452,7 +1457,7 @@ contains
       type(group_spec_type) :: gs(n_groups)
       integer :: g, k
       logical :: any_value
-      character(len=:), allocatable :: body
+      character(len=:), allocatable :: body, value_text
       gs = group_table()
       t = ""
       do g = 1, n_groups
@@ -1464,8 +1469,8 @@ contains
          do k = 1, size(specs)
             if (specs(k)%group /= gs(g)%name) cycle
             if (.not. set%v(k)%set) cycle
-            body = body // "  " // specs(k)%name // " = " // format_value(specs(k), set%v(k)) // &
-               & achar(10)
+            call format_value_text(specs(k), set%v(k), value_text)
+            body = body // "  " // specs(k)%name // " = " // value_text // achar(10)
             any_value = .true.
          end do
          if (any_value) t = t // "&" // gs(g)%name // achar(10) // body // "/" // achar(10)

@@ -18,7 +18,7 @@ module pavefric_run
       & check_output_path, release_temporary, setting
    use pavefric_texture, only: texture_metrics
    use pavefric_ifi, only: ifi_from_sweep
-   use pavefric_model, only: parameter_table, parameters_namelist
+   use pavefric_model, only: parameter_table, parameters_namelist_text
    use pavefric_error, only: add_warning
    implicit none
    private
@@ -287,9 +287,9 @@ contains
       meta%has_parameters = .true.
       meta%parameters = scene%parameters
       if (scene%is_batch) then
-         meta%parameters_text = parameters_namelist(parameter_table(), scene%parameters)
+         call parameters_namelist_text(parameter_table(), scene%parameters, meta%parameters_text)
       else
-         meta%parameters_text = parameters_namelist(parameter_table(), scene%parameters, &
+         call parameters_namelist_text(parameter_table(), scene%parameters, meta%parameters_text, &
             & groups="surface preprocess pad rubber water operation numerics output")
       end if
       meta%warnings = scene%warnings

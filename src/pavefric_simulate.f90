@@ -1336,6 +1336,10 @@ contains
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
       real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:), u_prev(:,:), push_prev(:,:)
       integer, allocatable :: samples(:)
+      !> The penetration two positions back and the film's load at the
+      !> previous position: the wet balance's warm start.
+      real(wp), dimension(lanes) :: delta_prev2, wh_prev
+      real(wp), dimension(lanes) :: guess
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
@@ -1421,6 +1425,8 @@ contains
       end if
 
       delta_prev = -huge(1.0_wp)
+      delta_prev2 = -huge(1.0_wp)
+      wh_prev = 0.0_wp
       have_prev = .false.
       contact_before = .false.
       spin = geo%n_spin
@@ -1458,6 +1464,8 @@ contains
             if (any_memory) state(j, :, :) = 0.0_wp
             u_free(j, :) = 0.0_wp
             delta_prev(j) = -huge(1.0_wp)
+            delta_prev2(j) = -huge(1.0_wp)
+            wh_prev(j) = 0.0_wp
             have_prev(j) = .false.
             u_max(j) = 0.0_wp
             n_eval(j) = 0
@@ -1486,8 +1494,21 @@ contains
                call gap_field(dl, x(j), gap)
                wet_lane(j) = film%engages(fstep(j), gap)
             end do
+            ! Warm start where the film carried load at the previous position:
+            ! from its wet penetration, extrapolated linearly from the two
+            ! before. Elsewhere from the dry root, which is then the root to
+            ! the bit when the film carries nothing (a film that never
+            ! lifts gives the dry numbers exactly).
+            do j = 1, nl
+               guess(j) = -huge(1.0_wp)
+               if (wh_prev(j) <= 0.0_wp .or. delta_prev(j) <= -huge(1.0_wp)) cycle
+               guess(j) = delta_prev(j)
+               if (delta_prev2(j) > -huge(1.0_wp)) guess(j) = 2.0_wp * delta_prev(j) - &
+                  & delta_prev2(j)
+               guess(j) = guess(j) - cmin(j)
+            end do
             call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
-               & x, wh, n_eval, gaps)
+               & guess, x, wh, n_eval, gaps)
          end if
 
          sum_f = 0.0_wp
@@ -1591,6 +1612,8 @@ contains
             have_prev = .true.
          end if
          if (any_memory) call rubber%update(rstep, state, u_free, push)
+         delta_prev2 = merge(delta_prev, -huge(1.0_wp), delta_prev > -huge(1.0_wp))
+         wh_prev = wh
          delta_prev = cmin + x
          if (t < 0) cycle                                    ! spin-up
 

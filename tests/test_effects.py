@@ -18,7 +18,9 @@ def test_dry_scene_never_evaluates_the_bearing(profile_m):
     assert "hydrodynamic_bearing" not in dry.attrs["effects"]
     # the same scene with the bearing running at its neutral value (alpha = 0
     # makes Eq. 15 carry nothing): the same numbers, bit for bit, but real
-    # work done (the wet balance starts from the dry root, where f = 0).
+    # work done (the wet balance starts from the dry root, where f = 0, at
+    # every position: it is warm-started only after a position where the film
+    # carried load).
     neutral = pavefric.simulate(profile_m, DX, SPEEDS, depth=1e-3, alpha=0.0)
     np.testing.assert_array_equal(neutral["mu"].values, dry["mu"].values)
     assert np.all(neutral["mean_hydro_load"].values == 0.0)

@@ -23,6 +23,9 @@ ROOT = HERE.parent
 RECORD_NOW = json.loads(RECORD.read_text())
 RECORD_OLD = json.loads(RECORD_010.read_text())
 CASES = {c[0]: c for c in synthetic_cases()}
+#: 0.1.0's counts of the wet balance's iterations: a property of its solver,
+#: not of the model (this code's own record keeps them, within 2 %).
+OLD_SOLVER_COUNTS = ("bearing_evaluations",)
 
 
 def compare(got: dict, want: dict, where: str, skip=()):
@@ -90,15 +93,39 @@ def test_simulate_outputs_agree_with_the_record(name):
 @pytest.mark.parametrize("scene", sorted(RECORD_OLD["scenes"]))
 def test_scene_outputs_agree_with_0_1_0(scene):
     # 0.1.0 had the paper's scheme on the profile's spacing: the same
-    # settings (make_regression.PAPER) must still reproduce it
-    compare(scene_record(scene, paper=True), RECORD_OLD["scenes"][scene], scene)
+    # settings (make_regression.PAPER) must still reproduce it. Not the wet
+    # balance's iteration count: its warm start from the previous position
+    # (issue 23) takes 11-52 % fewer evaluations to the same root, which the
+    # values checked here show to rounding.
+    compare(scene_record(scene, paper=True), RECORD_OLD["scenes"][scene], scene,
+            skip=OLD_SOLVER_COUNTS)
 
 
-@pytest.mark.parametrize("name", sorted(RECORD_OLD["simulate"]))
+@pytest.mark.parametrize("name", sorted(set(RECORD_OLD["simulate"]) - {"loose_tolerance"}))
 def test_simulate_outputs_agree_with_0_1_0(name):
     # 0.1.0 computed simulate()'s `speed` coordinate in Python (speeds / 3.6);
     # it now comes from the core (test_boundaries checks they agree).
-    compare(case_record(name, paper=True), RECORD_OLD["simulate"][name], name, skip=("speed",))
+    compare(case_record(name, paper=True), RECORD_OLD["simulate"][name], name,
+            skip=("speed",) + OLD_SOLVER_COUNTS)
+
+
+def test_a_loose_wet_balance_agrees_with_0_1_0_to_its_tolerance():
+    # wet_tolerance = 1e-6: the balance stops anywhere within 1e-6 W of its
+    # root, and where depends on where it starts (0.1.0 from the dry root,
+    # now from the previous position's wet root): the values agree to about
+    # the tolerance, not to rounding (measured: 5e-8 relative)
+    import numpy as np
+
+    from make_regression import decode
+
+    got = case_record("loose_tolerance", paper=True)
+    want = RECORD_OLD["simulate"]["loose_tolerance"]
+    for name in ("mu", "mean_hydro_load", "max_compression"):
+        g = np.ravel(got[name]["float"]).astype(float)
+        w = decode(want[name])[1].ravel()
+        assert np.allclose(g[:w.size], w, rtol=1e-6, atol=0), name
+        # a model change of 1e-4 would not pass
+        assert not np.allclose(g[:w.size] * (1 + 1e-4), w, rtol=1e-6, atol=0), name
 
 
 # --- the comparison itself: it must catch what it is there to catch ----------

@@ -368,7 +368,25 @@ for _ in range(int(sys.argv[4])):
 steps = ds.attrs["pad_elements"] * (ds.attrs["averaged_positions"]
                                     + ds.attrs["spinup_positions"]) * len(speeds)
 print(json.dumps({"seconds": best, "steps": int(steps), "mu": ds["mu"].values.tolist(),
-                  "evaluations": ds["bearing_evaluations"].values.tolist()}))
+                  "evaluations": ds["bearing_evaluations"].values.tolist(),
+                  "positions": int(ds.attrs["averaged_positions"]
+                                   + ds.attrs["spinup_positions"])}))
+"""
+
+#: The fixed cost of one call: a 64-point profile, 6 speeds, best of many.
+CALL_CHILD = """
+import json, time, warnings, pavefric
+from pavefric.surfaces import spectral_profile
+warnings.simplefilter("ignore")
+z = spectral_profile(1024, 0.87e-3, rms=1.0e-3, skew=-0.6, seed=23)[:64]
+speeds = [10.0, 20.0, 30.0, 40.0, 60.0, 80.0]
+pavefric.simulate(z, 0.87e-3, speeds, error_estimate=False)
+best = 1e9
+for _ in range(200):
+    t0 = time.perf_counter()
+    pavefric.simulate(z, 0.87e-3, speeds, error_estimate=False)
+    best = min(best, time.perf_counter() - t0)
+print(json.dumps({"seconds": best}))
 """
 
 
@@ -406,6 +424,10 @@ def sweep(ref, plain: PlainLoop, log, repeats: int = 5, tile: int = 64) -> list:
                                                     **({"depth": depth, "alpha": 11.8}
                                                        if depth else {}))
                     row["numpy"] = numpy_rate
+                if depth:
+                    # wet balance evaluations per speed and position
+                    row["evaluations"] = sum(core["evaluations"]) / (len(speeds)
+                                                                     * core["positions"])
                 rows.append(row)
                 plain_s = f"{row['plain'] / 1e6:10.1f} {core_rate / row['plain']:10.2f}x" \
                     if "plain" in row else f"{'-':>10s} {'-':>11s}"
@@ -418,6 +440,13 @@ def sweep(ref, plain: PlainLoop, log, repeats: int = 5, tile: int = 64) -> list:
     ratio = max(k / q for k, q in zip(kane, sq))
     log(f"the drainage film's cost per element-step against the paper's wet model: at most "
         f"{ratio:.2f}x (target <= 2x)")
+    ev = [r["evaluations"] for r in rows if "evaluations" in r]
+    log(f"the paper's wet balance: {min(ev):.2f}-{max(ev):.2f} bearing evaluations per speed "
+        f"and position")
+    call = _child(CALL_CHILD, env={"OMP_NUM_THREADS": "1"})
+    log(f"the fixed cost of one call (64 points, 6 speeds, pavefric.simulate): "
+        f"{call['seconds'] * 1e3:.2f} ms")
+    rows.append({"scene": "call", "seconds": call["seconds"]})
     return rows
 
 

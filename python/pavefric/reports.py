@@ -454,9 +454,11 @@ def _targets_now(results: dict) -> list[str]:
         "The plain loop is tests/plain_loop.f90: MODEL.md written the obvious way in "
         "Fortran (one speed, one position at a time, the dry balance by insertion sort "
         "and scan, the wet one by bisection), compiled by the benchmark with the core's "
-        "`-O3 -funroll-loops`; its compute is timed inside it, its reading excluded, and "
-        "its friction equals the core's to rounding (the `|mu - plain|` column below). "
-        "The NumPy reference is tests/reference.py.",
+        "`-O3 -funroll-loops`; its compute is timed inside it, its reading excluded. It "
+        "sums the paper's facet forces (Eq. 10); the core's default measures the energy "
+        "the rubber and the facets dissipate (`friction_scheme`, docs/model.md), which "
+        "differs from it by the `|mu - plain|` column below (the same model, not the "
+        "same discretisation of its friction). The NumPy reference is tests/reference.py.",
     ]
     return rows
 
@@ -561,8 +563,14 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "root in 2–4 passes over the elements (no sort; LAPACK `dlasrt` only as "
         "a fallback).",
         "- Wet balance: safeguarded Newton with the analytic derivative of Eq. 15, "
-        "from the dry root, the evaluations of all the lanes still iterating in one "
-        "pass; `bearing_evaluations` counts them.",
+        "warm-started from the previous position's wet root (from the dry root at the "
+        "first position, or when the guess leaves the bracket), the evaluations of all "
+        "the lanes still iterating in one pass; `bearing_evaluations` counts them. The "
+        "warm start (used where the film carried load at the previous position; elsewhere "
+        "the dry root, exact when the film carries nothing) took 11–37 % fewer evaluations "
+        "on the scenes of the regression record, 45–52 % on its tolerance cases and 2 % "
+        "more on one steep profile (the record's `bearing_evaluations` before and after, "
+        "2026-11-26), for the same roots to the balance's tolerance (mu moved by 1e-16).",
         "- Facet tangents computed once per profile sample, not per position; a "
         "closed profile is unrolled once so no element index needs a modulo; no "
         "allocation inside the position loop.",
@@ -579,10 +587,40 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "six lanes. Reaching 300 M would need the elements, not the speeds, in the "
         "vectors, with sums in another order: results would then differ from 0.1.0's "
         "in the last bits, which the regression record forbids for dry scenes. The "
-        "wet balance needs 5–8 bearing evaluations a position (each a logarithm per "
-        "speed). Starting each position from the previous root saved about a fifth "
-        "of them, but moved the wet results off 0.1.0's bits, which issues 11 and 12 "
-        "require; it was taken out.",
+        "wet balance needed 4–8 bearing evaluations a position (each a logarithm per "
+        "speed); warm-started, 4–5 (the line under the sweep table). The demand that "
+        "results stay bit for bit with 0.1.0 is withdrawn (issue 23), so the elements-in-"
+        "vectors design is open; it has not been built.",
+        "",
+        "## Where the time goes",
+        "",
+        "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
+        "error-estimate pass): the benchmark's coarse surface dry and wet (65,536 points, 6 "
+        "speeds) and 500 calls on a 64-point profile (the fixed cost of a call); "
+        "`tools/profile_kernel.sh --callgrind` counts the instructions of one dry and one "
+        "wet run (16,384 points), which the load of a shared host does not move. Measured "
+        "on 2026-11-26 before (0fe4299) and after the changes of that day "
+        "(`PYTHONPATH=<the other build> tools/profile_kernel.sh` profiles another build). "
+        "Shares are of the samples, self time; inlined routines count in their caller.",
+        "",
+        "| workload | before | after |",
+        "|---|---|---|",
+        "| dry sweep | 93 ms a run; the core 54 % of the samples: `slide` (gaps, contacts, "
+        "the facets' work, inlined) 37 %, the dry Newton passes 13 %, the rubber's memory 3 "
+        "%; Python 29 % (importing pavefric once, building the Dataset); 226 M instructions "
+        "| 90 ms; the same shares and 226 M instructions (the dry kernel was not changed) |",
+        "| wet sweep | 413 ms a run; the core 72 %: the wet balance (contact sums, the "
+        "bearing's gap sums, Eq. 15 and its logarithm) 36 %, `slide` 18 %, the dry root 8 %; "
+        "714 M instructions, 411 M of them the wet balance | 355 ms; the wet balance 28 %, "
+        "`slide` 20 %, the dry root 9 %; 579 M instructions (-19 %), 274 M the wet balance "
+        "(-33 %: a quarter fewer evaluations, and the bearing's sums taken in the balance's "
+        "own pass) |",
+        "| one call, 64 points | 7.9 ms: 63 % in libgfortran and libc formatting numbers "
+        "(each echoed parameter written and read back up to 17 times to find its shortest "
+        "text, and that 8 times over by length-then-text functions; a range check "
+        "formatted its message before knowing of an error) | 2.1 ms: a bisection over the "
+        "digits, each text built once, messages only on error; now 59 % Python (the xarray "
+        "Dataset) |",
         "",
         "## Why the NumPy ratio is lower when dry",
         "",
