@@ -355,3 +355,29 @@ def test_a_ten_megabyte_comment_runs_and_the_scene_is_kept_whole(tmp_path, profi
     assert ds.attrs["input_namelist"] == scene.read_text()
     with xr.open_dataset(tmp_path / "o.nc") as raw:
         assert raw.attrs["input_namelist"].startswith("in the variable of this name: ")
+
+
+def _significant_digits(text: str) -> str:
+    mantissa = text.lower().lstrip("-").split("e")[0].replace(".", "")
+    return mantissa.strip("0") or "0"
+
+
+def test_the_echo_writes_each_number_in_its_fewest_digits():
+    # The output's `parameters` echo writes every real in the fewest
+    # significant digits that read back to the same double (the core finds
+    # them by bisection over 1..17 digits). Python's repr is an independent
+    # shortest round-trip (David Gay's algorithm): same value, same digits.
+    rng = np.random.default_rng(7)
+    values = [float(v) for v in rng.uniform(0.1, 300.0, 40)]          # 15-17 digits
+    values += [round(float(v), int(k)) or 1.0
+               for v, k in zip(rng.uniform(0.1, 300.0, 40), rng.integers(0, 14, 40))]
+    values += [0.1, 0.3, 1.0, 2.5, 100.0, 120.0, 1 / 3, 2 / 3, 299.99999999999994, 1e-3]
+    z = np.sin(np.arange(64) * 0.7) * 3e-4
+    ds = pavefric.simulate(z, 0.87e-3, values, error_estimate=False)
+    line = [ln for ln in ds.attrs["parameters"].splitlines()
+            if ln.strip().startswith("speeds_kmh")][0]
+    written = [t.strip() for t in line.split("=", 1)[1].split(",")]
+    assert len(written) == len(values)
+    for text, value in zip(written, values):
+        assert float(text) == value, (text, value)
+        assert _significant_digits(text) == _significant_digits(repr(value)), (text, repr(value))

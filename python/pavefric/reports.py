@@ -592,6 +592,15 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "results stay bit for bit with 0.1.0 is withdrawn (issue 23), so the elements-in-"
         "vectors design is open; it has not been built.",
         "",
+        "Two ratios moved on 2026-11-26 because their denominators got faster, not "
+        "because their numerators got slower: the drainage film against the paper's wet "
+        "model (issue 12) crossed 2x as the paper's wet balance took fewer evaluations "
+        "(the drainage film's own rate, 15–20 M element-steps/s, is what it was: it runs "
+        "no wet balance), and the tolerance rows' default runs lost about 8 ms of fixed "
+        "cost per call (the echo of the scene's numbers), which raised every `ratio to "
+        "its default run` on these small scenes (ctm_dry's default run 13.7 ms before, "
+        "5.4 ms after).",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
