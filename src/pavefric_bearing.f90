@@ -16,6 +16,9 @@ module pavefric_bearing
    !> there is about 12 eps / e**2 = 4e-14; the series' truncation is < 1e-18).
    real(wp), parameter :: series_threshold = 0.25_wp
    integer, parameter :: n_terms = 32
+   !> Above this e = a - 1, hydro_load scales its terms (a**2 would overflow
+   !> near 1e154; 1e100 leaves a margin for the prefactor).
+   real(wp), parameter :: huge_ratio = 1.0e100_wp
    integer :: n_
    !> Coefficients of B(e) = sum_{n>=3} c_n e**(n-2), c_n = (-1)**(n+1) (1/n - 2**(1-n)).
    real(wp), parameter :: coef(3:n_terms+2) = [( real((-1)**(n_+1), wp) &
@@ -61,7 +64,7 @@ contains
    pure subroutine hydro_load(prefactor, h_in, h_out, wh, dwh_dhout)
       real(wp), intent(in) :: prefactor, h_in, h_out
       real(wp), intent(out) :: wh, dwh_dhout
-      real(wp) :: e, a, b, db, g, dg
+      real(wp) :: e, a, b, db, g, dg, r, q, p
       ! No wedge, or a bearing with no strength (alpha = 0 or V = 0): no load,
       ! even as the film closes.
       if (h_out >= h_in .or. prefactor <= 0.0_wp) then
@@ -76,6 +79,20 @@ contains
       end if
       e = (h_in - h_out) / h_out          ! = a - 1, without the rounding of a
       a = 1.0_wp + e
+      if (e > huge_ratio) then
+         ! A film thinner than 1e-100 of the water: a**2 and e**2 would
+         ! overflow (and a**2 B(a) give Inf x 0). The same g and dg/da from
+         ! ratios of order 1: r = a/e, q = e/(a+1), B = (ln a - 2q)/e**2,
+         ! g = r**2 (ln a - 2q), dB/da = 1/(a (a+1)**2) - 2 (ln a - 2q)/e**3.
+         r = a / e
+         q = e / (a + 1.0_wp)
+         p = log(a) - 2.0_wp * q
+         g = r * r * p
+         dg = 2.0_wp * r * p / e + r * r * (q * q / a - 2.0_wp * p / e)
+         wh = prefactor / h_in**2 * g
+         dwh_dhout = max(-huge(1.0_wp), -prefactor / h_in**3 * ((dg * a) * a))
+         return
+      end if
       call bracket_over_e2(e, b, db)
       g = a * a * b                       ! g(a) = a**2 B(a)
       dg = 2.0_wp * a * b + a * a * db

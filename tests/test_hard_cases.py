@@ -172,3 +172,61 @@ def test_ten_million_points_memory_scales_with_profile(series):
     # tens of bytes per point; profile x pad would be 8 x 92 = 736 bytes
     assert per_point[0.08] < 100
     assert per_point[0.08] - per_point[0.02] < 8
+
+
+def _bearing_g_decimal(h_in: float, h_out: float):
+    """g(a) = a^2 B(a) and dg/da of Eq. 15 in 60-digit decimal arithmetic:
+    an independent reference where doubles overflow (a^2 beyond 1e308)."""
+    from decimal import Decimal, getcontext
+
+    getcontext().prec = 60
+    a = Decimal(h_in) / Decimal(h_out)
+    e = a - 1
+    p = a.ln() - 2 * e / (a + 1)
+    b = p / e**2
+    db = 1 / (a * (a + 1) ** 2) - 2 * p / e**3
+    return a, a * a * b, 2 * a * b + a * a * db
+
+
+def test_bearing_for_films_thinner_than_1e_100_of_the_water():
+    # Reproducer: on a flat wet profile at 1e-6 km/h the pad sinks onto a
+    # film of ~1e-61 m; the warm-started wet balance (issue 23) probes films
+    # of 1e-160 m on the way, where a^2 and e^2 overflowed and Eq. 15 gave
+    # Inf x 0 = NaN (the half-step estimate pass then failed). Wh and its
+    # derivative must be finite, agree with a 60-digit reference, and keep
+    # rising as the film thins, across the scaled branch (e > 1e100).
+    from pavefric.core import hydro_load
+
+    h_in, prefactor = 1e-3, 2.0
+    h = h_in * np.logspace(-20, -240, 45)
+    h = np.sort(np.concatenate([h, [h_in / (1 + 1e100) * (1 + 1e-15), h_in / (1 + 1e100)]]))
+    wh, dwh = hydro_load(h, h_in, prefactor=prefactor)
+    assert np.all(np.isfinite(wh)) and np.all(np.isfinite(dwh))
+    # thinner film, more load (the two films either side of the scaled
+    # branch's threshold, 1e-15 apart, give the same load to rounding:
+    # measured 1.3e-16 relative)
+    assert np.all(np.diff(wh) <= 1e-15 * wh[1:]) and np.all(dwh < 0)
+    assert np.count_nonzero(np.diff(wh) > 0) <= 1
+    assert np.all(np.diff(wh[h < 1e-104]) < 0) and np.all(np.diff(wh[h > 1e-102]) < 0)
+    for hout, w, dw in zip(h, wh, dwh):
+        a, g, dg = _bearing_g_decimal(h_in, hout)
+        assert w == pytest.approx(prefactor / h_in**2 * float(g), rel=1e-12), hout
+        expect = -(prefactor / h_in**3) * float(dg * a) * float(a)
+        assert dw == pytest.approx(max(expect, -np.finfo(float).max), rel=1e-9), hout
+
+
+def test_flat_wet_profile_at_a_crawl_estimates_its_error():
+    # the same scene through the default run: its half-step pass must run
+    # (it failed with a NaN bearing load), both passes finite
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pavefric.PavefricWarning)
+        warnings.filterwarnings("ignore", message=".*RMS height is 0 m.*")
+        ds = pavefric.simulate(np.zeros(500), DX, [1e-6], mu_loc=0.4, depth=1e-3)
+    finite(ds)
+    assert np.isfinite(ds["mu_error_estimate"].values[0])
+    assert ds["mu"].values[0] < 1e-12
+    for substeps in (2, 4):
+        finite(pavefric.simulate(np.zeros(500), DX, [1e-6], mu_loc=0.4, depth=1e-3,
+                                 substeps=substeps, error_estimate=False))
