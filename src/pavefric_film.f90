@@ -44,8 +44,9 @@ module pavefric_film
       procedure :: load => film_no_load
       !> `load` for several lanes (speeds) at once: gap(lane, element), the
       !> lanes where `active`; each lane's numbers are `load`'s to the bit.
-      !> The default calls `load` lane by lane; a film may run the lanes
-      !> together (their sums interleave).
+      !> The default: for a film whose `sums_suffice`, the lanes' sums in
+      !> one pass (interleaved, each in element order) and `loads_of_sums`;
+      !> otherwise `load` lane by lane.
       procedure :: loads => film_loads_by_lane
       !> Whether the load depends on the gap field only through its sum and
       !> the number of open gaps (gap_i > 0). The balance then sums both in
@@ -109,7 +110,6 @@ module pavefric_film
       procedure :: effect => bearing_effect
       procedure :: engages => bearing_engages
       procedure :: load => bearing_load
-      procedure :: loads => bearing_loads
       procedure :: sums_suffice => bearing_sums_suffice
       procedure :: loads_of_sums => bearing_loads_of_sums
       procedure :: lower_bound => bearing_lower_bound
@@ -154,8 +154,13 @@ contains
       real(wp), intent(in) :: gap(nl, n)
       logical, intent(in) :: active(nl)
       real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
-      real(wp) :: row(n)
+      real(wp) :: row(n), total(lanes), n_open(lanes)
       integer :: j
+      if (self%sums_suffice()) then
+         call gap_sums(nl, n, gap, total, n_open)
+         call self%loads_of_sums(nl, n, steps, total, n_open, active, wh, dwh_dx)
+         return
+      end if
       do j = 1, nl
          if (.not. active(j)) cycle
          row = gap(j, :)
@@ -276,20 +281,6 @@ contains
       call hydro_load(step%coef(1), self%depth, total / real(size(gap), wp), wh, dwh)
       dwh_dx = -(dwh * n_gap / real(size(gap), wp))
    end subroutine bearing_load
-
-   !> bearing_load for the lanes together: the sums of the lanes interleave
-   !> (each in element order, so each lane's bits are bearing_load's).
-   pure subroutine bearing_loads(self, nl, n, steps, gap, active, wh, dwh_dx)
-      class(pseudo_bearing_film), intent(in) :: self
-      integer, intent(in) :: nl, n
-      type(film_step_type), intent(in) :: steps(nl)
-      real(wp), intent(in) :: gap(nl, n)
-      logical, intent(in) :: active(nl)
-      real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
-      real(wp) :: total(lanes), n_gap(lanes)
-      call gap_sums(nl, n, gap, total, n_gap)
-      call self%loads_of_sums(nl, n, steps, total, n_gap, active, wh, dwh_dx)
-   end subroutine bearing_loads
 
    !> Eq. 15 needs only the mean gap (H_out) and, for its derivative, the
    !> share of open gaps.
