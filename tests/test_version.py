@@ -31,7 +31,7 @@ def test_program_python_and_meson_build_agree():
 def test_the_version_is_written_nowhere_else():
     """The Fortran and Python sources take it from meson.build at build time;
     pyproject.toml declares it dynamic (meson-python reads meson.build)."""
-    kinds = (ROOT / "src" / "pavefric_kinds.f90").read_text(encoding="utf-8")
+    kinds = (ROOT / "src" / "base" / "pavefric_kinds.f90").read_text(encoding="utf-8")
     assert 'include "pavefric_version.inc"' in kinds
     assert not re.search(r"pavefric_version\s*=", kinds)
     init = (ROOT / "python" / "pavefric" / "__init__.py").read_text(encoding="utf-8")

@@ -511,7 +511,7 @@ def whole_program(plain: PlainLoop, log, points: int = 400_000, repeats: int = 3
 
 
 # The scenes of the cost estimate: (set, name, namelist groups). The core's
-# cost model (src/pavefric_simulate.f90, sec_*) was fitted on the
+# cost model (src/run/pavefric_simulate.f90, sec_*) was fitted on the
 # "training" runs (a 65,536-point open profile, 1 to 12 speeds, each model);
 # the "test" runs, which the fit never saw, judge it (other lengths, closed
 # profiles, other knobs and pads). Its form (parts per profile sample, per
@@ -605,7 +605,7 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
     return rows
 
 
-#: The cost model's rates (src/pavefric_simulate.f90) in the order of
+#: The cost model's rates (src/run/pavefric_simulate.f90) in the order of
 #: _cost_features; sec_run (1 ms) is fixed, not fitted (the training runs
 #: share one profile length, so it and sec_point cannot be told apart).
 #: sec_point is paid once per run (reading, preprocessing, texture,
@@ -648,7 +648,7 @@ def _log_refit(log, rows) -> None:
     scale = np.maximum(np.abs(a).max(axis=0), 1e-300)
     x, _ = nnls(a * w[:, None] / scale, b * w)
     x = x / scale
-    log("  rates refitted on these training runs (src/pavefric_simulate.f90 holds the "
+    log("  rates refitted on these training runs (src/run/pavefric_simulate.f90 holds the "
         "ones in use): " + ", ".join(f"{n} = {v:.2e}" for n, v in zip(COST_RATES, x)))
     ratios = {s: [(SEC_RUN + float(np.dot(x, r["features"]))) / r["measured"]
                   for r in rows if r["set"] == s] for s in ("training", "test")}

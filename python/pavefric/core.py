@@ -83,7 +83,7 @@ def _text(raw: Any) -> str:
     return str(raw).rstrip("\x00 ").strip()
 
 
-# The core's status kinds (src/pavefric_error.f90): stat_memory is "not enough
+# The core's status kinds (src/base/pavefric_error.f90): stat_memory is "not enough
 # memory for the work asked for", which Python reports as MemoryError.
 _STAT_MEMORY = 3
 
@@ -782,7 +782,7 @@ class _ProgressBar:
 
 # A global attribute too long for HDF5's attribute storage is written as a
 # character variable of its name; the attribute then begins with this note
-# (src/pavefric_netcdf.f90, long_text_note).
+# (src/io/pavefric_netcdf.f90, long_text_note).
 LONG_TEXT_NOTE = "in the variable of this name: "
 
 
@@ -809,7 +809,7 @@ def store_long_attributes(ds):
     """The inverse of ``restore_long_attributes``, for Python's writers: each
     global text attribute longer than LONG_TEXT_LIMIT becomes a character
     variable of its name, the attribute saying where (the core's own
-    convention, src/pavefric_netcdf.f90). Returns a new dataset."""
+    convention, src/io/pavefric_netcdf.f90). Returns a new dataset."""
     ds = ds.copy()
     for name, value in list(ds.attrs.items()):
         if isinstance(value, str) and len(value.encode("utf-8")) > LONG_TEXT_LIMIT:

@@ -64,7 +64,7 @@ REPRESENTATIVE_TEMPERATURES = (-20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 
 def wlf_log10_shift(temperature, reference: float = T_REF, c1: float = WLF_C1,
                     c2: float = WLF_C2):
     """log10 a_T = -C1 (T - Tref) / (C2 + T - Tref), computed by the core
-    (the equation the Maxwell rubber runs with, src/pavefric_maxwell.f90):
+    (the equation the Maxwell rubber runs with, src/physics/pavefric_maxwell.f90):
     for shifting data onto the master curve. ValueError where the equation
     diverges (T - Tref <= -C2) or shifts by more than 100 decades."""
     from . import _core

@@ -27,7 +27,7 @@ meson compile -C "$build" pavefric:shared_library >"$build.build.log" 2>&1 ||
     { tail -40 "$build.build.log"; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-gcc -g -O1 -fsanitize=thread -I"$root/src" -o "$work/check_api" "$root/tests/api/check_api.c" \
+gcc -g -O1 -fsanitize=thread -I"$root/src/api" -o "$work/check_api" "$root/tests/api/check_api.c" \
     -L"$build/src" -Wl,-rpath,"$build/src" -lpavefric -lm -pthread ||
     exit 2
 log="$work/tsan.log"

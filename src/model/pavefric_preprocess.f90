@@ -5,7 +5,7 @@ module pavefric_preprocess
    use pavefric_kinds, only: wp, pi
    use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_format, only: to_str, round_sig
-   use pavefric_profile, only: raw_profile_type, point_location
+   use pavefric_profile_types, only: raw_profile_type, point_location
    implicit none
    private
 

@@ -5,12 +5,12 @@
 !> whichever way it is read.
 module pavefric_outputs
    use pavefric_kinds, only: wp
-   use pavefric_simulate, only: sim_result_type
+   use pavefric_results, only: sim_result_type
    use pavefric_texture, only: texture_type
    use pavefric_ifi, only: ifi_type
    use pavefric_preprocess, only: preprocess_report_type
    use pavefric_model, only: param_set_type, model_type
-   use pavefric_simulate, only: make_components
+   use pavefric_components, only: make_components
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
    implicit none

@@ -1,4 +1,4 @@
-!> The C API (src/pavefric.h): bind(C) procedures over opaque handles, in
+!> The C API (src/api/pavefric.h): bind(C) procedures over opaque handles, in
 !> the manner of dftd4's api.f90. An error handle carries the last call's
 !> error; a scene handle is a pavefric_session session_type (a scene, its
 !> profile, its last results). Handles are heap objects owned by the

@@ -1,7 +1,7 @@
 !> File-system helpers from the C library: atomic rename, remove, mkdir,
 !> process id, file identity (stat, realpath), the guard that keeps an
 !> output off the inputs and off devices, and the list of temporary files a
-!> fatal signal removes (src/pavefric_posix.c). Fortran has none of these
+!> fatal signal removes (src/io/pavefric_posix.c). Fortran has none of these
 !> portably.
 module pavefric_fsys
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_long_long
@@ -60,7 +60,7 @@ module pavefric_fsys
          integer(c_int), intent(out) :: kind
          integer(c_int) :: stat
       end function c_file_id
-      !> strerror into `buf` (src/pavefric_ncmem.c); the length written.
+      !> strerror into `buf` (src/io/pavefric_ncmem.c); the length written.
       pure subroutine c_strerror(err, buf, n, written) bind(C, name="pavefric_strerror_into")
          import :: c_int, c_char
          integer(c_int), value :: err, n

@@ -1,4 +1,4 @@
-!> SHA-256 digests for the batch journal (src/pavefric_sha256.c): the
+!> SHA-256 digests for the batch journal (src/io/pavefric_sha256.c): the
 !> fingerprint of a batch's inputs, each profile file's content, and a
 !> checksum of each journal line. Digests are 64 lower-case hex characters.
 module pavefric_batch_hash

@@ -10,7 +10,7 @@ module pavefric_profile
    use pavefric_heights, only: refine_profile, check_heights
    use pavefric_error, only: error_type, fatal_error
    use pavefric_format, only: to_str, round_sig
-   use pavefric_profile_types, only: profile_type, raw_profile_type
+   use pavefric_profile_types, only: profile_type, raw_profile_type, point_location
    use pavefric_profile_file, only: read_file_head, read_whole_file
    use pavefric_profile_text, only: detect_text_format, parse_plain, parse_table
    use pavefric_profile_netcdf, only: profile_catalog_type, profile_label_type, &
@@ -108,39 +108,6 @@ contains
          call parse_table(buf, path, fmt, factor, x_column, z_column, raw, error)
       end if
    end subroutine read_raw_profile
-
-   !> Where a point of a profile came from, for messages, from its entry in
-   !> raw%line: 'path:line' for a text file, "path, profile 'name', point k"
-   !> for NetCDF.
-   pure function point_location(raw, line) result(text)
-      type(raw_profile_type), intent(in) :: raw
-      integer, intent(in) :: line
-      character(len=point_location_len(raw, line)) :: text
-      character(len=:), allocatable :: deferred_text
-      call point_location_text(raw, line, deferred_text)
-      text = deferred_text
-   end function point_location
-
-   !> The length of point_location's text.
-   pure integer function point_location_len(raw, line)
-      type(raw_profile_type), intent(in) :: raw
-      integer, intent(in) :: line
-      character(len=:), allocatable :: deferred_text
-      call point_location_text(raw, line, deferred_text)
-      point_location_len = len(deferred_text)
-   end function point_location_len
-
-   !> The text of point_location, into a deferred-length argument.
-   pure subroutine point_location_text(raw, line, text)
-      type(raw_profile_type), intent(in) :: raw
-      integer, intent(in) :: line
-      character(len=:), allocatable, intent(out) :: text
-      text = raw%path // ":" // to_str(line)
-      if (allocated(raw%format)) then
-         if (raw%format == "netcdf") text = raw%path // ", profile '" // raw%name // &
-            & "', point " // to_str(line)
-      end if
-   end subroutine point_location_text
 
    !> Metres per unit for a height unit name; 0 when unknown.
    pure function unit_factor(name) result(f)

@@ -12,9 +12,9 @@ module pavefric_simulate
    use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded, max_substeps
    use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
-   use pavefric_maxwell, only: maxwell_rubber, wlf_shift
-   use pavefric_film, only: film_model, film_step_type, pseudo_bearing_film
-   use pavefric_squeeze, only: squeeze_film
+   use pavefric_film, only: film_model, film_step_type
+   use pavefric_results, only: cost_estimate_type, sim_result_type
+   use pavefric_components, only: make_components
    use pavefric_facet, only: facet_friction, facet_tangent
    use pavefric_balance, only: dry_roots, wet_roots, gap_field, lanes
    use pavefric_kv_exact, only: kv_exact_lane, kv_exact_type
@@ -48,29 +48,12 @@ module pavefric_simulate
          import :: c_long_long
          integer(c_long_long) :: bytes
       end function c_physical_memory
-      !> 0 if this thread's OpenMP pool came through fork() (src/pavefric_files_lock.c).
+      !> 0 if this thread's OpenMP pool came through fork() (src/io/pavefric_files_lock.c).
       function parallel_ok() bind(C, name="pavefric_parallel_ok") result(ok)
          import :: c_int
          integer(c_int) :: ok
       end function parallel_ok
    end interface
-
-   !> What a run will cost, known before it starts: printed by the program
-   !> before the run and recorded in the output, so that a user sees the
-   !> price of a knob (substeps, elements_per_sample) before paying it.
-   type :: cost_estimate_type
-      !> Element updates of one pass at the scene's knobs, per speed and for
-      !> all speeds: (spin-up + averaged positions) x pad elements, exactly
-      !> (`memory_updates` counts the same on a viscous scene).
-      integer(i8) :: element_steps = 0, total_element_steps = 0
-      !> Peak memory of the run (bytes): geometry, per-speed state, series
-      !> and the output built in memory.
-      real(wp) :: bytes = 0.0_wp
-      !> Seconds on one thread at the calibrated rates below, with the
-      !> error estimate's pass (step_passes); with &numerics tolerance, of
-      !> the first pass (each refinement doubles it).
-      real(wp) :: seconds = 0.0_wp
-   end type cost_estimate_type
 
    ! The cost model (one thread): a part per profile sample (reading,
    ! preprocessing, texture metrics, writing), a part per refined sample and
@@ -92,76 +75,6 @@ module pavefric_simulate
    !> tolerance = 0 warns (&numerics error_estimate).
    real(wp), parameter :: estimate_warning = 0.1_wp
 
-   !> Results of one scene, per speed (and per position with `series`).
-   type :: sim_result_type
-      !> Pad elements N.
-      integer :: n_elements = 0
-      !> Averaged positions per speed M.
-      integer :: n_positions = 0
-      !> Spin-up positions before averaging (closed profiles).
-      integer :: n_spinup = 0
-      !> The rubber thickness (m), to compare max_compression with.
-      real(wp) :: thickness = 0.0_wp
-      !> The cost estimated before the run (of its first pass).
-      type(cost_estimate_type) :: estimate
-      !> Speeds (m s-1) and (km h-1).
-      real(wp), allocatable :: speed(:), speed_kmh(:)
-      !> The spacing of the profile the pad slid over (m): &pad
-      !> element_length (adjusted to a whole number round a closed profile),
-      !> or the profile's own.
-      real(wp) :: element_spacing = 0.0_wp
-      !> Mean friction coefficient over the profile (Eq. 12).
-      real(wp), allocatable :: mu(:)
-      !> Its parts: the rubber's dissipation (hysteresis) and the facets'
-      !> local friction (adhesion), each per unit load and distance slid.
-      real(wp), allocatable :: mu_hysteresis(:), mu_adhesion(:)
-      !> Share of averaged positions where no element touched.
-      real(wp), allocatable :: hydroplaning_fraction(:)
-      !> Share of averaged positions where the film carried load.
-      real(wp), allocatable :: wet_fraction(:)
-      !> Largest |sum F + Wh - W| / W over the averaged positions.
-      real(wp), allocatable :: max_balance_residual(:)
-      !> Mean load carried by the film (N).
-      real(wp), allocatable :: mean_hydro_load(:)
-      !> Largest compression of an element (m), to compare with the thickness.
-      real(wp), allocatable :: max_compression(:)
-      !> Contacts on facets steeper than theta_max, summed over positions.
-      integer(i8), allocatable :: n_clamped(:)
-      !> Evaluations of the film's load (0 when it did not run).
-      integer(i8), allocatable :: bearing_evaluations(:)
-      !> Element-steps that updated the rubber's memory (0 for an elastic scene).
-      integer(i8), allocatable :: memory_updates(:)
-      !> Whether the elements carried memory at this speed.
-      logical, allocatable :: viscous_memory_ran(:)
-      !> Whether the speed ran the exact Kelvin-Voigt integrator.
-      logical, allocatable :: exact_integrator_ran(:)
-      !> Whether a load-carrying film took part in the balance at this speed.
-      logical, allocatable :: bearing_ran(:)
-      !> Whether a friction-changing film ran at this speed.
-      logical, allocatable :: friction_film_ran(:)
-      !> With &numerics tolerance: the estimated error of mu (the change
-      !> from the previous time step) and the substeps that met it.
-      real(wp), allocatable :: mu_error(:)
-      integer, allocatable :: substeps_used(:)
-      !> Whether mu is the Richardson value of the last two passes (per speed).
-      logical, allocatable :: extrapolated(:)
-      !> Mean local friction over the contacts (force-weighted) with a
-      !> friction-changing film, and the mean film under the pad (m).
-      real(wp), allocatable :: mean_local_friction(:), mean_film_thickness(:)
-      !> Distance slid from the first averaged position (m), with series.
-      real(wp), allocatable :: position(:)
-      !> Per position and speed, with series: instantaneous friction (Eq. 11),
-      !> film load (N), pad penetration delta (m), elements in contact; with a
-      !> friction-changing film also the mean film thickness under the pad (m)
-      !> and the force-weighted local friction.
-      real(wp), allocatable :: mu_inst(:,:), hydro_load(:,:), penetration(:,:)
-      integer, allocatable :: contact_elements(:,:)
-      real(wp), allocatable :: film_thickness(:,:), local_friction(:,:)
-      !> The effects that ran, comma-separated (the output's `effects`).
-      character(len=:), allocatable :: effects
-      !> Warnings about suspicious results, one a line ('' = none).
-      character(len=:), allocatable :: warnings
-   end type sim_result_type
 
    !> One speed's averaged results (see sim_result_type for their meaning).
    type :: speed_summary_type
@@ -290,37 +203,6 @@ contains
       resamples = m%element_length > 0.0_wp .and. dx > 0.0_wp .and. dx <= huge(dx)
       if (resamples) resamples = abs(dx - m%element_length) > 1.0e-9_wp * m%element_length
    end function resamples
-
-   !> The rubber and film components a model calls for: a film only with
-   !> water (depth > 0), so a dry scene simulates no film at all.
-   subroutine make_components(m, rubber, film)
-      type(model_type), intent(in) :: m
-      class(rubber_model), allocatable, intent(out) :: rubber
-      class(film_model), allocatable, intent(out) :: film
-      real(wp) :: a_t
-      character(len=:), allocatable :: law
-      law = "kelvin_voigt"
-      if (allocated(m%rubber_model)) law = m%rubber_model
-      ! the WLF shift of every relaxation time (exactly 1 at the reference temperature)
-      a_t = wlf_shift(m%temperature, m%reference_temperature, m%wlf_c1, m%wlf_c2)
-      select case (law)
-      case ("maxwell")
-         allocate(rubber, source=maxwell_rubber(stiffness=m%stiffness, &
-            & arm_stiffness=m%prony_stiffness, arm_times=a_t * m%prony_times))
-      case default
-         allocate(rubber, source=kelvin_voigt_rubber(stiffness=m%stiffness, &
-            & viscosity=a_t * m%viscosity))
-      end select
-      if (.not. m%depth > 0.0_wp) return
-      select case (m%wet_model)
-      case ("squeeze")
-         allocate(film, source=squeeze_film(depth=m%depth, eta=m%water_viscosity, &
-            & sigma=m%microtexture_rms, width=m%width))
-      case default
-         allocate(film, source=pseudo_bearing_film(depth=m%depth, eta=m%water_viscosity, &
-            & alpha=m%alpha, beta=m%beta, width=m%width, length=m%length))
-      end select
-   end subroutine make_components
 
    !> Run the friction model on heights `z` (m) at spacing `dx` (m) for each
    !> speed in `speeds_kmh`. With &numerics tolerance > 0 the time step is
@@ -870,7 +752,7 @@ contains
       width = (ns + n_chunks - 1) / n_chunks
       n_chunks = (ns + width - 1) / width
       ! one thread on a thread whose OpenMP pool came through fork() (it
-      ! would wait for threads that are gone; src/pavefric_files_lock.c)
+      ! would wait for threads that are gone; src/io/pavefric_files_lock.c)
       n_threads = 1
       !$ if (parallel_ok() == 1) n_threads = omp_get_max_threads()
       !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries) &

@@ -1,11 +1,12 @@
 !> The profile types every reader fills (text, CSV, laser export, NetCDF).
-!> No I/O here; pavefric_profile re-exports them.
+!> No I/O here; pavefric_profile re-exports them, with point_location.
 module pavefric_profile_types
    use pavefric_kinds, only: wp
+   use pavefric_format, only: to_str
    implicit none
    private
 
-   public :: profile_type, raw_profile_type
+   public :: profile_type, raw_profile_type, point_location
 
    !> A profile of heights z at a uniform spacing.
    type :: profile_type
@@ -46,5 +47,40 @@ module pavefric_profile_types
       real(wp) :: chainage = 0.0_wp
       logical :: has_chainage = .false.
    end type raw_profile_type
+
+contains
+
+   !> Where a point of a profile came from, for messages, from its entry in
+   !> raw%line: 'path:line' for a text file, "path, profile 'name', point k"
+   !> for NetCDF.
+   pure function point_location(raw, line) result(text)
+      type(raw_profile_type), intent(in) :: raw
+      integer, intent(in) :: line
+      character(len=point_location_len(raw, line)) :: text
+      character(len=:), allocatable :: deferred_text
+      call point_location_text(raw, line, deferred_text)
+      text = deferred_text
+   end function point_location
+
+   !> The length of point_location's text.
+   pure integer function point_location_len(raw, line)
+      type(raw_profile_type), intent(in) :: raw
+      integer, intent(in) :: line
+      character(len=:), allocatable :: deferred_text
+      call point_location_text(raw, line, deferred_text)
+      point_location_len = len(deferred_text)
+   end function point_location_len
+
+   !> The text of point_location, into a deferred-length argument.
+   pure subroutine point_location_text(raw, line, text)
+      type(raw_profile_type), intent(in) :: raw
+      integer, intent(in) :: line
+      character(len=:), allocatable, intent(out) :: text
+      text = raw%path // ":" // to_str(line)
+      if (allocated(raw%format)) then
+         if (raw%format == "netcdf") text = raw%path // ", profile '" // raw%name // &
+            & "', point " // to_str(line)
+      end if
+   end subroutine point_location_text
 
 end module pavefric_profile_types

@@ -3,14 +3,14 @@
 !> netCDF call goes through `check`, which adds context to nf90_strerror.
 !> The file is built in memory, written under a temporary name when it is
 !> complete and renamed on success, so a failed run leaves no half-written
-!> output and HDF5 never sees a failing disk (src/pavefric_ncmem.c); the
+!> output and HDF5 never sees a failing disk (src/io/pavefric_ncmem.c); the
 !> temporary name is on the list a fatal signal cleans up (pavefric_fsys).
 module pavefric_netcdf
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
    use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
-   use pavefric_simulate, only: sim_result_type
+   use pavefric_results, only: sim_result_type
    use pavefric_outputs, only: output_metadata_type, output_var_type, output_table, &
       & output_present, output_values, n_outputs, out_double, out_int64, out_int, out_flag, &
       & dim_speed
@@ -85,7 +85,7 @@ contains
 
    !> Start the NetCDF-4 file that `close` will write to `path`. The file is
    !> built in memory and written by pavefric at `close`, so that HDF5 never
-   !> meets a failing disk (see src/pavefric_ncmem.c): a full disk is then an
+   !> meets a failing disk (see src/io/pavefric_ncmem.c): a full disk is then an
    !> ordinary write error, and the process stays sound.
    subroutine writer_create(w, path)
       class(nc_writer_type), intent(inout) :: w

@@ -1,0 +1,148 @@
+"""Issue 22: the Fortran core's layers run one way (docs/architecture.md).
+
+src/ holds one directory per layer; a module may use modules of its own
+layer and of the layers below it, never one above:
+
+    base < physics < model < io < run < api < app
+
+The test reads every `use` statement of the sources (the f2py wrapper
+counts as api) and checks each edge against that order, so a module that
+reaches upwards (physics reading a file, a writer calling the driver) fails
+here with the file, the line and the module it reached.
+"""
+from __future__ import annotations
+
+import os
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+LAYERS = ["base", "physics", "model", "io", "run", "api", "app"]
+SRC = ROOT / "src"
+
+MODULE = re.compile(r"^\s*module\s+(?!procedure\b)(\w+)\s*(?:!.*)?$", re.I | re.M)
+USE = re.compile(r"^\s*use\s*(?:,\s*(\w+)\s*)?(?:::)?\s*(\w+)", re.I)
+
+
+def layer_of(path: Path, src: Path = SRC) -> str:
+    return path.relative_to(src).parts[0]
+
+
+def sources() -> list[Path]:
+    return sorted(p for p in SRC.rglob("*") if p.suffix in (".f90", ".F90"))
+
+
+def modules_by_name(paths) -> dict[str, Path]:
+    found = {}
+    for p in paths:
+        for name in MODULE.findall(p.read_text(encoding="utf-8")):
+            found[name.lower()] = p
+    return found
+
+
+def uses(text: str):
+    """(line number, module) of every non-intrinsic `use` statement."""
+    for k, line in enumerate(text.splitlines(), start=1):
+        m = USE.match(line.split("!")[0])
+        if m and (m.group(1) or "").lower() != "intrinsic":
+            yield k, m.group(2).lower()
+
+
+def violations(paths, modules, src: Path = SRC) -> list[str]:
+    """Every use of a module of a higher layer, as 'file:line: layer uses module (layer)'."""
+    bad = []
+    for p in paths:
+        mine = LAYERS.index(layer_of(p, src))
+        for k, used in uses(p.read_text(encoding="utf-8")):
+            if used not in modules:
+                continue                  # netcdf, mpi, omp_lib: not ours
+            theirs = LAYERS.index(layer_of(modules[used], src))
+            if theirs > mine:
+                bad.append(f"src/{p.relative_to(src)}:{k}: {layer_of(p, src)} uses {used} "
+                           f"({layer_of(modules[used], src)})")
+    return bad
+
+
+def test_every_source_lies_in_a_layer():
+    paths = sources()
+    assert len(paths) > 40
+    outside = [str(p.relative_to(ROOT)) for p in paths if layer_of(p) not in LAYERS]
+    assert not outside
+
+
+def test_module_names_are_file_names():
+    """One module per file, named as the file (the .mod files installed for
+    `use pavefric` are found by that name)."""
+    for p in sources():
+        names = [n.lower() for n in MODULE.findall(p.read_text(encoding="utf-8"))]
+        if p.parent.name == "f2py" or p.stem == "main":
+            assert names == [], p          # plain procedures, a program
+        elif p.stem == "batch_mpi":
+            assert names == ["pavefric_batch_mpi"]
+        else:
+            assert names == [p.stem.lower()], p
+
+
+def test_uses_run_down_the_layers_only():
+    paths = sources()
+    modules = modules_by_name(paths)
+    assert violations(paths, modules) == []
+    # the edges the issue named as running backwards are gone
+    text = {p.stem: p.read_text(encoding="utf-8").lower() for p in paths}
+    assert "use pavefric_simulate" not in text["pavefric_outputs"]
+    assert "use pavefric_simulate" not in text["pavefric_netcdf"]
+    assert "use pavefric_profile," not in text["pavefric_preprocess"]
+    assert "subroutine make_components" not in text["pavefric_simulate"]
+    # the physics and the model read and write no files
+    for p in paths:
+        if layer_of(p) in ("physics", "model"):
+            code = "\n".join(ln.split("!")[0] for ln in p.read_text(encoding="utf-8").splitlines())
+            assert not re.search(r"\b(open|read|write|inquire|close)\s*\(\s*(unit|newunit|\d|\*)",
+                                 code, re.I), p
+
+
+@pytest.mark.parametrize("layer, used_layer, ok", [
+    ("physics", "base", True), ("physics", "physics", True), ("model", "physics", True),
+    ("physics", "io", False), ("io", "run", False), ("model", "io", False), ("api", "app", False)])
+def test_the_check_sees_an_edge_against_the_order(tmp_path, layer, used_layer, ok):
+    """The checker itself, on two made-up modules: an upward use is reported."""
+    for d in {layer, used_layer}:
+        (tmp_path / d).mkdir()
+    low = tmp_path / used_layer / "pf_low.f90"
+    low.write_text("module pf_low\nend module pf_low\n")
+    high = tmp_path / layer / "pf_high.f90"
+    high.write_text("module pf_high\n   use, intrinsic :: iso_c_binding\n   use pf_low, only: x\n"
+                    "end module pf_high\n")
+    paths = [low, high]
+    found = violations(paths, modules_by_name(paths), src=tmp_path)
+    if ok:
+        assert found == []
+    else:
+        assert len(found) == 1 and ":3:" in found[0] and "uses pf_low" in found[0]
+
+
+def test_the_worked_example_component_compiles_and_runs(tmp_path):
+    """docs/architecture.md's film component, built outside the tree against
+    the installed modules (pkg-config's flags) and run: its load and
+    stiffness are its closed form."""
+    from test_api import _run, pkg_config
+
+    bin_dir = Path(sys.executable).parent       # pavefric-config, as a user's build
+    pcdir = _run([bin_dir / "pavefric-config", "--pkgconfigdir"]).stdout.strip()
+    env = dict(os.environ, PKG_CONFIG_PATH=pcdir, PATH=f"{bin_dir}{os.pathsep}{os.environ['PATH']}")
+    doc = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```fortran\n(.*?)```", doc, re.S)
+    assert len(blocks) == 1
+    src = tmp_path / "cushion_example.f90"
+    src.write_text(blocks[0])
+    exe = tmp_path / "cushion_example"
+    flags = pkg_config(env, "--cflags") + pkg_config(env, "--libs")
+    _run(["gfortran", "-Wall", "-o", exe, src, *flags], env=env, cwd=tmp_path)
+    out = _run([exe], env=dict(env, LD_LIBRARY_PATH=""), cwd=tmp_path).stdout.split()
+    assert out[0] == "water_cushion" and out[3] == "T"
+    assert float(out[1]) == pytest.approx(1.0e3 * (2.0e-4 - 1.5e-4), rel=1e-12)
+    assert float(out[2]) == pytest.approx(750.0, rel=1e-15)
