@@ -177,6 +177,56 @@ def test_c_set_parameter_gives_the_programs_numbers(tmp_path, pc_env):
     assert echo.endswith("! set through the API: &water depth = 0.4e-3 /\n")
 
 
+def test_c_typed_setters_give_the_programs_numbers(tmp_path, pc_env):
+    """Issue 22: the typed setters (pavefric_set_parameter_double, _int,
+    _bool, _text, _doubles) check a value against its declaration without
+    namelist text and give the bits of the text setter and of the program on
+    a scene file saying the same values; a bad value is an error naming the
+    variable and leaves the scene as it was."""
+    text = WET.read_text()
+    for old, new in [("'profiles/ctm_medium.txt'", f"'{WET.parent / 'profiles/ctm_medium.txt'}'"),
+                     ("mu_loc       = 0.6", "mu_loc = 0.45"), ("load = 11.8", "load = 40"),
+                     ("depth = 1.0e-3", "depth = 2e-4, wet_model = 'squeeze'"),
+                     ("speeds_kmh = 1, 5, 10, 20, 30, 40, 50, 60, 70, 80", "speeds_kmh = 10, 35.5, 70"),
+                     ("series = .false.\n/", "series = .false.\n/\n&numerics substeps = 2, "
+                                             "error_estimate = .false. /")]:
+        assert old in text, old
+        text = text.replace(old, new)
+    scene = tmp_path / "changed.nml"
+    scene.write_text(text)
+    exe = build(tmp_path / "check", "check_api.c", pc_env)
+    out = _run([exe, "typed", WET], cwd=tmp_path).stdout
+    mus = {m.group(1): [float.fromhex(v) for v in m.group(2).split()]
+           for m in re.finditer(r"^(text|typed|after) mu 3 (.*)$", out, re.M)}
+    assert set(mus) == {"text", "typed", "after"}, out
+    assert mus["typed"] == mus["text"] == mus["after"]
+    for line in re.findall(r"^get .*$", out, re.M):
+        a, b = re.match(r"get \S+ \S+: text=(.*) typed=(.*)$", line).groups()
+        assert a == b, line
+    errors = dict(re.findall(r"^case (\S+): check=1 status=\d+ length=\d+ message=(.*)$", out, re.M))
+    expected = {
+        "negative_depth": "&water depth = -1: must be finite and >= 0",
+        "nan_depth": "&water depth = NaN: must be finite",
+        "infinite_depth": "&water depth = Infinity: must be finite",
+        "zero_substeps": "&numerics substeps = 0: must lie in [1, 4096]",
+        "real_for_integer": "&numerics substeps: a whole number is expected, not a real number",
+        "unknown_choice": "&water wet_model = 'reynolds2': unknown (expected 'kane2017' or 'squeeze')",
+        "text_for_real": "&water depth: a real number is expected, not a text",
+        "bool_two": "&numerics error_estimate = 2: must be 1 (.true.) or 0 (.false.)",
+        "negative_speed": "&operation speeds_kmh(2) = -5: must be finite and >= 0",
+        "negative_count": "pavefric_set_parameter_doubles: n = -1: must be >= 0",
+        "unknown_variable": "&water no_such: unknown variable",
+        "null_group": "pavefric_set_parameter_double: the group is NULL",
+        "across_variables": "&numerics substeps = 4096 with tolerance = 0.001",
+    }
+    assert set(errors) == set(expected), out
+    for case, fragment in expected.items():
+        assert fragment in errors[case], (case, errors[case])
+    # the same values from a scene file, through the program
+    ref = program_output(scene, tmp_path / "program.nc")
+    assert same_bits(mus["typed"], ref["mu"].values)
+
+
 # --- bad input through the C API: the error is set, the process goes on ---------
 
 def test_c_api_bad_input_sets_the_error_and_goes_on(tmp_path, pc_env):

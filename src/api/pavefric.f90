@@ -16,15 +16,15 @@ module pavefric
    use pavefric_profile, only: profile_type, read_profile_text
    use pavefric_preprocess, only: clean_profile_type, preprocess_type
    use pavefric_simulate, only: sim_result_type, simulate, effects_text
-   use pavefric_scene, only: scene_type, read_scene, scene_from_text
+   use pavefric_scene, only: scene_type, read_scene, scene_from_text, scene_from_parameters
    use pavefric_run, only: run_scene, run_profile, load_scene_profile, ctm_dx
    use pavefric_outputs, only: output_var_type, output_table, output_present, output_values, &
       & n_outputs, output_metadata_type, dim_speed, dim_position_speed
    use pavefric_netcdf, only: write_results
    use pavefric_texture, only: texture_type, texture_metrics, mean_profile_depth
    use pavefric_session, only: session_type, load_session, session_from_text, &
-      & session_set_parameter, session_get_parameter, session_set_profile, session_run, &
-      & session_result_size, session_get_result, session_write, session_warnings
+      & session_set_parameter, session_set_value, session_get_parameter, session_set_profile, &
+      & session_run, session_result_size, session_get_result, session_write, session_warnings
    implicit none
    private
 
@@ -36,7 +36,7 @@ module pavefric
    public :: parameter_table, default_parameters, apply_namelist, find_parameter
    public :: model_from_parameters, parameters_namelist, format_value
    ! scenes, profiles, runs
-   public :: scene_type, read_scene, scene_from_text
+   public :: scene_type, read_scene, scene_from_text, scene_from_parameters
    public :: profile_type, read_profile_text, clean_profile_type, preprocess_type
    public :: load_scene_profile, run_profile, run_scene
    public :: sim_result_type, simulate, effects_text
@@ -46,6 +46,6 @@ module pavefric
    public :: texture_type, texture_metrics, mean_profile_depth
    ! sessions (what a C API handle holds)
    public :: session_type, load_session, session_from_text, session_set_parameter
-   public :: session_get_parameter, session_set_profile, session_run, session_result_size
+   public :: session_set_value, session_get_parameter, session_set_profile, session_run, session_result_size
    public :: session_get_result, session_write, session_warnings
 end module pavefric

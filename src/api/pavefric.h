@@ -88,6 +88,25 @@ void pavefric_get_speeds(pavefric_error error, pavefric_scene scene, double *spe
  *  reader with its checks and messages. On error the scene is unchanged. */
 void pavefric_set_parameter(pavefric_error error, pavefric_scene scene, const char *group,
                             const char *name, const char *value);
+/** Typed setters: &group name = value from a C value, checked against the
+ *  variable's declaration (range, choices, list length) as the namelist
+ *  reader checks it, with its messages, and no namelist text in between.
+ *  _double sets a real variable (or a list to one value), _int a whole
+ *  number (or a real), _bool a logical (value 0 or 1), _text a text
+ *  variable (without quotes), _doubles a list of n values (n = 0 unsets
+ *  it). A value of another type than the variable's is an error naming
+ *  both. On error the scene is unchanged. */
+void pavefric_set_parameter_double(pavefric_error error, pavefric_scene scene,
+                                   const char *group, const char *name, double value);
+void pavefric_set_parameter_int(pavefric_error error, pavefric_scene scene,
+                                const char *group, const char *name, int value);
+void pavefric_set_parameter_bool(pavefric_error error, pavefric_scene scene,
+                                 const char *group, const char *name, int value);
+void pavefric_set_parameter_text(pavefric_error error, pavefric_scene scene,
+                                 const char *group, const char *name, const char *value);
+void pavefric_set_parameter_doubles(pavefric_error error, pavefric_scene scene,
+                                    const char *group, const char *name, int n,
+                                    const double *values);
 /** The value of &group name the scene uses, as namelist text, into
  *  buffer[buffer_size]; returns its whole length (0: an optional variable
  *  not set, or an error). */

@@ -20,7 +20,7 @@ module pavefric_api
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_integer
    use pavefric_session, only: session_type, load_session, session_from_text, &
-      & session_set_parameter, session_get_parameter, session_set_profile, session_run, &
+      & session_set_parameter, session_set_value, session_get_parameter, session_set_profile, session_run, &
       & session_result_size, session_get_result, session_write, session_warnings
    use pavefric_outputs, only: output_var_type, output_table, n_outputs
    implicit none
@@ -253,6 +253,107 @@ contains
       if (.not. get_text(value, "pavefric_set_parameter: the value", fvalue, error)) return
       call session_set_parameter(scene%ptr, fgroup, fname, fvalue, error%ptr)
    end subroutine set_parameter_api
+
+   !> Typed setters: `&group name = value` from a C value, checked against
+   !> the variable's declaration as the namelist reader checks it, without
+   !> namelist text. A double sets a real (or a one-element list), an int a
+   !> whole number (or a real), a bool (0 or 1) a logical, a string a text
+   !> variable, n doubles a list (n = 0 unsets it).
+   subroutine set_double_api(verror, vscene, group, name, value) &
+         & bind(C, name="pavefric_set_parameter_double")
+      type(c_ptr), value :: verror, vscene, group, name
+      real(c_double), value :: value
+      type(vp_error), pointer :: error
+      type(vp_scene), pointer :: scene
+      character(len=:), allocatable :: fgroup, fname
+      if (.not. open_typed(verror, vscene, group, name, "pavefric_set_parameter_double", &
+         & error, scene, fgroup, fname)) return
+      call session_set_value(scene%ptr, fgroup, fname, error%ptr, r=real(value, wp))
+   end subroutine set_double_api
+
+   subroutine set_int_api(verror, vscene, group, name, value) &
+         & bind(C, name="pavefric_set_parameter_int")
+      type(c_ptr), value :: verror, vscene, group, name
+      integer(c_int), value :: value
+      type(vp_error), pointer :: error
+      type(vp_scene), pointer :: scene
+      character(len=:), allocatable :: fgroup, fname
+      if (.not. open_typed(verror, vscene, group, name, "pavefric_set_parameter_int", &
+         & error, scene, fgroup, fname)) return
+      call session_set_value(scene%ptr, fgroup, fname, error%ptr, i=int(value))
+   end subroutine set_int_api
+
+   subroutine set_bool_api(verror, vscene, group, name, value) &
+         & bind(C, name="pavefric_set_parameter_bool")
+      type(c_ptr), value :: verror, vscene, group, name
+      integer(c_int), value :: value
+      type(vp_error), pointer :: error
+      type(vp_scene), pointer :: scene
+      character(len=:), allocatable :: fgroup, fname
+      if (.not. open_typed(verror, vscene, group, name, "pavefric_set_parameter_bool", &
+         & error, scene, fgroup, fname)) return
+      if (value /= 0 .and. value /= 1) then
+         call fatal_error(error%ptr, "pavefric_set_parameter_bool: &" // fgroup // " " // &
+            & fname // " = " // to_str(int(value)) // ": must be 1 (.true.) or 0 (.false.)")
+         return
+      end if
+      call session_set_value(scene%ptr, fgroup, fname, error%ptr, b=value == 1)
+   end subroutine set_bool_api
+
+   subroutine set_text_api(verror, vscene, group, name, value) &
+         & bind(C, name="pavefric_set_parameter_text")
+      type(c_ptr), value :: verror, vscene, group, name, value
+      type(vp_error), pointer :: error
+      type(vp_scene), pointer :: scene
+      character(len=:), allocatable :: fgroup, fname, fvalue
+      if (.not. open_typed(verror, vscene, group, name, "pavefric_set_parameter_text", &
+         & error, scene, fgroup, fname)) return
+      if (.not. get_text(value, "pavefric_set_parameter_text: the value", fvalue, error)) return
+      call session_set_value(scene%ptr, fgroup, fname, error%ptr, t=fvalue)
+   end subroutine set_text_api
+
+   subroutine set_doubles_api(verror, vscene, group, name, n, values) &
+         & bind(C, name="pavefric_set_parameter_doubles")
+      type(c_ptr), value :: verror, vscene, group, name, values
+      integer(c_int), value :: n
+      type(vp_error), pointer :: error
+      type(vp_scene), pointer :: scene
+      character(len=:), allocatable :: fgroup, fname
+      real(c_double), pointer :: v(:)
+      real(wp), allocatable :: list(:)
+      if (.not. open_typed(verror, vscene, group, name, "pavefric_set_parameter_doubles", &
+         & error, scene, fgroup, fname)) return
+      if (n < 0) then
+         call fatal_error(error%ptr, "pavefric_set_parameter_doubles: n = " // to_str(int(n)) // &
+            & ": must be >= 0")
+         return
+      end if
+      allocate(list(n))
+      if (n > 0) then
+         if (.not. c_associated(values)) then
+            call fatal_error(error%ptr, "pavefric_set_parameter_doubles: values is NULL")
+            return
+         end if
+         call c_f_pointer(values, v, [n])
+         list = v
+      end if
+      call session_set_value(scene%ptr, fgroup, fname, error%ptr, list=list)
+   end subroutine set_doubles_api
+
+   !> The handles and the variable's group and name of a typed setter.
+   logical function open_typed(verror, vscene, group, name, what, error, scene, fgroup, fname)
+      type(c_ptr), intent(in) :: verror, vscene, group, name
+      character(len=*), intent(in) :: what
+      type(vp_error), pointer, intent(out) :: error
+      type(vp_scene), pointer, intent(out) :: scene
+      character(len=:), allocatable, intent(out) :: fgroup, fname
+      open_typed = .false.
+      if (.not. open_error(verror, error)) return
+      if (.not. open_scene(vscene, scene, error)) return
+      if (.not. get_text(group, what // ": the group", fgroup, error)) return
+      if (.not. get_text(name, what // ": the name", fname, error)) return
+      open_typed = .true.
+   end function open_typed
 
    !> The value of `&group name` the scene uses, as namelist text
    !> (NUL-terminated, truncated); returns its whole length ('' and 0 for an

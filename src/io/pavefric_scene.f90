@@ -21,7 +21,7 @@ module pavefric_scene
    implicit none
    private
 
-   public :: scene_type, read_scene, scene_from_text, read_text_file
+   public :: scene_type, read_scene, scene_from_text, scene_from_parameters, read_text_file
 
    !> A scene read from a namelist file.
    type :: scene_type
@@ -121,29 +121,53 @@ contains
       !> Only the profile is wanted (&surface and &preprocess; Python's
       !> read_profile): no speeds are required.
       logical, intent(in), optional :: profile_only
+      logical :: only_profile
+      type(param_spec_type), allocatable :: specs(:)
+      type(param_set_type) :: set
+      character(len=:), allocatable :: groups
+
+      only_profile = .false.
+      if (present(profile_only)) only_profile = profile_only
+      specs = parameter_table()
+      call default_parameters(specs, set, error)
+      if (allocated(error)) return
+      if (only_profile) then
+         call apply_namelist(specs, text, path, set, error, groups_seen=groups, &
+            & allowed="surface preprocess")
+      else
+         call apply_namelist(specs, text, path, set, error, groups_seen=groups)
+      end if
+      if (allocated(error)) return
+      call scene_from_parameters(set, path, index(groups, " batch ") > 0, scene, error, arrays, &
+         & profile_only)
+      scene%text = text
+   end subroutine scene_from_text
+
+   !> A scene from its variables' values (`set`, checked value by value as
+   !> the namelist reader or the typed setters check them): the scene's
+   !> fields, its model and the checks across variables. `path` and `arrays`
+   !> as for scene_from_text; `is_batch`: the scene has a &batch group.
+   !> The scene's text is left empty (its caller's to record).
+   pure subroutine scene_from_parameters(set, path, is_batch, scene, error, arrays, profile_only)
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in) :: path
+      logical, intent(in) :: is_batch
+      type(scene_type), intent(out) :: scene
+      type(error_type), allocatable, intent(out) :: error
+      logical, intent(in), optional :: arrays, profile_only
       logical :: from_arrays, only_profile
       type(param_spec_type), allocatable :: specs(:)
-      character(len=:), allocatable :: groups
 
       from_arrays = .false.
       if (present(arrays)) from_arrays = arrays
       only_profile = .false.
       if (present(profile_only)) only_profile = profile_only
-      scene%text = text
+      scene%text = ""
       scene%path = path
       scene%name = base_name(path)
       if (len(path) == 0) scene%name = "arrays"
-      specs = parameter_table()
-      call default_parameters(specs, scene%parameters, error)
-      if (allocated(error)) return
-      if (only_profile) then
-         call apply_namelist(specs, text, path, scene%parameters, error, groups_seen=groups, &
-            & allowed="surface preprocess")
-      else
-         call apply_namelist(specs, text, path, scene%parameters, error, groups_seen=groups)
-      end if
-      if (allocated(error)) return
-      scene%is_batch = index(groups, " batch ") > 0
+      scene%parameters = set
+      scene%is_batch = is_batch
       call lay_out(scene)
       scene%model = model_from_parameters(scene%parameters)
       call validate_model(scene%model, error)
@@ -186,8 +210,9 @@ contains
          end if
          scene%profile_file = join_path(dir_name(path), scene%profile_file)
       end if
+      specs = parameter_table()
       call plausibility_warnings(specs, scene%parameters, scene%warnings)
-   end subroutine scene_from_text
+   end subroutine scene_from_parameters
 
    !> The scene's fields from its parameter values.
    pure subroutine lay_out(scene)

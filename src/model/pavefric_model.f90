@@ -22,6 +22,7 @@ module pavefric_model
    public :: model_type, validate_model, shape_flat, shape_rounded, shape_code
    public :: param_spec_type, param_value_type, param_set_type, group_spec_type
    public :: parameter_table, group_table, default_parameters, apply_namelist, find_parameter
+   public :: typed_value
    public :: model_from_parameters, parameters_namelist, plausibility_warnings, format_value, &
       & parameters_namelist_text
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
@@ -833,16 +834,8 @@ contains
                call fatal_error(error, label // shown // ": " // whole_number_text(spec))
                return
             end if
-            if (real(i, wp) < spec%lower .or. real(i, wp) > spec%upper) then
-               if (spec%upper >= real(huge(1), wp)) then
-                  call fatal_error(error, label // to_str(i) // ": must be >= " // &
-                     & to_str(nint(spec%lower)))
-               else
-                  call fatal_error(error, label // to_str(i) // ": must lie in [" // &
-                     & to_str(nint(spec%lower)) // ", " // int_upper(spec) // "]")
-               end if
-               return
-            end if
+            call check_integer(spec, i, label, error)
+            if (allocated(error)) return
             value%i = i
          case (kind_logical)
             call parse_logical(tok, b, stat)
@@ -859,14 +852,8 @@ contains
                return
             end if
             t = tok%text
-            if (len(spec%choices) > 0) then
-               if (index(" " // spec%choices // " ", " " // t // " ") == 0 .or. &
-                     & len_trim(t) == 0 .or. index(t, " ") > 0) then
-                  call fatal_error(error, label // "'" // t // "': unknown (expected " // &
-                     & choice_list(spec%choices) // ")")
-                  return
-               end if
-            end if
+            call check_choice(spec, t, label, error)
+            if (allocated(error)) return
             value%t = t
          end select
       end associate
@@ -874,6 +861,137 @@ contains
       value%given = .true.
       value%set = .true.
    end subroutine store_scalar
+
+   !> An integer's range check, with the reader's message (`label` names
+   !> the variable: '&group name = ').
+   pure subroutine check_integer(spec, i, label, error)
+      type(param_spec_type), intent(in) :: spec
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: label
+      type(error_type), allocatable, intent(out) :: error
+      if (real(i, wp) >= spec%lower .and. real(i, wp) <= spec%upper) return
+      if (spec%upper >= real(huge(1), wp)) then
+         call fatal_error(error, label // to_str(i) // ": must be >= " // to_str(nint(spec%lower)))
+      else
+         call fatal_error(error, label // to_str(i) // ": must lie in [" // &
+            & to_str(nint(spec%lower)) // ", " // int_upper(spec) // "]")
+      end if
+   end subroutine check_integer
+
+   !> A text against the declared choices (any text when there are none).
+   pure subroutine check_choice(spec, t, label, error)
+      type(param_spec_type), intent(in) :: spec
+      character(len=*), intent(in) :: t, label
+      type(error_type), allocatable, intent(out) :: error
+      if (len(spec%choices) == 0) return
+      if (index(" " // spec%choices // " ", " " // t // " ") == 0 .or. &
+            & len_trim(t) == 0 .or. index(t, " ") > 0) then
+         call fatal_error(error, label // "'" // t // "': unknown (expected " // &
+            & choice_list(spec%choices) // ")")
+      end if
+   end subroutine check_choice
+
+   !> The declared kind, in words, for a message about a value of another kind.
+   pure function kind_words(spec) result(t)
+      type(param_spec_type), intent(in) :: spec
+      character(len=:), allocatable :: t
+      select case (spec%kind)
+      case (kind_real)
+         t = "a real number"
+      case (kind_integer)
+         t = "a whole number"
+      case (kind_logical)
+         t = "a logical"
+      case (kind_text)
+         t = "a text"
+      case default
+         t = "a list of real numbers"
+      end select
+   end function kind_words
+
+   !> A value given as a number, a logical or a text rather than namelist
+   !> text (the C API's and the library's typed setters): checked against
+   !> the declaration as the namelist reader checks it, with its messages.
+   !> Exactly one of r, i, b, t, list is present; a whole number is taken
+   !> for a real variable and a single number for a list, as a namelist
+   !> takes `load = 10` and `speeds_kmh = 20`. On error `value` is unchanged.
+   pure subroutine typed_value(spec, value, error, r, i, b, t, list)
+      type(param_spec_type), intent(in) :: spec
+      type(param_value_type), intent(inout) :: value
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), intent(in), optional :: r
+      integer, intent(in), optional :: i
+      logical, intent(in), optional :: b
+      character(len=*), intent(in), optional :: t
+      real(wp), intent(in), optional :: list(:)
+      type(param_value_type) :: new
+      character(len=:), allocatable :: label
+      real(wp) :: x
+      integer :: k
+      label = "&" // spec%group // " " // spec%name // " = "
+      new = value
+      if (present(i) .and. (spec%kind == kind_real .or. spec%kind == kind_real_list)) then
+         x = real(i, wp)
+         call typed_value(spec, value, error, r=x)
+         return
+      end if
+      if (present(r) .and. spec%kind == kind_real_list) then
+         call typed_value(spec, value, error, list=[r])
+         return
+      end if
+      if (.not. ((present(r) .and. spec%kind == kind_real) .or. &
+            & (present(i) .and. spec%kind == kind_integer) .or. &
+            & (present(b) .and. spec%kind == kind_logical) .or. &
+            & (present(t) .and. spec%kind == kind_text) .or. &
+            & (present(list) .and. spec%kind == kind_real_list))) then
+         call fatal_error(error, "&" // spec%group // " " // spec%name // ": " // &
+            & kind_words(spec) // " is expected, not " // given_words() // &
+            & " (docs/inputs.md gives each variable's type)")
+         return
+      end if
+      select case (spec%kind)
+      case (kind_real)
+         call check_range(spec, r, label, error)
+         if (allocated(error)) return
+         new%r = r
+      case (kind_integer)
+         call check_integer(spec, i, label, error)
+         if (allocated(error)) return
+         new%i = i
+      case (kind_logical)
+         new%b = b
+      case (kind_text)
+         call check_choice(spec, t, label, error)
+         if (allocated(error)) return
+         new%t = t
+      case (kind_real_list)
+         if (size(list) > spec%max_values) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // ": more than " // &
+               & to_str(spec%max_values) // " values (" // to_str(size(list)) // " given)")
+            return
+         end if
+         do k = 1, size(list)
+            call check_range(spec, list(k), "&" // spec%group // " " // spec%name // "(" // &
+               & to_str(k) // ") = ", error)
+            if (allocated(error)) return
+         end do
+         new%list = list
+      end select
+      new%given = .true.
+      new%set = .true.
+      if (spec%kind == kind_real_list) new%set = size(list) > 0
+      value = new
+   contains
+      pure function given_words() result(w)
+         character(len=:), allocatable :: w
+         if (present(r)) w = "a real number"
+         if (present(i)) w = "a whole number"
+         if (present(b)) w = "a logical"
+         if (present(t)) w = "a text"
+         if (present(list)) w = "a list of numbers"
+         if (.not. allocated(w)) w = "no value"
+      end function given_words
+   end subroutine typed_value
 
    !> Hard range check, with the message style of every range error. The
    !> message names the value as `prefix` followed by r (formatted only when

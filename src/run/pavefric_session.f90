@@ -1,7 +1,7 @@
 !> A scene, its profile and its last results: what a handle of the C API
 !> holds, usable from Fortran as well. Every step goes through the core's
-!> one path: parameters through the namelist reader and the one table
-!> (pavefric_model), the profile through load_scene_profile, the run
+!> one path: parameters through the one table (pavefric_model), as
+!> namelist text or as typed values checked against the same declarations, the profile through load_scene_profile, the run
 !> through run_profile, results through the output table and the file
 !> through write_results. So the program, Python and the C API give the
 !> same bits. No module variables: sessions are independent; their file
@@ -13,9 +13,9 @@ module pavefric_session
    use pavefric_error, only: error_type, fatal_error, stat_input, stat_internal, stat_memory
    use pavefric_format, only: to_str, to_lower
    use pavefric_namelist, only: nml_group_type, parse_namelist
-   use pavefric_model, only: param_spec_type, param_set_type, group_spec_type, parameter_table, &
-      & group_table, apply_namelist, find_parameter, parameters_namelist, format_value, n_groups
-   use pavefric_scene, only: scene_type, read_scene, scene_from_text
+   use pavefric_model, only: param_spec_type, param_set_type, parameter_table, &
+      & default_parameters, apply_namelist, find_parameter, format_value, typed_value
+   use pavefric_scene, only: scene_type, read_scene, scene_from_text, scene_from_parameters
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_simulate, only: sim_result_type
    use pavefric_outputs, only: output_var_type, output_table, output_present, output_values, &
@@ -26,6 +26,7 @@ module pavefric_session
    private
 
    public :: session_type, load_session, session_from_text, session_set_parameter
+   public :: session_set_value
    public :: session_get_parameter, session_set_profile, session_run, session_result_size
    public :: session_get_result, session_write, session_warnings
    public :: coordinate_names
@@ -121,6 +122,38 @@ contains
       call change_scene(s, assignment, error)
    end subroutine session_set_parameter
 
+   !> Set one variable to a typed value (the C API's pavefric_set_parameter_double,
+   !> _int, _bool, _text and _doubles): exactly one of r, i, b, t, list,
+   !> checked against the variable's declaration as the namelist reader
+   !> checks it (range, choices, list length; a whole number for a real, a
+   !> single number for a list), then the checks across variables. No
+   !> namelist text is built or read. On error the session is unchanged.
+   pure subroutine session_set_value(s, group, name, error, r, i, b, t, list)
+      type(session_type), intent(inout) :: s
+      character(len=*), intent(in) :: group, name
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), intent(in), optional :: r
+      integer, intent(in), optional :: i
+      logical, intent(in), optional :: b
+      character(len=*), intent(in), optional :: t
+      real(wp), intent(in), optional :: list(:)
+      type(param_spec_type), allocatable :: specs(:)
+      type(param_set_type) :: set
+      integer :: id
+      specs = parameter_table()
+      id = find_parameter(specs, to_lower(trim(adjustl(group))), to_lower(trim(adjustl(name))))
+      if (id == 0) then
+         call fatal_error(error, "&" // trim(group) // " " // trim(name) // &
+            & ": unknown variable (docs/inputs.md lists them: group and name in lower case)")
+         return
+      end if
+      set = s%scene%parameters
+      call typed_value(specs(id), set%v(id), error, r, i, b, t, list)
+      if (allocated(error)) return
+      call commit_change(s, set, "! set through the API: &" // specs(id)%group // " " // &
+         & specs(id)%name // " = " // format_value(specs(id), set%v(id)) // " /", error)
+   end subroutine session_set_value
+
    !> The value of `&group name` used by the session, as namelist text
    !> ('' for an optional variable not set).
    pure subroutine session_get_parameter(s, group, name, value, error)
@@ -185,19 +218,15 @@ contains
       s%profile_loaded = .false.
    end subroutine session_set_profile
 
-   !> Apply namelist text to the scene's parameters (the program's reader),
-   !> then lay the scene out again from the values used, through the same
-   !> reader, so every field and check is the one scene_from_text makes.
+   !> Change the scene by namelist text (one or more assignments), read by
+   !> the program's reader into the scene's values. On error the session is
+   !> unchanged.
    pure subroutine change_scene(s, text, error)
       type(session_type), intent(inout) :: s
       character(len=*), intent(in) :: text
       type(error_type), allocatable, intent(out) :: error
       type(param_spec_type), allocatable :: specs(:)
       type(param_set_type) :: set
-      type(scene_type) :: scene
-      type(group_spec_type) :: gs(n_groups)
-      character(len=:), allocatable :: groups
-      integer :: g
       specs = parameter_table()
       set = s%scene%parameters
       call apply_namelist(specs, text, "", set, error)
@@ -206,21 +235,42 @@ contains
          error%message = trim(error%message)
          return
       end if
-      ! &batch only in a batch scene (its defaults would make any scene one)
-      gs = group_table()
-      groups = ""
-      do g = 1, n_groups
-         if (gs(g)%name == "batch" .and. .not. s%scene%is_batch) cycle
-         groups = groups // " " // gs(g)%name
-      end do
-      call scene_from_text(parameters_namelist(specs, set, groups), s%scene%path, scene, error, &
+      call commit_change(s, set, "! set through the API: " // text, error)
+   end subroutine change_scene
+
+   !> The scene from the changed values `set` (the checks across variables
+   !> and the model, as a scene file gets them), recording `line` among the
+   !> changes (the output's input_namelist). No namelist text is written
+   !> and read back: the values go in as they are. On error the session is
+   !> unchanged.
+   pure subroutine commit_change(s, set, line, error)
+      type(session_type), intent(inout) :: s
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in) :: line
+      type(error_type), allocatable, intent(out) :: error
+      type(param_spec_type), allocatable :: specs(:)
+      type(param_set_type) :: values, defaults
+      type(scene_type) :: scene
+      integer :: id
+      values = set
+      if (.not. s%scene%is_batch) then
+         ! &batch only in a batch scene: its variables set on another keep
+         ! their defaults (they would make it a batch)
+         specs = parameter_table()
+         call default_parameters(specs, defaults, error)
+         if (allocated(error)) return
+         do id = 1, size(specs)
+            if (specs(id)%group == "batch") values%v(id) = defaults%v(id)
+         end do
+      end if
+      call scene_from_parameters(values, s%scene%path, s%scene%is_batch, scene, error, &
          & arrays=s%from_text)
       if (allocated(error)) return
       scene%name = s%scene%name
       ! the input as given, and the latest change of each variable changed
       ! since (one line each: a loop over values does not grow the text)
       if (.not. allocated(s%input_text)) s%input_text = s%scene%text
-      call record_change(s%changes, "! set through the API: " // text)
+      call record_change(s%changes, line)
       scene%text = s%input_text
       if (len(scene%text) > 0) then
          if (scene%text(len(scene%text):) /= achar(10)) scene%text = scene%text // achar(10)
@@ -229,7 +279,7 @@ contains
       s%scene = scene
       s%profile_loaded = .false.
       s%has_results = .false.
-   end subroutine change_scene
+   end subroutine commit_change
 
    !> Add `line` to the change lines, replacing an earlier line that set the
    !> same variable (the same text up to its first ' = ').

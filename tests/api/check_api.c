@@ -17,6 +17,13 @@
  *       one scene handle per depth, run at once in as many threads, then
  *       one after the other; print "depth D: same|different" (handles are
  *       independent: no global state).
+ *   check_api typed SCENE
+ *       the same changes to SCENE made twice on two handles, once as
+ *       namelist text (pavefric_set_parameter) and once through the typed
+ *       setters (_double, _int, _bool, _text, _doubles); print each run's mu
+ *       ("text mu ..." and "typed mu ...", %a) and get_parameter's text of
+ *       each changed variable; then bad typed values, each reported as in
+ *       `bad`, with the scene's mu after them ("after mu ...": unchanged).
  *   check_api stress THREADS JOBS [SCENE [DIR]]
  *       JOBS small scenes from namelist text (each its own speeds, heights,
  *       parameters), with set_parameter, get_parameter, two runs, a result
@@ -427,6 +434,103 @@ static int stress(int argc, char **argv)
     return same == n ? 0 : 1;
 }
 
+/* typed: the typed setters against the namelist-text setter. */
+static void print_mu(const char *label, pavefric_error error, pavefric_scene scene)
+{
+    int ns = pavefric_get_speed_count(scene);
+    double mu[64];
+    pavefric_run(error, scene, mu);
+    if (pavefric_check_error(error)) {
+        report(label, error);
+        return;
+    }
+    printf("%s mu %d", label, ns);
+    for (int j = 0; j < ns && j < 64; j++)
+        printf(" %a", mu[j]);
+    printf("\n");
+}
+
+static int typed(char **argv)
+{
+    static const char *changed[][2] = {{"water", "depth"}, {"pad", "load"},
+                                       {"numerics", "substeps"}, {"numerics", "error_estimate"},
+                                       {"water", "wet_model"}, {"operation", "speeds_kmh"},
+                                       {"surface", "mu_loc"}};
+    pavefric_error error = pavefric_new_error();
+    pavefric_scene by_text = pavefric_load_scene(error, argv[2]);
+    pavefric_scene by_type = pavefric_load_scene(error, argv[2]);
+    if (pavefric_check_error(error)) {
+        report("load", error);
+        return 1;
+    }
+    pavefric_set_parameter(error, by_text, "water", "depth", "2e-4");
+    pavefric_set_parameter(error, by_text, "pad", "load", "40");
+    pavefric_set_parameter(error, by_text, "numerics", "substeps", "2");
+    pavefric_set_parameter(error, by_text, "numerics", "error_estimate", ".false.");
+    pavefric_set_parameter(error, by_text, "water", "wet_model", "'squeeze'");
+    pavefric_set_parameter(error, by_text, "operation", "speeds_kmh", "10, 35.5, 70");
+    pavefric_set_parameter(error, by_text, "surface", "mu_loc", "0.45");
+    if (pavefric_check_error(error)) {
+        report("text", error);
+        return 1;
+    }
+    const double speeds[3] = {10.0, 35.5, 70.0};
+    pavefric_set_parameter_double(error, by_type, "water", "depth", 2e-4);
+    pavefric_set_parameter_int(error, by_type, "pad", "load", 40); /* a whole number for a real */
+    pavefric_set_parameter_int(error, by_type, "numerics", "substeps", 2);
+    pavefric_set_parameter_bool(error, by_type, "numerics", "error_estimate", 0);
+    pavefric_set_parameter_text(error, by_type, "water", "wet_model", "squeeze");
+    pavefric_set_parameter_doubles(error, by_type, "operation", "speeds_kmh", 3, speeds);
+    pavefric_set_parameter_double(error, by_type, "surface", "mu_loc", 0.45);
+    if (pavefric_check_error(error)) {
+        report("typed", error);
+        return 1;
+    }
+    print_mu("text", error, by_text);
+    print_mu("typed", error, by_type);
+    for (size_t k = 0; k < sizeof changed / sizeof changed[0]; k++) {
+        char a[256], b[256];
+        pavefric_get_parameter(error, by_text, changed[k][0], changed[k][1], a, (int)sizeof a);
+        pavefric_get_parameter(error, by_type, changed[k][0], changed[k][1], b, (int)sizeof b);
+        printf("get %s %s: text=%s typed=%s\n", changed[k][0], changed[k][1], a, b);
+    }
+    /* bad typed values: each an error naming the variable; the scene stays */
+    const double too_many[2] = {1.0, -5.0};
+    pavefric_set_parameter_double(error, by_type, "water", "depth", -1.0);
+    report("negative_depth", error);
+    pavefric_set_parameter_double(error, by_type, "water", "depth", NAN);
+    report("nan_depth", error);
+    pavefric_set_parameter_double(error, by_type, "water", "depth", INFINITY);
+    report("infinite_depth", error);
+    pavefric_set_parameter_int(error, by_type, "numerics", "substeps", 0);
+    report("zero_substeps", error);
+    pavefric_set_parameter_double(error, by_type, "numerics", "substeps", 2.5);
+    report("real_for_integer", error);
+    pavefric_set_parameter_text(error, by_type, "water", "wet_model", "reynolds2");
+    report("unknown_choice", error);
+    pavefric_set_parameter_text(error, by_type, "water", "depth", "1e-3");
+    report("text_for_real", error);
+    pavefric_set_parameter_bool(error, by_type, "numerics", "error_estimate", 2);
+    report("bool_two", error);
+    pavefric_set_parameter_doubles(error, by_type, "operation", "speeds_kmh", 2, too_many);
+    report("negative_speed", error);
+    pavefric_set_parameter_doubles(error, by_type, "operation", "speeds_kmh", -1, too_many);
+    report("negative_count", error);
+    pavefric_set_parameter_double(error, by_type, "water", "no_such", 1.0);
+    report("unknown_variable", error);
+    pavefric_set_parameter_double(error, by_type, NULL, "depth", 1.0);
+    report("null_group", error);
+    pavefric_set_parameter_double(error, by_type, "numerics", "tolerance", 1e-3);
+    pavefric_set_parameter_int(error, by_type, "numerics", "substeps", 4096);
+    report("across_variables", error);
+    pavefric_set_parameter_double(error, by_type, "numerics", "tolerance", 0.0);
+    print_mu("after", error, by_type);
+    pavefric_delete_scene(&by_text);
+    pavefric_delete_scene(&by_type);
+    pavefric_delete_error(&error);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc >= 4 && strcmp(argv[1], "stress") == 0)
@@ -437,6 +541,8 @@ int main(int argc, char **argv)
         return threads(argc, argv);
     if (argc >= 4 && strcmp(argv[1], "dump") == 0)
         return dump(argc, argv);
+    if (argc >= 3 && strcmp(argv[1], "typed") == 0)
+        return typed(argv);
     if (argc >= 3 && strcmp(argv[1], "bad") == 0)
         return bad(argv);
     fprintf(stderr, "usage: check_api dump SCENE OUTPUT.nc [HEIGHTS.bin DX CLOSED] | "
