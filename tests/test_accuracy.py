@@ -8,7 +8,7 @@ from conftest import ROOT
 
 
 def test_accuracy_study_reduced(tmp_path):
-    from pavefric import accuracy
+    from pavefric.studies import accuracy
 
     knobs = {"substeps": [1, 2, 4, 8], "position_stride": [8, 4, 2, 1],
              "wet_tolerance": [1e-3, 1e-8, 1e-14]}

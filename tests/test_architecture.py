@@ -146,3 +146,40 @@ def test_the_worked_example_component_compiles_and_runs(tmp_path):
     assert out[0] == "water_cushion" and out[3] == "T"
     assert float(out[1]) == pytest.approx(1.0e3 * (2.0e-4 - 1.5e-4), rel=1e-12)
     assert float(out[2]) == pytest.approx(750.0, rel=1e-15)
+
+
+# --- Python: the library apart from the studies -------------------------------
+
+PY = ROOT / "python" / "pavefric"
+STUDIES = ["accuracy", "bench", "bench_io", "bench_mpi", "docs", "energy_report", "reports",
+           "reference_surfaces", "rubber_report", "speed_gradient", "validation"]
+
+
+def test_the_library_never_imports_the_studies():
+    """pavefric's library modules (all of python/pavefric/ but the studies,
+    the deprecated aliases of their old names and the command line) import
+    no study: a study may use the library, not the other way round."""
+    import ast
+
+    library = [p for p in PY.glob("*.py") if p.stem not in STUDIES and p.stem != "__main__"]
+    assert {"core", "profiles", "calibrate", "rubber"} <= {p.stem for p in library}
+    for p in library:
+        for node in ast.walk(ast.parse(p.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom):
+                names = [node.module or ""] + [a.name for a in node.names]
+                assert not any(n == "studies" or n.startswith("studies.") or
+                               "pavefric.studies" in n for n in names), (p.name, node.lineno)
+            elif isinstance(node, ast.Import):
+                assert not any("pavefric.studies" in a.name for a in node.names), (p.name, node.lineno)
+
+
+@pytest.mark.parametrize("name", STUDIES)
+def test_a_study_s_old_name_warns_and_is_the_moved_module(name):
+    import importlib
+    import sys as _sys
+
+    moved = importlib.import_module(f"pavefric.studies.{name}")
+    _sys.modules.pop(f"pavefric.{name}", None)
+    with pytest.warns(DeprecationWarning, match=f"pavefric.{name} is now pavefric.studies.{name}"):
+        old = importlib.import_module(f"pavefric.{name}")
+    assert old is moved

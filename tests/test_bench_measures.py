@@ -4,7 +4,7 @@ survey plan reported 587 MB a rank inside `python -m pavefric bench`, where
 the 10,000,000-point run came first; 76 MB alone)."""
 import sys
 
-from pavefric.bench_mpi import _timed
+from pavefric.studies.bench_mpi import _timed
 
 
 def test_peak_memory_is_the_runs_own(tmp_path):

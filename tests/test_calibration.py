@@ -18,13 +18,13 @@ SURFACES = ROOT / "inputs" / "surfaces"
 
 @pytest.fixture(scope="module")
 def paper():
-    from pavefric.reference_surfaces import paper_table
+    from pavefric.studies.reference_surfaces import paper_table
 
     return paper_table(TABLE)
 
 
 def test_reference_surfaces_reproduce_v13_and_rank(paper):
-    from pavefric.reference_surfaces import NAMES
+    from pavefric.studies.reference_surfaces import NAMES
 
     mpd = {}
     for name in NAMES:
@@ -62,7 +62,7 @@ def same_text_up_to_last_digit(got: str, want: str) -> str | None:
 
 
 def test_reference_surfaces_regenerate_identically(tmp_path, paper):
-    from pavefric.reference_surfaces import write_surfaces
+    from pavefric.studies.reference_surfaces import write_surfaces
 
     write_surfaces(tmp_path, TABLE, log=lambda *a: None)
     for name in ("GSP", "VTAC"):
@@ -486,7 +486,7 @@ def test_validate_reduced(tmp_path, paper):
     assert set(rows[0]) == {"surface", "speed_kmh", "measured", "model", "used_in_fit"}
     assert all((r["used_in_fit"] == "true") == (r["speed_kmh"] == "20") for r in rows)
     assert all(np.isfinite(float(r["model"])) for r in rows)
-    from pavefric.validation import CALIBRATED_ALPHA
+    from pavefric.studies.validation import CALIBRATED_ALPHA
     import json
     res = json.loads((tmp_path / "out" / "validation.json").read_text())
     # the documented default is the fitted value (to its 3 digits)

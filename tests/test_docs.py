@@ -2,7 +2,7 @@
 and kept fresh."""
 import pavefric
 from conftest import ROOT
-from pavefric.docs import inputs_markdown, outputs_markdown
+from pavefric.studies.docs import inputs_markdown, outputs_markdown
 
 
 def test_inputs_reference_is_fresh():

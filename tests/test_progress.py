@@ -159,7 +159,7 @@ def test_accuracy_command_progress_and_quiet(tmp_path):
 def test_bench_counts_its_sections(monkeypatch, capsys, quiet):
     """bench.run's progress counts SECTIONS, each named when done (the
     measurements replaced by stubs: this checks the progress, not them)."""
-    from pavefric import bench, bench_io, bench_mpi, rubber_report
+    from pavefric.studies import bench, bench_io, bench_mpi, rubber_report
 
     calls = []
 

@@ -507,7 +507,7 @@ def test_the_shipped_compound_is_the_fit_of_the_shipped_data():
 def test_the_rubber_report_runs(tmp_path):
     """python -m pavefric rubber-report --quick, from the checkout (the cost
     target is the benchmark's, not a test's)."""
-    from pavefric.rubber_report import run_report
+    from pavefric.studies.rubber_report import run_report
 
     cwd = os.getcwd()
     os.chdir(ROOT)

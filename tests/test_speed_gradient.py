@@ -16,7 +16,7 @@ from conftest import ROOT
 
 @pytest.fixture(scope="module")
 def study(tmp_path_factory):
-    from pavefric.speed_gradient import run_study
+    from pavefric.studies.speed_gradient import run_study
 
     tmp = tmp_path_factory.mktemp("sg")
     cwd = os.getcwd()
@@ -30,7 +30,7 @@ def study(tmp_path_factory):
 
 
 def test_the_split_is_declared_and_the_fit_sees_only_training(study):
-    from pavefric import speed_gradient as sg
+    from pavefric.studies import speed_gradient as sg
 
     data, _ = study
     splits = [p["split"] for p in data["profiles"]]

@@ -264,12 +264,12 @@ def main(argv: list[str] | None = None) -> int:
                 raise PavefricError(f"plot: cannot read {args.files} as pavefric outputs "
                                     f"({exc}); give NetCDF outputs of pavefric runs") from None
         elif args.command == "accuracy":
-            from .reports import accuracy_report
+            from .studies.reports import accuracy_report
 
             accuracy_report(args.scenes, args.outdir, speeds=args.speeds, repeats=args.repeats,
                             report=args.report, also_dry=args.also_dry, quiet=args.quiet)
         elif args.command == "bench":
-            from .bench import run as bench_run
+            from .studies.bench import run as bench_run
 
             bench_run(args.report, args.largest, quick=args.quick, quiet=args.quiet)
         elif args.command == "calibrate":
@@ -277,19 +277,19 @@ def main(argv: list[str] | None = None) -> int:
 
             return main_calibrate(args)
         elif args.command == "surfaces":
-            from .reference_surfaces import write_surfaces
-            from .validation import CALIBRATED_ALPHA, default_table
+            from .studies.reference_surfaces import write_surfaces
+            from .studies.validation import CALIBRATED_ALPHA, default_table
 
             write_surfaces(args.outdir, args.table or default_table(),
                            alpha=CALIBRATED_ALPHA if args.alpha is None else args.alpha,
                            beta=args.beta)
         elif args.command == "validate":
-            from .validation import validate
+            from .studies.validation import validate
 
             validate(table=args.table, report=args.report, outdir=args.outdir, quick=args.quick,
                      quiet=args.quiet)
         elif args.command == "speed-gradient":
-            from .speed_gradient import run_study
+            from .studies.speed_gradient import run_study
 
             run_study(args.report, quick=args.quick)
         elif args.command == "prony":
@@ -301,11 +301,11 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"pavefric: error: {exc}", file=sys.stderr)
                 return 1
         elif args.command == "rubber-report":
-            from .rubber_report import run_report
+            from .studies.rubber_report import run_report
 
             run_report(args.report, compound=args.compound, quick=args.quick)
         elif args.command == "docs":
-            from .docs import write_inputs, write_outputs
+            from .studies.docs import write_inputs, write_outputs
 
             print(f"wrote {write_inputs(args.inputs)}")
             print(f"wrote {write_outputs(args.outputs)}")

@@ -1,0 +1,131 @@
+"""The figures of docs/model.md's "Friction", "The pad's own scale" and
+"Temperature" paragraphs (issue 20), printed as text:
+
+    python -m pavefric.studies.energy_report
+
+Runs only the core (pavefric.simulate); nothing is fitted here.
+"""
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import pavefric
+
+ROOT = Path(__file__).resolve().parents[3]
+DX = 0.87e-3
+
+
+def _repo_file(*parts: str) -> Path:
+    """A file of the checkout: from the working directory, else beside the
+    package's source tree."""
+    for base in (Path.cwd(), ROOT):
+        path = base.joinpath(*parts)
+        if path.exists():
+            return path
+    print(f"pavefric.studies.energy_report: {Path(*parts)} not found: run it in a checkout")
+    raise SystemExit(2)
+
+
+def compound() -> dict:
+    """The shipped tread compound's &rubber values as simulate() keywords
+    (read by the core), its temperature left to the caller."""
+    from ..rubber import compound as read_compound
+
+    rubber = read_compound(_repo_file("inputs", "rubber", "tread_compound.nml"))
+    return {k: v for k, v in rubber.items() if k != "temperature"}
+
+
+def medium_profile() -> np.ndarray:
+    lines = _repo_file("inputs", "profiles", "ctm_medium.txt").read_text().splitlines()
+    return np.array([float(v) for v in lines if v and not v.startswith(("#", "h"))]) * 1e-3
+
+
+def main() -> None:
+    warnings.simplefilter("ignore", pavefric.PavefricWarning)
+    z = medium_profile()
+    print("Friction schemes, inputs/profiles/ctm_medium.txt, paper rubber, dry")
+    for kw in (dict(mu_loc=0.5), dict(mu_loc=0.0, viscosity=0.0)):
+        for scheme in ("energy", "paper"):
+            ds = pavefric.simulate(z, DX, [20.0, 80.0], friction_scheme=scheme, **kw)
+            print(f"  {kw} {scheme}: mu {ds['mu'].values}, mu_hysteresis "
+                  f"{ds['mu_hysteresis'].values}")
+    print("The paper's Table 2 surfaces (inputs/surfaces/*.nml, their mu_loc; wet: their "
+          "1 mm): mu at 20 and 60 km/h, energy against paper")
+    from ..core import load_scene
+    for name in ("GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"):
+        scene = load_scene(_repo_file("inputs", "surfaces", f"{name}.nml"))
+        row = []
+        for water in ("dry", "wet"):
+            kw = dict(scene.parameters)
+            if water == "dry":
+                kw["depth"] = 0.0
+            mus = {}
+            for scheme in ("energy", "paper"):
+                kw["friction_scheme"] = scheme
+                mus[scheme] = pavefric.simulate(scene.heights, scene.dx, [20.0, 60.0],
+                                                closed=scene.closed, **kw)["mu"].values
+            change = 100 * (mus["energy"] / mus["paper"] - 1)
+            row.append(f"{water} {np.round(mus['energy'], 3)} vs {np.round(mus['paper'], 3)} "
+                       f"({change[0]:+.2f} %, {change[1]:+.2f} %)")
+        print(f"  {name}: " + "; ".join(row))
+    print("Temperature, shipped compound, mu_loc = 0, dry (mu at 20 and 60 km/h)")
+    rubber = compound()
+    for t in (-20, 0, 20, 40, 50, 60):
+        ds = pavefric.simulate(z, DX, [20.0, 60.0], mu_loc=0.0, temperature=float(t), **rubber)
+        print(f"  {t:4d} C: {np.round(ds['mu'].values, 4)}")
+    ds = pavefric.simulate(z, DX, [1.0], mu_loc=0.0, temperature=200.0, **rubber)
+    print(f"   200 C, 1 km/h: {ds['mu'].values[0]:.4f}")
+    print("Peaks of tan delta and of the loss compliance E''/|E*|^2 (shipped compound)")
+    k_inf = rubber["stiffness"]
+    arms = np.array(rubber["prony_stiffness"])
+    times = np.array(rubber["prony_times"])
+    temps = np.arange(-40.0, 121.0, 1.0)
+    for f in (10.0, 600.0, 3000.0):
+        w = 2 * np.pi * f
+        tand, comp = [], []
+        for t in temps:
+            shift = 10 ** (-rubber["wlf_c1"] * (t - 20) / (rubber["wlf_c2"] + t - 20))
+            wt = w * times * shift
+            e = k_inf + np.sum(arms * 1j * wt / (1 + 1j * wt))
+            tand.append(e.imag / e.real)
+            comp.append(e.imag / abs(e) ** 2)
+        print(f"  {f:6.0f} Hz: tan delta peaks at {temps[np.argmax(tand)]:.0f} C, "
+              f"loss compliance at {temps[np.argmax(comp)]:.0f} C")
+    for station in (0, 1):
+        profile = pavefric.read_profile(
+            _repo_file("inputs", "data", "captif",
+                       f"20211011_aylesbury_dec_station_{station}.dat"),
+            dropouts="interpolate", trim_plates=True, spike_slope=0.0)
+        zc, dxc = np.asarray(profile.heights), profile.dx
+        one = [pavefric.simulate(*pavefric.element_profile(zc, dxc, closed=False, phase=ph),
+                                 [20.0], closed=False, mu_loc=0.3,
+                                 element_length=0.0)["mu"].values[0]
+               for ph in (0.0, 0.25, 0.5, 0.75)]
+        print(f"Instrument spacing, CAPTIF station {station} (dry, 20 km/h); one phase of the "
+              f"grid at a time (mu_loc = 0.3): " + ", ".join(f"{v:.3f}" for v in one))
+        for mu_loc in (0.3, 0.6):
+            for length in (0.87e-3, 0.0):
+                row = {"raw": pavefric.simulate(zc, dxc, [20.0], closed=False, mu_loc=mu_loc,
+                                                element_length=length)["mu"].values[0]}
+                spread = {"dec": [row["raw"]], "bin": [row["raw"]]}
+                for target in (1e-4, 2.5e-4, 5e-4, 1.5e-3):
+                    k = int(round(target / dxc))
+                    m = zc.size // k
+                    for how, zk in (("dec", zc[::k]),
+                                    ("bin", zc[:m * k].reshape(m, k).mean(axis=1))):
+                        v = pavefric.simulate(zk, k * dxc, [20.0], closed=False, mu_loc=mu_loc,
+                                              element_length=length)["mu"].values[0]
+                        row[f"{how} {target * 1e3:g} mm"] = v
+                        if target < 1e-3:
+                            spread[how].append(v)
+                print(f"  mu_loc {mu_loc}, element_length = {length}: " +
+                      ", ".join(f"{k} {v:.3f}" for k, v in row.items()) +
+                      "; spread to 0.5 mm: " + ", ".join(
+                          f"{h} {100 * (max(v) / min(v) - 1):.2f} %" for h, v in spread.items()))
+
+
+if __name__ == "__main__":
+    main()
