@@ -1,14 +1,15 @@
 !> The component factory: the rubber law and the film a scene's model calls
-!> for, built from its parameters. The time loop works through the
+!> for, built from its parameters (the film by name from the wet-model
+!> registry, pavefric_wet_models). The time loop works through the
 !> components' abstract types (rubber_model, film_model) and never asks
-!> which ones it has; this is the one place that knows them by name.
+!> which ones it has.
 module pavefric_components
    use pavefric_kinds, only: wp
-   use pavefric_model, only: model_type
+   use pavefric_model, only: model_type, parameter_table
    use pavefric_rubber, only: rubber_model, kelvin_voigt_rubber
    use pavefric_maxwell, only: maxwell_rubber, wlf_shift
-   use pavefric_film, only: film_model, pseudo_bearing_film
-   use pavefric_squeeze, only: squeeze_film
+   use pavefric_film, only: film_model, film_context_type
+   use pavefric_wet_models, only: build_film
    implicit none
    private
 
@@ -23,7 +24,8 @@ contains
       class(rubber_model), allocatable, intent(out) :: rubber
       class(film_model), allocatable, intent(out) :: film
       real(wp) :: a_t
-      character(len=:), allocatable :: law
+      character(len=:), allocatable :: law, wet_model
+      type(film_context_type) :: context
       law = "kelvin_voigt"
       if (allocated(m%rubber_model)) law = m%rubber_model
       ! the WLF shift of every relaxation time (exactly 1 at the reference temperature)
@@ -37,14 +39,13 @@ contains
             & viscosity=a_t * m%viscosity))
       end select
       if (.not. m%depth > 0.0_wp) return
-      select case (m%wet_model)
-      case ("squeeze")
-         allocate(film, source=squeeze_film(depth=m%depth, eta=m%water_viscosity, &
-            & sigma=m%microtexture_rms, width=m%width))
-      case default
-         allocate(film, source=pseudo_bearing_film(depth=m%depth, eta=m%water_viscosity, &
-            & alpha=m%alpha, beta=m%beta, width=m%width, length=m%length))
-      end select
+      ! the wet model by name, from the registry (pavefric_wet_models): it
+      ! reads its own variables from the scene's values
+      context = film_context_type(depth=m%depth, eta=m%water_viscosity, width=m%width, &
+         & length=m%length, microtexture_rms=m%microtexture_rms)
+      wet_model = "kane2017"
+      if (allocated(m%wet_model)) wet_model = m%wet_model
+      call build_film(wet_model, context, parameter_table(), m%values, film)
    end subroutine make_components
 
 end module pavefric_components

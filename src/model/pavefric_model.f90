@@ -16,6 +16,12 @@ module pavefric_model
    use pavefric_numbers, only: parse_real, parse_integer
    use pavefric_namelist, only: nml_group_type, nml_item_type, nml_token_type, parse_namelist, at
    use pavefric_maxwell, only: wlf_check, max_log10_shift
+   use pavefric_wet_models, only: n_film_parameters, wet_model_parameters, wet_model_names, &
+      & wet_models
+   use pavefric_film, only: film_entry_type
+   use pavefric_params, only: real_value, param_spec_type, param_value_type, kind_real, kind_integer, &
+      & kind_logical, kind_text, kind_real_list, base => param_base, text => text_param, &
+      & logical_param, int_param, real_param, list_param
    implicit none
    private
 
@@ -44,28 +50,39 @@ module pavefric_model
       module procedure :: parameters_namelist_all, parameters_namelist_groups
    end interface parameters_namelist
 
-   !> Kinds of value.
-   integer, parameter :: kind_real = 1, kind_integer = 2, kind_logical = 3, kind_text = 4, &
-      & kind_real_list = 5
 
-   ! Parameter ids, in the order of the groups and of docs/inputs.md.
-   integer, parameter, public :: &
-      & p_profile_file = 1, p_profile_name = 2, p_format = 3, p_height_unit = 4, &
-      & p_x_column = 5, p_z_column = 6, p_dx = 7, p_closed = 8, p_mu_loc = 9, &
-      & p_microtexture_rms = 10, p_dropouts = 11, p_trim_plates = 12, &
-      & p_plate_threshold = 13, p_plate_min_length = 14, p_plate_buffer = 15, &
-      & p_spike_slope = 16, p_resample_dx = 17, p_lowpass_wavelength = 18, p_length = 19, &
-      & p_width = 20, p_thickness = 21, p_load = 22, p_shape = 23, p_radius = 24, &
-      & p_element_length = 25, p_rubber_model = 26, p_stiffness = 27, p_viscosity = 28, &
-      & p_prony_stiffness = 29, p_prony_times = 30, p_temperature = 31, &
-      & p_reference_temperature = 32, p_wlf_c1 = 33, p_wlf_c2 = 34, p_wet_model = 35, &
-      & p_depth = 36, p_water_viscosity = 37, p_alpha = 38, p_beta = 39, p_speeds_kmh = 40, &
-      & p_theta_max_deg = 41, p_substeps = 42, p_elements_per_sample = 43, &
-      & p_position_stride = 44, p_wet_tolerance = 45, p_tolerance = 46, &
-      & p_error_estimate = 47, p_time_scheme = 48, p_friction_scheme = 49, &
-      & p_output_file = 50, p_series = 51, p_batch_profiles = 52, p_batch_profile_list = 53, &
-      & p_batch_depths = 54, p_batch_restart = 55, p_batch_progress_every = 56
-   integer, parameter :: n_parameters = 56
+   ! The scene's own variable ids, in the order of the groups and of
+   ! docs/inputs.md (numbered by the compiler). The components' variables
+   ! (pavefric_wet_models) follow them in the table, found by name.
+   enum, bind(c)
+      enumerator :: p_profile_file = 1, p_profile_name, p_format, p_height_unit, p_x_column
+      enumerator :: p_z_column, p_dx, p_closed, p_mu_loc, p_microtexture_rms, p_dropouts
+      enumerator :: p_trim_plates, p_plate_threshold, p_plate_min_length, p_plate_buffer
+      enumerator :: p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_length, p_width
+      enumerator :: p_thickness, p_load, p_shape, p_radius, p_element_length, p_rubber_model
+      enumerator :: p_stiffness, p_viscosity, p_prony_stiffness, p_prony_times, p_temperature
+      enumerator :: p_reference_temperature, p_wlf_c1, p_wlf_c2, p_wet_model, p_depth
+      enumerator :: p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
+      enumerator :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
+      enumerator :: p_error_estimate, p_time_scheme, p_friction_scheme, p_output_file
+      enumerator :: p_series, p_batch_profiles, p_batch_profile_list, p_batch_depths
+      enumerator :: p_batch_restart, p_batch_progress_every
+   end enum
+   public :: p_profile_file, p_profile_name, p_format, p_height_unit, p_x_column
+   public :: p_z_column, p_dx, p_closed, p_mu_loc, p_microtexture_rms
+   public :: p_dropouts, p_trim_plates, p_plate_threshold, p_plate_min_length, p_plate_buffer
+   public :: p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_length, p_width
+   public :: p_thickness, p_load, p_shape, p_radius, p_element_length
+   public :: p_rubber_model, p_stiffness, p_viscosity, p_prony_stiffness, p_prony_times
+   public :: p_temperature, p_reference_temperature, p_wlf_c1, p_wlf_c2, p_wet_model
+   public :: p_depth, p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
+   public :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance, p_error_estimate
+   public :: p_time_scheme, p_friction_scheme, p_output_file, p_series, p_batch_profiles
+   public :: p_batch_profile_list, p_batch_depths, p_batch_restart, p_batch_progress_every
+   !> Variables the scene itself declares (the last id), and all of them
+   !> with the components'.
+   integer, parameter :: n_scene_parameters = p_batch_progress_every
+   integer, parameter :: n_parameters = n_scene_parameters + n_film_parameters
    integer, parameter :: n_groups = 9
    !> Most arms of a generalised Maxwell element.
    integer, parameter, public :: max_arms = 100
@@ -75,49 +92,6 @@ module pavefric_model
       character(len=:), allocatable :: name, title, description
    end type group_spec_type
 
-   !> The declaration of one namelist variable.
-   type :: param_spec_type
-      !> Namelist group and variable name.
-      character(len=:), allocatable :: group, name
-      !> Keyword of pavefric.simulate() / read_profile() ('' when the variable
-      !> is not one: file names, batch settings).
-      character(len=:), allocatable :: keyword
-      !> 'model' (simulate keywords), 'profile' (read_profile keywords),
-      !> 'scene', 'output' or 'batch'.
-      character(len=:), allocatable :: scope
-      integer :: kind = kind_real
-      !> Unit (SI unless the name says otherwise); '' for none.
-      character(len=:), allocatable :: unit
-      !> The default as namelist text ('' when the variable has none).
-      character(len=:), allocatable :: default
-      !> Text values allowed (space-separated; '' = any text).
-      character(len=:), allocatable :: choices
-      !> Hard range: outside is an error.
-      real(wp) :: lower = -huge(1.0_wp), upper = huge(1.0_wp)
-      logical :: lower_strict = .false., upper_strict = .false.
-      !> Plausible range: outside is a warning (what a road or a DFT can be).
-      real(wp) :: plausible_lower = -huge(1.0_wp), plausible_upper = huge(1.0_wp)
-      character(len=:), allocatable :: plausible_note
-      !> Largest number of values of a list.
-      integer :: max_values = 1
-      !> Whether a single scene must give it.
-      logical :: required = .false.
-      !> One-line meaning (and notes) for the docs.
-      character(len=:), allocatable :: meaning
-   end type param_spec_type
-
-   !> The value of one variable.
-   type :: param_value_type
-      real(wp) :: r = 0.0_wp
-      integer :: i = 0
-      logical :: b = .false.
-      character(len=:), allocatable :: t
-      real(wp), allocatable :: list(:)
-      !> Whether the input gave it (else the default, or unset).
-      logical :: given = .false.
-      !> Whether it has a value (false for an optional variable not given).
-      logical :: set = .false.
-   end type param_value_type
 
    !> The values of every variable.
    type :: param_set_type
@@ -156,6 +130,9 @@ module pavefric_model
       character(len=:), allocatable :: friction_scheme
       !> &numerics time_scheme: 'extrapolated', 'euler' or 'exact'.
       character(len=:), allocatable :: time_scheme
+      !> Every variable's value, in the table's order: components read their
+      !> own by group and name (pavefric_wet_models).
+      type(param_value_type), allocatable :: values(:)
    end type model_type
 
 contains
@@ -350,7 +327,7 @@ contains
          & "what the water does: 'kane2017', the paper's pseudo-bearing (Eqs. 13-15), a " // &
          & "film that lifts the pad; 'squeeze', the film drained from the contact plateaus " // &
          & "by squeeze flow, pierced by the microtexture (lowers the local friction, no " // &
-         & "lift; docs/model.md)", choices="kane2017 squeeze")
+         & "lift; docs/model.md)", choices=wet_model_names())
       s(p_depth) = real_param("water", "depth", "0.0", "m", "model", &
          & "water depth, the bearing's inlet film H_in. 0 = dry: no film is simulated.", &
          & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=0.02_wp, &
@@ -360,16 +337,6 @@ contains
          & upper=1.0e6_wp, plausible_lower=1.0e-4_wp, plausible_upper=1.0e-2_wp, &
          & plausible_note="water's viscosity is 1.8e-3 at 0 C, 0.3e-3 at 90 C")
       s(p_water_viscosity)%keyword = "water_viscosity"
-      s(p_alpha) = real_param("water", "alpha", "11.8", "1", "model", &
-         & "empirical bearing coefficient of Eq. 15, a calibration parameter. The default " // &
-         & "is the value fitted on the paper's six 20 km/h DFT measurements with the " // &
-         & "reference surfaces (python -m pavefric validate, docs/validation.md); the " // &
-         & "paper's 105 (units unstated) lifts the pad off every CTM-like surface by " // &
-         & "10-20 km/h with SI units.", lower=0.0_wp, upper=1.0e12_wp)
-      s(p_beta) = real_param("water", "beta", "1.75", "1", "model", &
-         & "empirical speed exponent of Eq. 15 (speed in m/s)", lower=0.0_wp, upper=10.0_wp, &
-         & plausible_lower=0.0_wp, plausible_upper=4.0_wp, &
-         & plausible_note="the paper's value is 1.75")
 
       ! &operation
       s(p_speeds_kmh) = list_param("operation", "speeds_kmh", "", "km h-1", "scene", &
@@ -452,83 +419,9 @@ contains
          & "resume from the journal of an interrupted run")
       s(p_batch_progress_every) = int_param("batch", "progress_every", "0", "batch", &
          & "profiles between progress lines (0: about 20 lines)", 0, huge(1))
+      ! the components' own variables, from their declarations
+      s(n_scene_parameters + 1:) = wet_model_parameters()
    end function parameter_table
-
-   ! --- declaration helpers ------------------------------------------------
-
-   pure function base(group, name, default, unit, scope, meaning, kind) result(s)
-      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
-      integer, intent(in) :: kind
-      type(param_spec_type) :: s
-      s%group = group
-      s%name = name
-      s%default = default
-      s%unit = unit
-      s%scope = scope
-      s%meaning = meaning
-      s%kind = kind
-      s%choices = ""
-      s%plausible_note = ""
-      s%keyword = ""
-      if (scope == "model" .or. scope == "profile") s%keyword = name
-   end function base
-
-   pure function text(group, name, default, unit, scope, meaning, choices) result(s)
-      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
-      character(len=*), intent(in), optional :: choices
-      type(param_spec_type) :: s
-      s = base(group, name, "'" // default // "'", unit, scope, meaning, kind_text)
-      if (present(choices)) s%choices = choices
-   end function text
-
-   pure function logical_param(group, name, default, scope, meaning) result(s)
-      character(len=*), intent(in) :: group, name, default, scope, meaning
-      type(param_spec_type) :: s
-      s = base(group, name, default, "", scope, meaning, kind_logical)
-   end function logical_param
-
-   pure function int_param(group, name, default, scope, meaning, lower, upper) result(s)
-      character(len=*), intent(in) :: group, name, default, scope, meaning
-      integer, intent(in) :: lower, upper
-      type(param_spec_type) :: s
-      s = base(group, name, default, "", scope, meaning, kind_integer)
-      s%lower = real(lower, wp)
-      s%upper = real(upper, wp)
-   end function int_param
-
-   pure function real_param(group, name, default, unit, scope, meaning, lower, upper, &
-         & lower_strict, upper_strict, plausible_lower, plausible_upper, plausible_note) &
-         & result(s)
-      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
-      real(wp), intent(in) :: lower, upper
-      logical, intent(in), optional :: lower_strict, upper_strict
-      real(wp), intent(in), optional :: plausible_lower, plausible_upper
-      character(len=*), intent(in), optional :: plausible_note
-      type(param_spec_type) :: s
-      s = base(group, name, default, unit, scope, meaning, kind_real)
-      s%lower = lower
-      s%upper = upper
-      if (present(lower_strict)) s%lower_strict = lower_strict
-      if (present(upper_strict)) s%upper_strict = upper_strict
-      if (present(plausible_lower)) s%plausible_lower = plausible_lower
-      if (present(plausible_upper)) s%plausible_upper = plausible_upper
-      if (present(plausible_note)) s%plausible_note = plausible_note
-   end function real_param
-
-   pure function list_param(group, name, default, unit, scope, meaning, lower, upper, &
-         & max_values, plausible_lower, plausible_upper, plausible_note) result(s)
-      character(len=*), intent(in) :: group, name, default, unit, scope, meaning
-      real(wp), intent(in) :: lower, upper
-      integer, intent(in) :: max_values
-      real(wp), intent(in), optional :: plausible_lower, plausible_upper
-      character(len=*), intent(in), optional :: plausible_note
-      type(param_spec_type) :: s
-      s = real_param(group, name, default, unit, scope, meaning, lower, upper, &
-         & plausible_lower=plausible_lower, plausible_upper=plausible_upper, &
-         & plausible_note=plausible_note)
-      s%kind = kind_real_list
-      s%max_values = max_values
-   end function list_param
 
    ! --- values ----------------------------------------------------------------
 
@@ -1310,6 +1203,7 @@ contains
    pure function model_from_parameters(set) result(m)
       type(param_set_type), intent(in) :: set
       type(model_type) :: m
+      type(param_spec_type), allocatable :: specs(:)
       m%mu_loc = set%v(p_mu_loc)%r
       m%microtexture_rms = set%v(p_microtexture_rms)%r
       m%length = set%v(p_length)%r
@@ -1331,8 +1225,11 @@ contains
       m%wet_model = set%v(p_wet_model)%t
       m%depth = set%v(p_depth)%r
       m%water_viscosity = set%v(p_water_viscosity)%r
-      m%alpha = set%v(p_alpha)%r
-      m%beta = set%v(p_beta)%r
+      m%values = set%v
+      ! kept for code that reads them: the bearing reads its own by name
+      specs = parameter_table()
+      m%alpha = real_value(specs, set%v, "water", "alpha")
+      m%beta = real_value(specs, set%v, "water", "beta")
       m%theta_max_deg = set%v(p_theta_max_deg)%r
       m%substeps = set%v(p_substeps)%i
       m%elements_per_sample = set%v(p_elements_per_sample)%i
@@ -1629,7 +1526,8 @@ contains
       type(param_spec_type), intent(in) :: specs(:)
       type(param_set_type), intent(in) :: set
       character(len=:), allocatable, intent(inout) :: warnings
-      integer :: k, j
+      type(film_entry_type), allocatable :: models(:)
+      integer :: k, j, i
       do k = 1, size(specs)
          if (.not. set%v(k)%set) cycle
          select case (specs(k)%kind)
@@ -1648,13 +1546,21 @@ contains
          & call add_warning(warnings, "&rubber viscosity = " // to_str(set%v(p_viscosity)%r) // &
          & " is not used with &rubber model = 'maxwell' (the Prony arms carry the damping)")
       ! variables given that the chosen wet model does not use
-      if (set%v(p_wet_model)%t == "squeeze") then
-         do k = p_alpha, p_beta
-            if (given_other(specs(k), set%v(k))) call add_warning(warnings, "&water " // &
-               & specs(k)%name // " = " // to_str(set%v(k)%r) // " is not used with &water wet_model = 'squeeze' " // &
-               & "(the Eq. 15 bearing's coefficient; set wet_model = 'kane2017' to use it)")
+      ! (a wet model's own variables, given for another)
+      models = wet_models()
+      do j = 1, size(models)
+         if (models(j)%name == set%v(p_wet_model)%t) cycle
+         do i = 1, size(models(j)%parameters)
+            k = find_parameter(specs, models(j)%parameters(i)%group, models(j)%parameters(i)%name)
+            if (k == 0) cycle
+            if (given_other(specs(k), set%v(k))) call add_warning(warnings, "&" // &
+               & specs(k)%group // " " // specs(k)%name // " = " // to_str(set%v(k)%r) // &
+               & " is not used with &water wet_model = '" // set%v(p_wet_model)%t // &
+               & "' (a variable of wet_model = '" // models(j)%name // "'; set it to use it)")
          end do
-      else if (given_other(specs(p_microtexture_rms), set%v(p_microtexture_rms))) then
+      end do
+      if (set%v(p_wet_model)%t /= "squeeze" .and. &
+            & given_other(specs(p_microtexture_rms), set%v(p_microtexture_rms))) then
          call add_warning(warnings, "&surface microtexture_rms = " // &
             & to_str(set%v(p_microtexture_rms)%r) // " is not used with &water wet_model = '" // &
             & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' pierces its film " // &

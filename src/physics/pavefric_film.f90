@@ -9,10 +9,22 @@
 module pavefric_film
    use pavefric_kinds, only: wp, lanes
    use pavefric_bearing, only: bearing_prefactor, hydro_load
+   use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
    implicit none
    private
 
    public :: film_model, film_step_type, pseudo_bearing_film
+   public :: film_context_type, film_entry_type, film_builder
+   public :: pseudo_bearing_entry, pseudo_bearing_n_parameters
+
+   !> What every film is built with, from the scene: the water depth H_in
+   !> (m) and viscosity eta (Pa s), the pad's width and length (m) and the
+   !> road's microtexture RMS height (m). A film's own variables come from
+   !> its declarations (film_entry_type).
+   type :: film_context_type
+      real(wp) :: depth = 0.0_wp, eta = 0.0_wp, width = 0.0_wp, length = 0.0_wp
+      real(wp) :: microtexture_rms = 0.0_wp
+   end type film_context_type
 
    !> What one speed makes of the film.
    type :: film_step_type
@@ -73,7 +85,27 @@ module pavefric_film
       procedure :: thickness => film_no_thickness
    end type film_model
 
+   !> A wet model as the registry (pavefric_wet_models) holds it: its name
+   !> (&water wet_model), the variables it declares (its own, in the
+   !> scene's table and docs/inputs.md) and how it builds itself from the
+   !> scene's context and values.
+   type :: film_entry_type
+      character(len=:), allocatable :: name
+      type(param_spec_type), allocatable :: parameters(:)
+      procedure(film_builder), pointer, nopass :: build => null()
+   end type film_entry_type
+
    abstract interface
+      !> Build a film from the scene's context and its values (`specs` and
+      !> `values`: the whole table, a film reads its own by group and name).
+      subroutine film_builder(context, specs, values, film)
+         import :: film_context_type, param_spec_type, param_value_type, film_model
+         type(film_context_type), intent(in) :: context
+         type(param_spec_type), intent(in) :: specs(:)
+         type(param_value_type), intent(in) :: values(:)
+         class(film_model), allocatable, intent(out) :: film
+      end subroutine film_builder
+
       pure subroutine prepare_interface(self, speed, advance, step)
          import :: film_model, film_step_type, wp
          class(film_model), intent(in) :: self
@@ -115,7 +147,42 @@ module pavefric_film
       procedure :: lower_bound => bearing_lower_bound
    end type pseudo_bearing_film
 
+   !> Variables the pseudo-bearing declares (pseudo_bearing_entry).
+   integer, parameter :: pseudo_bearing_n_parameters = 2
+
 contains
+
+   ! --- the paper's pseudo-bearing as a wet model: its variables and builder ---
+
+   !> &water wet_model = 'kane2017': the paper's Eq. 15 with its coefficients
+   !> &water alpha and beta.
+   pure function pseudo_bearing_entry() result(e)
+      type(film_entry_type) :: e
+      e%name = "kane2017"
+      allocate(e%parameters(pseudo_bearing_n_parameters))
+      e%parameters(1) = real_param("water", "alpha", "11.8", "1", "model", &
+         & "empirical bearing coefficient of Eq. 15, a calibration parameter. The default " // &
+         & "is the value fitted on the paper's six 20 km/h DFT measurements with the " // &
+         & "reference surfaces (python -m pavefric validate, docs/validation.md); the " // &
+         & "paper's 105 (units unstated) lifts the pad off every CTM-like surface by " // &
+         & "10-20 km/h with SI units.", lower=0.0_wp, upper=1.0e12_wp)
+      e%parameters(2) = real_param("water", "beta", "1.75", "1", "model", &
+         & "empirical speed exponent of Eq. 15 (speed in m/s)", lower=0.0_wp, upper=10.0_wp, &
+         & plausible_lower=0.0_wp, plausible_upper=4.0_wp, &
+         & plausible_note="the paper's value is 1.75")
+      e%build => pseudo_bearing_build
+   end function pseudo_bearing_entry
+
+   subroutine pseudo_bearing_build(context, specs, values, film)
+      type(film_context_type), intent(in) :: context
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      class(film_model), allocatable, intent(out) :: film
+      allocate(film, source=pseudo_bearing_film(depth=context%depth, eta=context%eta, &
+         & alpha=real_value(specs, values, "water", "alpha"), &
+         & beta=real_value(specs, values, "water", "beta"), width=context%width, &
+         & length=context%length))
+   end subroutine pseudo_bearing_build
 
    ! --- defaults of the interface ---------------------------------------------
 

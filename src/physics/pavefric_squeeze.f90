@@ -21,11 +21,16 @@
 !> at 80 km/h; MODEL.md section 8).
 module pavefric_squeeze
    use pavefric_kinds, only: wp
-   use pavefric_film, only: film_model, film_step_type
+   use pavefric_film, only: film_model, film_step_type, film_context_type, film_entry_type
+   use pavefric_params, only: param_spec_type, param_value_type
    implicit none
    private
 
-   public :: squeeze_film
+   public :: squeeze_film, squeeze_entry, squeeze_n_parameters
+
+   !> Variables the squeeze film declares: none of its own (it takes the
+   !> water, the pad and &surface microtexture_rms from the scene).
+   integer, parameter :: squeeze_n_parameters = 0
 
    !> The drainage film.
    type, extends(film_model) :: squeeze_film
@@ -45,6 +50,23 @@ module pavefric_squeeze
    end type squeeze_film
 
 contains
+
+   !> &water wet_model = 'squeeze'.
+   pure function squeeze_entry() result(e)
+      type(film_entry_type) :: e
+      e%name = "squeeze"
+      allocate(e%parameters(squeeze_n_parameters))
+      e%build => squeeze_build
+   end function squeeze_entry
+
+   subroutine squeeze_build(context, specs, values, film)
+      type(film_context_type), intent(in) :: context
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      class(film_model), allocatable, intent(out) :: film
+      allocate(film, source=squeeze_film(depth=context%depth, eta=context%eta, &
+         & sigma=context%microtexture_rms, width=context%width))
+   end subroutine squeeze_build
 
    !> Active with water and motion; dt = advance / V; coef(1) = 2 dt / eta,
    !> coef(2) = 1 / H_in**2 (the entering film), coef(3) = 1 / (sqrt(2) sigma).
