@@ -14,10 +14,15 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+import pavefric
 
 from conftest import ROOT
 
@@ -144,6 +149,7 @@ def test_the_worked_example_component_compiles_and_runs(tmp_path):
     _run(["gfortran", "-Wall", "-o", exe, src, *flags], env=env, cwd=tmp_path)
     out = _run([exe], env=dict(env, LD_LIBRARY_PATH=""), cwd=tmp_path).stdout.split()
     assert out[0] == "water_cushion" and out[3] == "T"
+    assert out[4] == "cushion:cushion_thickness,cushion_stiffness"
     assert float(out[1]) == pytest.approx(1.0e3 * (2.0e-4 - 1.5e-4), rel=1e-12)
     assert float(out[2]) == pytest.approx(750.0, rel=1e-15)
 
@@ -183,3 +189,82 @@ def test_a_study_s_old_name_warns_and_is_the_moved_module(name):
     with pytest.warns(DeprecationWarning, match=f"pavefric.{name} is now pavefric.studies.{name}"):
         old = importlib.import_module(f"pavefric.{name}")
     assert old is moved
+
+
+def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
+    """Issue 22: docs/architecture.md's cushion film, added to a copy of the
+    source as one new module plus its lines in the registry
+    (model/pavefric_wet_models.f90) and in src/meson.build, builds into a
+    program where &water wet_model = 'cushion' runs it: its variables are
+    read, checked by name and echoed, its effect is reported, and its load
+    lowers the friction."""
+    tree = tmp_path / "tree"
+    for name in ("meson.build", "meson.options", "LICENSE"):
+        (tree / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / name, tree / name)
+    for name in ("src", "python"):
+        shutil.copytree(ROOT / name, tree / name, ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt"):
+        (tree / "inputs" / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / "inputs" / name, tree / "inputs" / name)
+    doc = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")
+    block = re.findall(r"```fortran\n(.*?)```", doc, re.S)[0]
+    module = block[:block.index("program cushion_example")].replace("cushion_film_mod",
+                                                                    "pavefric_cushion")
+    (tree / "src" / "physics" / "pavefric_cushion.f90").write_text(module)
+    registry = tree / "src" / "model" / "pavefric_wet_models.f90"
+    text = registry.read_text()
+    for old, new in [
+            ("   use pavefric_squeeze, only: squeeze_entry, squeeze_n_parameters\n",
+             "   use pavefric_squeeze, only: squeeze_entry, squeeze_n_parameters\n"
+             "   use pavefric_cushion, only: cushion_entry, cushion_n_parameters\n"),
+            ("pseudo_bearing_n_parameters + squeeze_n_parameters",
+             "pseudo_bearing_n_parameters + squeeze_n_parameters + cushion_n_parameters"),
+            ("e = [pseudo_bearing_entry(), squeeze_entry()]",
+             "e = [pseudo_bearing_entry(), squeeze_entry(), cushion_entry()]")]:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    registry.write_text(text)
+    build_file = tree / "src" / "meson.build"
+    text = build_file.read_text()
+    old = "  'physics/pavefric_squeeze.f90',\n"
+    assert text.count(old) == 1
+    build_file.write_text(text.replace(old, old + "  'physics/pavefric_cushion.f90',\n"))
+
+    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}")
+    meson = [sys.executable, "-m", "mesonbuild.mesonmain"]
+    build = tmp_path / "build"
+    for cmd in ([*meson, "setup", build, tree, "-Dmpi=disabled", "-Dopenmp=disabled"],
+                [*meson, "compile", "-C", build, "-j", "2", "src/pavefric:executable"]):
+        proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, env=env,
+                              cwd=tmp_path, timeout=1800)
+        assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    program = build / "src" / "pavefric"
+
+    scene_text = (ROOT / "inputs" / "ctm_dry.nml").read_text().replace(
+        "'profiles/ctm_medium.txt'", f"'{ROOT / 'inputs' / 'profiles' / 'ctm_medium.txt'}'")
+    runs = {}
+    for name, water in [("dry", ""),
+                        ("cushion", "&water depth = 1e-3, wet_model = 'cushion', "
+                                    "cushion_thickness = 1e-3, cushion_stiffness = 5e3 /\n"),
+                        ("bad", "&water depth = 1e-3, wet_model = 'cushion', "
+                                "cushion_stiffness = -1 /\n")]:
+        scene = tmp_path / f"{name}.nml"
+        scene.write_text(re.sub(r"(?ms)^&water\b.*?^/\n", water, scene_text) if water
+                         else scene_text)
+        proc = subprocess.run([str(program), str(scene), "-o", str(tmp_path / f"{name}.nc")],
+                              capture_output=True, text=True, cwd=tmp_path, timeout=600)
+        runs[name] = proc
+    assert runs["bad"].returncode != 0
+    assert "&water cushion_stiffness = -1: must be finite and >= 0" in runs["bad"].stderr
+    assert not (tmp_path / "bad.nc").exists()
+    assert runs["dry"].returncode == 0 and runs["cushion"].returncode == 0, runs["cushion"].stderr
+    dry = pavefric.open_dataset(tmp_path / "dry.nc")
+    wet = pavefric.open_dataset(tmp_path / "cushion.nc")
+    assert "water_cushion" in wet.attrs["effects"]
+    assert wet.attrs["param_water_cushion_thickness"] == 1e-3
+    assert wet.attrs["param_water_cushion_stiffness"] == 5e3
+    assert "cushion_thickness = 0.001" in wet.attrs["parameters"]
+    moving = wet["speed_kmh"].values > 0
+    assert np.all(wet["wet_fraction"].values[moving] > 0)
+    assert np.all(wet["mu"].values[moving] < dry["mu"].values[moving])

@@ -819,24 +819,27 @@ contains
       real(wp), intent(in), optional :: list(:)
       type(param_value_type) :: new
       character(len=:), allocatable :: label
-      real(wp) :: x
+      real(wp), allocatable :: x(:)
+      logical :: as_real, as_list
       integer :: k
       label = "&" // spec%group // " " // spec%name // " = "
       new = value
-      if (present(i) .and. (spec%kind == kind_real .or. spec%kind == kind_real_list)) then
-         x = real(i, wp)
-         call typed_value(spec, value, error, r=x)
-         return
+      ! a whole number for a real (or a list), a single number for a list
+      as_real = spec%kind == kind_real .and. (present(r) .or. present(i))
+      as_list = spec%kind == kind_real_list .and. (present(r) .or. present(i) .or. present(list))
+      if (as_real .or. as_list) then
+         if (present(list)) then
+            x = list
+         else if (present(r)) then
+            x = [r]
+         else
+            x = [real(i, wp)]
+         end if
       end if
-      if (present(r) .and. spec%kind == kind_real_list) then
-         call typed_value(spec, value, error, list=[r])
-         return
-      end if
-      if (.not. ((present(r) .and. spec%kind == kind_real) .or. &
+      if (.not. (as_real .or. as_list .or. &
             & (present(i) .and. spec%kind == kind_integer) .or. &
             & (present(b) .and. spec%kind == kind_logical) .or. &
-            & (present(t) .and. spec%kind == kind_text) .or. &
-            & (present(list) .and. spec%kind == kind_real_list))) then
+            & (present(t) .and. spec%kind == kind_text))) then
          call fatal_error(error, "&" // spec%group // " " // spec%name // ": " // &
             & kind_words(spec) // " is expected, not " // given_words() // &
             & " (docs/inputs.md gives each variable's type)")
@@ -844,9 +847,9 @@ contains
       end if
       select case (spec%kind)
       case (kind_real)
-         call check_range(spec, r, label, error)
+         call check_range(spec, x(1), label, error)
          if (allocated(error)) return
-         new%r = r
+         new%r = x(1)
       case (kind_integer)
          call check_integer(spec, i, label, error)
          if (allocated(error)) return
@@ -858,21 +861,21 @@ contains
          if (allocated(error)) return
          new%t = t
       case (kind_real_list)
-         if (size(list) > spec%max_values) then
+         if (size(x) > spec%max_values) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // ": more than " // &
-               & to_str(spec%max_values) // " values (" // to_str(size(list)) // " given)")
+               & to_str(spec%max_values) // " values (" // to_str(size(x)) // " given)")
             return
          end if
-         do k = 1, size(list)
-            call check_range(spec, list(k), "&" // spec%group // " " // spec%name // "(" // &
+         do k = 1, size(x)
+            call check_range(spec, x(k), "&" // spec%group // " " // spec%name // "(" // &
                & to_str(k) // ") = ", error)
             if (allocated(error)) return
          end do
-         new%list = list
+         new%list = x
       end select
       new%given = .true.
       new%set = .true.
-      if (spec%kind == kind_real_list) new%set = size(list) > 0
+      if (spec%kind == kind_real_list) new%set = size(x) > 0
       value = new
    contains
       pure function given_words() result(w)
