@@ -175,3 +175,35 @@ def test_a_speed_without_film_reports_no_film_and_the_full_mu_loc(tmp_path):
     moving = ds.isel(speed_kmh=1)
     assert int(moving["squeeze_film_ran"]) == 1
     assert float(moving["mean_film_thickness"]) > 0.0
+
+
+# --- &water squeeze_inlet_fraction: a variable the squeeze film declares itself
+
+def test_an_inlet_fraction_is_the_film_of_that_share_of_the_depth(profile):
+    """The entering film is squeeze_inlet_fraction x depth: half the water
+    entering is, bit for bit, the film of half the depth (the squeeze film
+    takes depth nowhere else), and less water never lowers friction."""
+    half = squeeze(profile, [20.0, 60.0], depth=1e-3, squeeze_inlet_fraction=0.5)
+    shallow = squeeze(profile, [20.0, 60.0], depth=0.5e-3)
+    assert np.array_equal(half["mu"].values, shallow["mu"].values)
+    full = squeeze(profile, [20.0, 60.0], depth=1e-3)
+    assert np.all(half["mu"].values >= full["mu"].values)
+    default = squeeze(profile, [20.0, 60.0], depth=1e-3, squeeze_inlet_fraction=1.0)
+    assert np.array_equal(default["mu"].values, full["mu"].values)
+    assert half.attrs["param_water_squeeze_inlet_fraction"] == 0.5
+
+
+@pytest.mark.parametrize("value", [0.0, -0.1, 1.5, float("nan")])
+def test_an_inlet_fraction_out_of_range_is_refused_by_name(value):
+    z, dx, closed = synthetic(0.0)
+    with pytest.raises(pavefric.PavefricError, match=r"&water squeeze_inlet_fraction = "):
+        pavefric.simulate(z, dx, [20.0], depth=1e-3, wet_model="squeeze",
+                          squeeze_inlet_fraction=value)
+
+
+def test_an_inlet_fraction_given_to_the_bearing_is_warned_of():
+    z, dx, closed = synthetic(0.0)
+    with pytest.warns(pavefric.PavefricWarning,
+                      match=r"&water squeeze_inlet_fraction = 0.5 is not used with &water "
+                            r"wet_model = 'kane2017' \(a variable of wet_model = 'squeeze'"):
+        pavefric.simulate(z, dx, [20.0], depth=1e-3, squeeze_inlet_fraction=0.5)

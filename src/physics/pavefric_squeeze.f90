@@ -5,7 +5,7 @@
 !> the microtexture pierces what is left of the film.
 !>
 !> The film h on each road sample enters under the pad's leading edge at the
-!> water depth H_in. Contiguous elements in contact form a plateau of length
+!> water depth H_in (times &water squeeze_inlet_fraction, 1 by default). Contiguous elements in contact form a plateau of length
 !> b along the profile (capped at the pad width l: water also leaves
 !> sideways; a plateau at the pad's edge ends there) carrying the mean
 !> pressure p of its elements; the film under it thins by Reynolds squeeze
@@ -22,21 +22,24 @@
 module pavefric_squeeze
    use pavefric_kinds, only: wp
    use pavefric_film, only: film_model, film_step_type, film_context_type, film_entry_type
-   use pavefric_params, only: param_spec_type, param_value_type
+   use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
    implicit none
    private
 
    public :: squeeze_film, squeeze_entry, squeeze_n_parameters
 
-   !> Variables the squeeze film declares: none of its own (it takes the
-   !> water, the pad and &surface microtexture_rms from the scene).
-   integer, parameter :: squeeze_n_parameters = 0
+   !> Variables the squeeze film declares (squeeze_entry); it takes the
+   !> water, the pad and &surface microtexture_rms from the scene.
+   integer, parameter :: squeeze_n_parameters = 1
 
    !> The drainage film.
    type, extends(film_model) :: squeeze_film
       !> Water depth H_in (m), water viscosity eta (Pa s), microtexture RMS
       !> height sigma (m), pad width l (m).
       real(wp) :: depth = 0.0_wp, eta = 0.0_wp, sigma = 0.0_wp, width = 0.0_wp
+      !> Share of the water depth that enters under the pad's leading edge
+      !> (&water squeeze_inlet_fraction; 1: all of it).
+      real(wp) :: inlet_fraction = 1.0_wp
    contains
       procedure :: prepare => squeeze_prepare
       procedure :: carries_load => squeeze_carries_load
@@ -56,6 +59,13 @@ contains
       type(film_entry_type) :: e
       e%name = "squeeze"
       allocate(e%parameters(squeeze_n_parameters))
+      e%parameters(1) = real_param("water", "squeeze_inlet_fraction", "1", "1", "model", &
+         & "share of the water depth that enters under the pad's leading edge with " // &
+         & "wet_model = 'squeeze' (the entering film is this times depth; the rest is " // &
+         & "pushed ahead or aside). 1: all the water enters, as Moore's first zone " // &
+         & "assumes; lower it for a pad that sweeps water away.", lower=0.0_wp, &
+         & lower_strict=.true., upper=1.0_wp, plausible_lower=0.05_wp, plausible_upper=1.0_wp, &
+         & plausible_note="below 0.05 almost no water would reach the contact")
       e%build => squeeze_build
    end function squeeze_entry
 
@@ -65,11 +75,12 @@ contains
       type(param_value_type), intent(in) :: values(:)
       class(film_model), allocatable, intent(out) :: film
       allocate(film, source=squeeze_film(depth=context%depth, eta=context%eta, &
-         & sigma=context%microtexture_rms, width=context%width))
+         & sigma=context%microtexture_rms, width=context%width, &
+         & inlet_fraction=real_value(specs, values, "water", "squeeze_inlet_fraction")))
    end subroutine squeeze_build
 
    !> Active with water and motion; dt = advance / V; coef(1) = 2 dt / eta,
-   !> coef(2) = 1 / H_in**2 (the entering film), coef(3) = 1 / (sqrt(2) sigma).
+   !> coef(2) = 1 / (f H_in)**2 (the entering film, f the inlet fraction), coef(3) = 1 / (sqrt(2) sigma).
    pure subroutine squeeze_prepare(self, speed, advance, step)
       class(squeeze_film), intent(in) :: self
       real(wp), intent(in) :: speed, advance
@@ -80,7 +91,7 @@ contains
       if (.not. step%active) return
       step%dt = advance / speed
       step%coef(1) = 2.0_wp * step%dt / self%eta
-      step%coef(2) = 1.0_wp / self%depth**2
+      step%coef(2) = 1.0_wp / (self%inlet_fraction * self%depth)**2
       if (self%sigma > 0.0_wp) step%coef(3) = 1.0_wp / (sqrt(2.0_wp) * self%sigma)
    end subroutine squeeze_prepare
 
