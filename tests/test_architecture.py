@@ -268,3 +268,17 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
     moving = wet["speed_kmh"].values > 0
     assert np.all(wet["wet_fraction"].values[moving] > 0)
     assert np.all(wet["mu"].values[moving] < dry["mu"].values[moving])
+
+
+def test_the_deprecated_ids_of_the_bearing_s_variables_still_name_them():
+    """p_alpha and p_beta (public before the bearing declared its own
+    variables) index &water alpha and beta in the table."""
+    text = (SRC / "model" / "pavefric_model.f90").read_text(encoding="utf-8")
+    assert re.search(r"public :: p_alpha = n_scene_parameters \+ 1, p_beta = n_scene_parameters \+ 2",
+                     text)
+    names = [(p.group, p.name) for p in pavefric.parameters()]
+    n_scene = next(k for k, p in enumerate(names) if p == ("water", "alpha"))
+    assert n_scene == len(names) - 3            # the wet models' three follow the scene's
+    assert names[n_scene:n_scene + 2] == [("water", "alpha"), ("water", "beta")]
+    assert all(g != "water" or n in ("alpha", "beta", "squeeze_inlet_fraction")
+               for g, n in names[n_scene:])

@@ -83,6 +83,11 @@ module pavefric_model
    !> with the components'.
    integer, parameter :: n_scene_parameters = p_batch_progress_every
    integer, parameter :: n_parameters = n_scene_parameters + n_film_parameters
+   !> Deprecated: &water alpha and beta are the pseudo-bearing's own
+   !> (pavefric_film), the first wet model of the registry; their ids,
+   !> kept for code that used these names, are better found by name
+   !> (find_parameter(specs, "water", "alpha")).
+   integer, parameter, public :: p_alpha = n_scene_parameters + 1, p_beta = n_scene_parameters + 2
    integer, parameter :: n_groups = 9
    !> Most arms of a generalised Maxwell element.
    integer, parameter, public :: max_arms = 100
