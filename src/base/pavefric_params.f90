@@ -12,7 +12,7 @@ module pavefric_params
    public :: param_spec_type, param_value_type
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
    public :: param_base, text_param, logical_param, int_param, real_param, list_param
-   public :: value_index, real_value
+   public :: find_parameter, real_value
 
    !> Kinds of value.
    integer, parameter :: kind_real = 1, kind_integer = 2, kind_logical = 3, kind_text = 4, &
@@ -143,19 +143,19 @@ contains
 
    ! --- values by name --------------------------------------------------------
 
-   !> The index of &group name in `specs` (0 when there is none).
-   pure integer function value_index(specs, group, name)
+   !> The id of &group name: its index in `specs` (0 when there is none).
+   pure integer function find_parameter(specs, group, name)
       type(param_spec_type), intent(in) :: specs(:)
       character(len=*), intent(in) :: group, name
       integer :: k
-      value_index = 0
+      find_parameter = 0
       do k = 1, size(specs)
          if (specs(k)%group == group .and. specs(k)%name == name) then
-            value_index = k
+            find_parameter = k
             return
          end if
       end do
-   end function value_index
+   end function find_parameter
 
    !> The value of the real variable &group name (0 when `specs` has none:
    !> a component asks only for what it or the scene declares).
@@ -165,7 +165,7 @@ contains
       character(len=*), intent(in) :: group, name
       integer :: k
       real_value = 0.0_wp
-      k = value_index(specs, group, name)
+      k = find_parameter(specs, group, name)
       if (k > 0) real_value = values(k)%r
    end function real_value
 

@@ -19,8 +19,8 @@ module pavefric_model
    use pavefric_wet_models, only: n_film_parameters, wet_model_parameters, wet_model_names, &
       & wet_models
    use pavefric_film, only: film_entry_type
-   use pavefric_params, only: real_value, param_spec_type, param_value_type, kind_real, kind_integer, &
-      & kind_logical, kind_text, kind_real_list, base => param_base, text => text_param, &
+   use pavefric_params, only: real_value, find_parameter, param_spec_type, param_value_type, &
+      & kind_real, kind_integer, kind_logical, kind_text, kind_real_list, base => param_base, text => text_param, &
       & logical_param, int_param, real_param, list_param
    implicit none
    private
@@ -429,20 +429,6 @@ contains
    end function parameter_table
 
    ! --- values ----------------------------------------------------------------
-
-   !> Id of &group name (0 when there is none).
-   pure integer function find_parameter(specs, group, name)
-      type(param_spec_type), intent(in) :: specs(:)
-      character(len=*), intent(in) :: group, name
-      integer :: k
-      find_parameter = 0
-      do k = 1, size(specs)
-         if (specs(k)%group == group .and. specs(k)%name == name) then
-            find_parameter = k
-            return
-         end if
-      end do
-   end function find_parameter
 
    !> Every variable at its default (optional ones without a default unset).
    pure subroutine default_parameters(specs, set, error)

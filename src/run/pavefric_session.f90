@@ -140,13 +140,8 @@ contains
       type(param_spec_type), allocatable :: specs(:)
       type(param_set_type) :: set
       integer :: id
-      specs = parameter_table()
-      id = find_parameter(specs, to_lower(trim(adjustl(group))), to_lower(trim(adjustl(name))))
-      if (id == 0) then
-         call fatal_error(error, "&" // trim(group) // " " // trim(name) // &
-            & ": unknown variable (docs/inputs.md lists them: group and name in lower case)")
-         return
-      end if
+      call find_variable(group, name, specs, id, error)
+      if (allocated(error)) return
       set = s%scene%parameters
       call typed_value(specs(id), set%v(id), error, r, i, b, t, list)
       if (allocated(error)) return
@@ -164,15 +159,23 @@ contains
       type(param_spec_type), allocatable :: specs(:)
       integer :: id
       value = ""
-      specs = parameter_table()
-      id = find_parameter(specs, to_lower(trim(adjustl(group))), to_lower(trim(adjustl(name))))
-      if (id == 0) then
-         call fatal_error(error, "&" // trim(group) // " " // trim(name) // &
-            & ": unknown variable (docs/inputs.md lists them: group and name in lower case)")
-         return
-      end if
+      call find_variable(group, name, specs, id, error)
+      if (allocated(error)) return
       if (s%scene%parameters%v(id)%set) value = format_value(specs(id), s%scene%parameters%v(id))
    end subroutine session_get_parameter
+
+   !> The table and the id of `&group name` (any case, blanks around), or an
+   !> error naming it.
+   pure subroutine find_variable(group, name, specs, id, error)
+      character(len=*), intent(in) :: group, name
+      type(param_spec_type), allocatable, intent(out) :: specs(:)
+      integer, intent(out) :: id
+      type(error_type), allocatable, intent(out) :: error
+      specs = parameter_table()
+      id = find_parameter(specs, to_lower(trim(adjustl(group))), to_lower(trim(adjustl(name))))
+      if (id == 0) call fatal_error(error, "&" // trim(group) // " " // trim(name) // &
+         & ": unknown variable (docs/inputs.md lists them: group and name in lower case)")
+   end subroutine find_variable
 
    !> Give the profile as heights z (m) at spacing dx (m), closed or open;
    !> dx and closed become the scene's &surface dx and closed (checked by the
