@@ -46,6 +46,7 @@ module pavefric
    public :: texture_type, texture_metrics, mean_profile_depth
    ! sessions (what a C API handle holds)
    public :: session_type, load_session, session_from_text, session_set_parameter
-   public :: session_set_value, session_get_parameter, session_set_profile, session_run, session_result_size
+   public :: session_set_value, session_get_parameter, session_set_profile, session_run
+   public :: session_result_size
    public :: session_get_result, session_write, session_warnings
 end module pavefric

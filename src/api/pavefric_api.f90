@@ -20,7 +20,8 @@ module pavefric_api
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_integer
    use pavefric_session, only: session_type, load_session, session_from_text, &
-      & session_set_parameter, session_set_value, session_get_parameter, session_set_profile, session_run, &
+      & session_set_parameter, session_set_value, session_get_parameter, session_set_profile, &
+      & session_run, &
       & session_result_size, session_get_result, session_write, session_warnings
    use pavefric_outputs, only: output_var_type, output_table, n_outputs
    implicit none

@@ -20,7 +20,8 @@ module pavefric_model
       & wet_models
    use pavefric_film, only: film_entry_type
    use pavefric_params, only: real_value, find_parameter, param_spec_type, param_value_type, &
-      & kind_real, kind_integer, kind_logical, kind_text, kind_real_list, base => param_base, text => text_param, &
+      & kind_real, kind_integer, kind_logical, kind_text, kind_real_list, base => param_base, &
+      & text => text_param, &
       & logical_param, int_param, real_param, list_param
    implicit none
    private
@@ -76,7 +77,8 @@ module pavefric_model
    public :: p_rubber_model, p_stiffness, p_viscosity, p_prony_stiffness, p_prony_times
    public :: p_temperature, p_reference_temperature, p_wlf_c1, p_wlf_c2, p_wet_model
    public :: p_depth, p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
-   public :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance, p_error_estimate
+   public :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
+   public :: p_error_estimate
    public :: p_time_scheme, p_friction_scheme, p_output_file, p_series, p_batch_profiles
    public :: p_batch_profile_list, p_batch_depths, p_batch_restart, p_batch_progress_every
    !> Variables the scene itself declares (the last id), and all of them

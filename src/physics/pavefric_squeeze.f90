@@ -5,8 +5,8 @@
 !> the microtexture pierces what is left of the film.
 !>
 !> The film h on each road sample enters under the pad's leading edge at the
-!> water depth H_in (times &water squeeze_inlet_fraction, 1 by default). Contiguous elements in contact form a plateau of length
-!> b along the profile (capped at the pad width l: water also leaves
+!> water depth H_in (times &water squeeze_inlet_fraction, 1 by default).
+!> Contiguous elements in contact form a plateau of length b along the profile (capped at the pad width l: water also leaves
 !> sideways; a plateau at the pad's edge ends there) carrying the mean
 !> pressure p of its elements; the film under it thins by Reynolds squeeze
 !> flow between parallel faces, p = eta b**2 (-dh/dt) / h**3, which over a
@@ -80,7 +80,8 @@ contains
    end subroutine squeeze_build
 
    !> Active with water and motion; dt = advance / V; coef(1) = 2 dt / eta,
-   !> coef(2) = 1 / (f H_in)**2 (the entering film, f the inlet fraction), coef(3) = 1 / (sqrt(2) sigma).
+   !> coef(2) = 1 / (f H_in)**2 (the entering film, f the inlet fraction),
+   !> coef(3) = 1 / (sqrt(2) sigma).
    pure subroutine squeeze_prepare(self, speed, advance, step)
       class(squeeze_film), intent(in) :: self
       real(wp), intent(in) :: speed, advance
