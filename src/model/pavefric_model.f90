@@ -173,7 +173,10 @@ contains
    !> The declarations of every namelist variable.
    pure function parameter_table() result(s)
       type(param_spec_type) :: s(n_parameters)
+      character(len=:), allocatable :: wet_names
       real(wp), parameter :: big = huge(1.0_wp)
+
+      call wet_model_names(wet_names)
 
       ! &surface
       s(p_profile_file) = text("surface", "profile_file", "", "path", "scene", &
@@ -334,7 +337,7 @@ contains
          & "what the water does: 'kane2017', the paper's pseudo-bearing (Eqs. 13-15), a " // &
          & "film that lifts the pad; 'squeeze', the film drained from the contact plateaus " // &
          & "by squeeze flow, pierced by the microtexture (lowers the local friction, no " // &
-         & "lift; docs/model.md)", choices=wet_model_names())
+         & "lift; docs/model.md)", choices=wet_names)
       s(p_depth) = real_param("water", "depth", "0.0", "m", "model", &
          & "water depth, the bearing's inlet film H_in. 0 = dry: no film is simulated.", &
          & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=0.02_wp, &
@@ -777,10 +780,12 @@ contains
       end if
    end subroutine check_choice
 
-   !> The declared kind, in words, for a message about a value of another kind.
-   pure function kind_words(spec) result(t)
+   !> The declared kind, in words, for a message about a value of another
+   !> kind (a subroutine: no deferred-length function result, whose length
+   !> gfortran keeps in a static variable).
+   pure subroutine kind_words(spec, t)
       type(param_spec_type), intent(in) :: spec
-      character(len=:), allocatable :: t
+      character(len=:), allocatable, intent(out) :: t
       select case (spec%kind)
       case (kind_real)
          t = "a real number"
@@ -793,7 +798,7 @@ contains
       case default
          t = "a list of real numbers"
       end select
-   end function kind_words
+   end subroutine kind_words
 
    !> A value given as a number, a logical or a text rather than namelist
    !> text (the C API's and the library's typed setters): checked against
@@ -811,7 +816,7 @@ contains
       character(len=*), intent(in), optional :: t
       real(wp), intent(in), optional :: list(:)
       type(param_value_type) :: new
-      character(len=:), allocatable :: label
+      character(len=:), allocatable :: label, expected, given
       real(wp), allocatable :: x(:)
       logical :: as_real, as_list
       integer :: k
@@ -833,8 +838,15 @@ contains
             & (present(i) .and. spec%kind == kind_integer) .or. &
             & (present(b) .and. spec%kind == kind_logical) .or. &
             & (present(t) .and. spec%kind == kind_text))) then
+         call kind_words(spec, expected)
+         if (present(r)) given = "a real number"
+         if (present(i)) given = "a whole number"
+         if (present(b)) given = "a logical"
+         if (present(t)) given = "a text"
+         if (present(list)) given = "a list of numbers"
+         if (.not. allocated(given)) given = "no value"
          call fatal_error(error, "&" // spec%group // " " // spec%name // ": " // &
-            & kind_words(spec) // " is expected, not " // given_words() // &
+            & expected // " is expected, not " // given // &
             & " (docs/inputs.md gives each variable's type)")
          return
       end if
@@ -870,16 +882,6 @@ contains
       new%set = .true.
       if (spec%kind == kind_real_list) new%set = size(x) > 0
       value = new
-   contains
-      pure function given_words() result(w)
-         character(len=:), allocatable :: w
-         if (present(r)) w = "a real number"
-         if (present(i)) w = "a whole number"
-         if (present(b)) w = "a logical"
-         if (present(t)) w = "a text"
-         if (present(list)) w = "a list of numbers"
-         if (.not. allocated(w)) w = "no value"
-      end function given_words
    end subroutine typed_value
 
    !> Hard range check, with the message style of every range error. The

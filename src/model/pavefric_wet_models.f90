@@ -27,9 +27,11 @@ contains
       e = [pseudo_bearing_entry(), squeeze_entry()]
    end function wet_models
 
-   !> Their names, space-separated (the choices of &water wet_model).
-   pure function wet_model_names() result(names)
-      character(len=:), allocatable :: names
+   !> Their names, space-separated (the choices of &water wet_model). A
+   !> subroutine: gfortran keeps a deferred-length function result's length
+   !> in a static variable, which threads would share.
+   pure subroutine wet_model_names(names)
+      character(len=:), allocatable, intent(out) :: names
       type(film_entry_type), allocatable :: e(:)
       integer :: k
       e = wet_models()
@@ -37,7 +39,7 @@ contains
       do k = 2, size(e)
          names = names // " " // e(k)%name
       end do
-   end function wet_model_names
+   end subroutine wet_model_names
 
    !> The variables they declare, in the registry's order.
    pure function wet_model_parameters() result(s)
