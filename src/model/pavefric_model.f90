@@ -19,7 +19,7 @@ module pavefric_model
    use pavefric_wet_models, only: n_film_parameters, wet_model_parameters, wet_model_names, &
       & wet_models
    use pavefric_film, only: film_entry_type
-   use pavefric_params, only: real_value, find_parameter, param_spec_type, param_value_type, &
+   use pavefric_params, only: find_parameter, param_spec_type, param_value_type, &
       & kind_real, kind_integer, kind_logical, kind_text, kind_real_list, base => param_base, &
       & text => text_param, &
       & logical_param, int_param, real_param, list_param
@@ -1201,7 +1201,6 @@ contains
    pure function model_from_parameters(set) result(m)
       type(param_set_type), intent(in) :: set
       type(model_type) :: m
-      type(param_spec_type), allocatable :: specs(:)
       m%mu_loc = set%v(p_mu_loc)%r
       m%microtexture_rms = set%v(p_microtexture_rms)%r
       m%length = set%v(p_length)%r
@@ -1224,10 +1223,10 @@ contains
       m%depth = set%v(p_depth)%r
       m%water_viscosity = set%v(p_water_viscosity)%r
       m%values = set%v
-      ! kept for code that reads them: the bearing reads its own by name
-      specs = parameter_table()
-      m%alpha = real_value(specs, set%v, "water", "alpha")
-      m%beta = real_value(specs, set%v, "water", "beta")
+      ! kept for code that reads them (the bearing reads its own by name),
+      ! through the deprecated ids rather than a second build of the table
+      m%alpha = set%v(p_alpha)%r
+      m%beta = set%v(p_beta)%r
       m%theta_max_deg = set%v(p_theta_max_deg)%r
       m%substeps = set%v(p_substeps)%i
       m%elements_per_sample = set%v(p_elements_per_sample)%i
