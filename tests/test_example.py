@@ -80,7 +80,7 @@ def test_example_refuses_a_directory_in_the_way(tmp_path):
 @pytest.mark.parametrize("command", ["bench", "validate", "docs", "speed-gradient",
                                      "rubber-report", "surfaces"])
 def test_maintainer_commands_need_a_checkout(tmp_path, command):
-    """Outside a checkout (no tests/reference.py, no inputs/): one line,
+    """Outside a checkout (no meson.build, src/ and inputs/): one line,
     exit status 2, nothing written."""
     r = cli(command, cwd=tmp_path)
     assert r.returncode == 2, r.stdout + r.stderr

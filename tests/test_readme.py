@@ -63,8 +63,8 @@ def scratch(tmp_path_factory) -> Path:
     (d / "tests").mkdir()
     shutil.copytree(ROOT / "tests" / "api", d / "tests" / "api")
     shutil.copytree(ROOT / "examples", d / "examples")
-    for name in ("reference.py", "plain_loop.f90"):
-        shutil.copy(ROOT / "tests" / name, d / "tests" / name)
+    shutil.copy(ROOT / "meson.build", d / "meson.build")
+    (d / "src").mkdir()
     (d / "outputs").mkdir()
     (d / "docs" / "figures").mkdir(parents=True)
     return d

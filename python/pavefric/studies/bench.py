@@ -1,8 +1,12 @@
 """Benchmark: throughput, scaling and memory of the Fortran core, each figure
-printed beside the same work done by the NumPy reference of MODEL.md (the
-slow test reference in tests/reference.py) in the same run.
+printed beside the same work done by the plain loop (plain_loop.f90 beside
+this module: MODEL.md written the obvious way in Fortran) and, when given
+(``--reference tests/reference.py``), by the NumPy reference of MODEL.md
+(the tests' slow oracle, which the package neither ships nor imports), in
+the same run.
 
-Run from a checkout: ``python -m pavefric bench [--report docs/performance.md]``.
+Run from a checkout: ``python -m pavefric bench [--report docs/performance.md]
+[--reference tests/reference.py]``.
 Not a test: absolute times are noisy; ratios measured side by side are the
 figures to read.
 """
@@ -25,13 +29,17 @@ from ..config import program
 DX = 0.87e-3
 
 
-def _reference():
-    """The NumPy reference from the checkout's tests/ (it is not installed)."""
-    here = Path.cwd() / "tests" / "reference.py"
-    if not here.exists():
-        here = Path(__file__).resolve().parents[3] / "tests" / "reference.py"
-    if not here.exists():
-        raise FileNotFoundError("tests/reference.py not found: run the benchmark from a checkout")
+def _reference(path: str | os.PathLike | None):
+    """The NumPy reference the user named (a Python file whose simulate() has
+    pavefric.simulate's signature: tests/reference.py in a checkout), or None."""
+    if path is None:
+        return None
+    here = Path(path)
+    if not here.is_file():
+        from ..core import PavefricError
+
+        raise PavefricError(f"bench --reference {path}: no such file (give the NumPy "
+                            "reference, tests/reference.py in a checkout)")
     spec = importlib.util.spec_from_file_location("pavefric_reference", here)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
@@ -70,6 +78,9 @@ def _rate_core(z, dx, closed=True, speeds=(60.0,), repeats=3, **kw):
 
 
 def _rate_reference(ref, z, dx, closed=True, speeds=(60.0,), **kw):
+    """Element-steps per second of the NumPy reference (NaN without one)."""
+    if ref is None:
+        return float("nan"), float("nan")
     t0 = time.perf_counter()
     ref.simulate(z, dx, list(speeds), closed=closed, **kw)
     seconds = time.perf_counter() - t0
@@ -319,7 +330,7 @@ def _checkout_file(rel: str) -> Path:
 
 
 class PlainLoop:
-    """The plain loop (tests/plain_loop.f90): MODEL.md written the obvious way
+    """The plain loop (plain_loop.f90 beside this module): MODEL.md written the obvious way
     in Fortran, compiled here with the core's optimisation; its compute time
     (the reading excluded, timed inside it) is the yardstick."""
 
@@ -331,7 +342,7 @@ class PlainLoop:
             raise RuntimeError("gfortran not found: the plain loop cannot be built")
         self.exe = directory / "plain_loop"
         r = subprocess.run([fc, "-O3", "-funroll-loops", "-o", str(self.exe),
-                            str(_checkout_file("tests/plain_loop.f90")), "-llapack"],
+                            str(Path(__file__).with_name("plain_loop.f90")), "-llapack"],
                            capture_output=True, text=True)
         if r.returncode != 0:
             raise RuntimeError(r.stderr)
@@ -419,7 +430,7 @@ def sweep(ref, plain: PlainLoop, log, repeats: int = 5, tile: int = 64) -> list:
                     row["plain"] = pl["element_steps"] / pl["seconds"]
                     row["mu_diff"] = float(np.max(np.abs(np.array(pl["mu"]) - core["mu"])))
                 nref = 256 if depth == 0.0 else 64
-                if depth is not None:
+                if depth is not None and ref is not None:
                     numpy_rate, _ = _rate_reference(ref, z0[:nref], DX, speeds=speeds,
                                                     **({"depth": depth, "alpha": 11.8}
                                                        if depth else {}))
@@ -696,11 +707,13 @@ SECTIONS = ("sweep", "program", "throughput", "elements", "length", "threads", "
 
 
 def run(report: str | None = None, largest: int = 10_000_000, quick: bool = False,
-        quiet: bool = False) -> dict:
+        quiet: bool = False, reference: str | os.PathLike | None = None) -> dict:
     """Every figure, printed as measured; with ``report``, docs/performance.md.
     ``quick``: small sizes and one repeat (minutes to seconds), to check that
     the benchmark runs, not to measure. Progress (sections done, elapsed,
-    left) on stderr unless ``quiet``."""
+    left) on stderr unless ``quiet``. ``reference``: a Python file with
+    MODEL.md's simulate() (tests/reference.py) to time beside the core; the
+    NumPy figures are NaN (and the report says "not measured") without it."""
     from . import bench_io
     from ..progress import Progress
     from .reports import machine_description
@@ -718,7 +731,7 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
         return value
 
     log(f"pavefric benchmark on {machine_description()}")
-    ref = _reference()
+    ref = _reference(reference)
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:

@@ -1,0 +1,43 @@
+"""``python -m pavefric run``: run a scene namelist (one profile or a batch)."""
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+
+NAME = "run"
+HELP = "run a scene namelist and write NetCDF"
+DESCRIPTION = ("Run a scene namelist with the same core as the program: one profile, or a "
+               "&batch of many, into NetCDF (docs/inputs.md, docs/outputs.md). Exit status 4 "
+               "when a batch finished but some profiles failed.")
+EXAMPLES = ("python -m pavefric run inputs/ctm_dry.nml --plot outputs/ctm_dry.png",
+            "python -m pavefric run inputs/batch_demo.nml -o outputs/batch.nc -q")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", help="the scene namelist")
+    p.add_argument("-o", "--output", default=None, help="NetCDF output path")
+    p.add_argument("--plot", default=None, help="also write a PNG of mu against speed")
+    p.add_argument("-q", "--quiet", action="store_true",
+                   help="no progress bar for a batch (warnings and errors still on stderr)")
+
+
+def main(args: argparse.Namespace) -> int:
+    from ..core import ProfilesFailedWarning, run
+    from ..plot import plot_mu_speed
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ProfilesFailedWarning)
+        out = run(args.scene, args.output, progress=False if args.quiet else None)
+    failed = [w for w in caught if issubclass(w.category, ProfilesFailedWarning)]
+    for w in caught:
+        if w not in failed:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    print(f"wrote {out}")
+    if args.plot:
+        print(f"wrote {plot_mu_speed([out], args.plot)}")
+    if failed:
+        # as the program: the batch finished, some profiles failed
+        print(f"pavefric: {failed[0].message}", file=sys.stderr)
+        return 4
+    return 0
