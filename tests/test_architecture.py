@@ -197,7 +197,9 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
     (model/pavefric_wet_models.f90) and in src/meson.build, builds into a
     program where &water wet_model = 'cushion' runs it: its variables are
     read, checked by name and echoed, its effect is reported, and its load
-    lowers the friction."""
+    lowers the friction. In the same copy a variable added to the
+    Kelvin-Voigt law in its module alone (physics/pavefric_rubber.f90) is
+    read, echoed and used, and warned about when given for another law."""
     tree = tmp_path / "tree"
     for name in ("meson.build", "meson.options", "LICENSE"):
         (tree / name).parent.mkdir(parents=True, exist_ok=True)
@@ -225,6 +227,22 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
         assert text.count(old) == 1, old
         text = text.replace(old, new)
     registry.write_text(text)
+    # a variable added to a rubber law, in that law's module only
+    law = tree / "src" / "physics" / "pavefric_rubber.f90"
+    text = law.read_text()
+    for old, new in [
+            ("integer, parameter :: kelvin_voigt_n_parameters = 1\n",
+             "integer, parameter :: kelvin_voigt_n_parameters = 2\n"),
+            ("      e%build => kelvin_voigt_build\n",
+             "      e%parameters(2) = real_param(\"rubber\", \"viscosity_scale\", \"1\", \"1\", &\n"
+             "         & \"model\", \"a factor on C (a test's)\", lower=0.0_wp, upper=1.0_wp)\n"
+             "      e%build => kelvin_voigt_build\n"),
+            ('real_value(specs, values, "rubber", "viscosity")))',
+             'real_value(specs, values, "rubber", "viscosity") * &\n'
+             '         & real_value(specs, values, "rubber", "viscosity_scale")))')]:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    law.write_text(text)
     build_file = tree / "src" / "meson.build"
     text = build_file.read_text()
     old = "  'physics/pavefric_squeeze.f90',\n"
@@ -248,10 +266,18 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
                         ("cushion", "&water depth = 1e-3, wet_model = 'cushion', "
                                     "cushion_thickness = 1e-3, cushion_stiffness = 5e3 /\n"),
                         ("bad", "&water depth = 1e-3, wet_model = 'cushion', "
-                                "cushion_stiffness = -1 /\n")]:
+                                "cushion_stiffness = -1 /\n"),
+                        ("scaled", "&rubber viscosity = 3e4, viscosity_scale = 0 /\n"),
+                        ("elastic", "&rubber viscosity = 0 /\n"),
+                        ("viscous", "&rubber viscosity = 3e4 /\n"),
+                        ("maxwell", "&rubber model = 'maxwell', prony_stiffness = 1e8, "
+                                    "prony_times = 1e-4, viscosity_scale = 0.5 /\n")]:
         scene = tmp_path / f"{name}.nml"
-        scene.write_text(re.sub(r"(?ms)^&water\b.*?^/\n", water, scene_text) if water
-                         else scene_text)
+        if name in ("scaled", "elastic", "viscous", "maxwell"):
+            scene.write_text(re.sub(r"(?ms)^&rubber\b.*?^/\n", water, scene_text))
+        else:
+            scene.write_text(re.sub(r"(?ms)^&water\b.*?^/\n", water, scene_text) if water
+                             else scene_text)
         proc = subprocess.run([str(program), str(scene), "-o", str(tmp_path / f"{name}.nc")],
                               capture_output=True, text=True, cwd=tmp_path, timeout=600)
         runs[name] = proc
@@ -265,6 +291,17 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
     assert wet.attrs["param_water_cushion_thickness"] == 1e-3
     assert wet.attrs["param_water_cushion_stiffness"] == 5e3
     assert "cushion_thickness = 0.001" in wet.attrs["parameters"]
+    # the rubber law's new variable is read, echoed and used (scale 0: no dashpot)
+    for name in ("scaled", "elastic", "viscous", "maxwell"):
+        assert runs[name].returncode == 0, runs[name].stderr
+    scaled = pavefric.open_dataset(tmp_path / "scaled.nc")
+    assert scaled.attrs["param_rubber_viscosity_scale"] == 0.0
+    np.testing.assert_array_equal(scaled["mu"].values,
+                                  pavefric.open_dataset(tmp_path / "elastic.nc")["mu"].values)
+    assert not np.array_equal(scaled["mu"].values,
+                              pavefric.open_dataset(tmp_path / "viscous.nc")["mu"].values)
+    # given for another law: a warning names it
+    assert "viscosity_scale" in runs["maxwell"].stderr and "not used" in runs["maxwell"].stderr
     moving = wet["speed_kmh"].values > 0
     assert np.all(wet["wet_fraction"].values[moving] > 0)
     assert np.all(wet["mu"].values[moving] < dry["mu"].values[moving])
@@ -278,10 +315,34 @@ def test_the_deprecated_ids_of_the_bearing_s_variables_still_name_them():
                      text)
     names = [(p.group, p.name) for p in pavefric.parameters()]
     n_scene = next(k for k, p in enumerate(names) if p == ("water", "alpha"))
-    assert n_scene == len(names) - 3            # the wet models' three follow the scene's
+    assert n_scene == len(names) - 3 - 9        # the wet models' three follow the scene's
     assert names[n_scene:n_scene + 2] == [("water", "alpha"), ("water", "beta")]
     assert all(g != "water" or n in ("alpha", "beta", "squeeze_inlet_fraction")
                for g, n in names[n_scene:])
+
+
+def test_the_deprecated_ids_of_the_rubber_s_variables_still_name_them():
+    """p_stiffness, p_viscosity, ... (the scene's ids before the rubber laws
+    declared their own variables) index them in the table: the &rubber
+    group's shared variables, then each law's, after the wet models'."""
+    text = (SRC / "model" / "pavefric_model.f90").read_text(encoding="utf-8")
+    flat = re.sub(r"&\s*\n\s*&", "", text)
+    ids = dict(re.findall(r"\b(p_\w+) = (rubber_first(?: \+ \w+)?|p_\w+ \+ \w+)", flat))
+    assert set(ids) == {"p_rubber_model", "p_stiffness", "p_temperature",
+                        "p_reference_temperature", "p_wlf_c1", "p_wlf_c2", "p_viscosity",
+                        "p_prony_stiffness", "p_prony_times"}
+    names = [(p.group, p.name) for p in pavefric.parameters()]
+    first = next(k for k, p in enumerate(names) if p == ("water", "alpha")) + 3
+    offsets = {"rubber_first": 0, "rubber_first + 1": 1, "rubber_first + 2": 2,
+               "rubber_first + 3": 3, "rubber_first + 4": 4, "rubber_first + 5": 5,
+               "rubber_first + n_rubber_shared_parameters": 6,
+               "p_viscosity + kelvin_voigt_n_parameters": 7, "p_prony_stiffness + 1": 8}
+    for pid, expr in ids.items():
+        assert names[first + offsets[expr]] == ("rubber", pid[2:].replace("rubber_model",
+                                                                          "model")), pid
+    assert names[first:] == [("rubber", n) for n in (
+        "model", "stiffness", "temperature", "reference_temperature", "wlf_c1", "wlf_c2",
+        "viscosity", "prony_stiffness", "prony_times")]
 
 
 def test_nothing_under_python_uses_the_tests():

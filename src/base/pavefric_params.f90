@@ -12,7 +12,7 @@ module pavefric_params
    public :: param_spec_type, param_value_type
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
    public :: param_base, text_param, logical_param, int_param, real_param, list_param
-   public :: find_parameter, real_value
+   public :: find_parameter, real_value, list_value
 
    !> Kinds of value.
    integer, parameter :: kind_real = 1, kind_integer = 2, kind_logical = 3, kind_text = 4, &
@@ -168,5 +168,23 @@ contains
       k = find_parameter(specs, group, name)
       if (k > 0) real_value = values(k)%r
    end function real_value
+
+   !> The values of the list variable &group name (none when it has no
+   !> value or `specs` has no such variable).
+   pure function list_value(specs, values, group, name) result(list)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      character(len=*), intent(in) :: group, name
+      real(wp), allocatable :: list(:)
+      integer :: k
+      k = find_parameter(specs, group, name)
+      if (k > 0) then
+         if (allocated(values(k)%list)) then
+            list = values(k)%list
+            return
+         end if
+      end if
+      allocate(list(0))
+   end function list_value
 
 end module pavefric_params

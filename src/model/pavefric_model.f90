@@ -5,9 +5,12 @@
 !> from this table, so they cannot drift. The physical parameters are then
 !> gathered into `model_type` for the physics modules.
 !>
-!> A new parameter touches this module only: an id, a row in
-!> `parameter_table`, and (for a model parameter) a field of model_type and
-!> a line in `model_from_parameters`.
+!> The physics components declare their own variables next to their code
+!> (the wet models: pavefric_wet_models; the rubber laws and the &rubber
+!> group: pavefric_rubber_models); their rows follow the scene's own in the
+!> table, found by name. A new variable of the scene itself touches this
+!> module only: an id, a row in `parameter_table`, and (for a model
+!> parameter) a field of model_type and a line in `model_from_parameters`.
 module pavefric_model
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use pavefric_kinds, only: wp
@@ -15,7 +18,10 @@ module pavefric_model
    use pavefric_format, only: to_str, to_lower, round_sig, real_to_str_text
    use pavefric_numbers, only: parse_real, parse_integer
    use pavefric_namelist, only: nml_group_type, nml_item_type, nml_token_type, parse_namelist, at
-   use pavefric_maxwell, only: wlf_check, max_log10_shift
+   use pavefric_maxwell, only: wlf_check, max_log10_shift, max_arms
+   use pavefric_rubber_models, only: n_rubber_parameters, n_rubber_shared_parameters, &
+      & rubber_parameters, rubber_model_names, check_rubber, rubber_models
+   use pavefric_rubber, only: rubber_entry_type, kelvin_voigt_n_parameters
    use pavefric_wet_models, only: n_film_parameters, wet_model_parameters, wet_model_names, &
       & wet_models
    use pavefric_film, only: film_entry_type
@@ -60,9 +66,8 @@ module pavefric_model
       enumerator :: p_z_column, p_dx, p_closed, p_mu_loc, p_microtexture_rms, p_dropouts
       enumerator :: p_trim_plates, p_plate_threshold, p_plate_min_length, p_plate_buffer
       enumerator :: p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_length, p_width
-      enumerator :: p_thickness, p_load, p_shape, p_radius, p_element_length, p_rubber_model
-      enumerator :: p_stiffness, p_viscosity, p_prony_stiffness, p_prony_times, p_temperature
-      enumerator :: p_reference_temperature, p_wlf_c1, p_wlf_c2, p_wet_model, p_depth
+      enumerator :: p_thickness, p_load, p_shape, p_radius, p_element_length
+      enumerator :: p_wet_model, p_depth
       enumerator :: p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
       enumerator :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
       enumerator :: p_error_estimate, p_time_scheme, p_friction_scheme, p_output_file
@@ -74,8 +79,7 @@ module pavefric_model
    public :: p_dropouts, p_trim_plates, p_plate_threshold, p_plate_min_length, p_plate_buffer
    public :: p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_length, p_width
    public :: p_thickness, p_load, p_shape, p_radius, p_element_length
-   public :: p_rubber_model, p_stiffness, p_viscosity, p_prony_stiffness, p_prony_times
-   public :: p_temperature, p_reference_temperature, p_wlf_c1, p_wlf_c2, p_wet_model
+   public :: p_wet_model
    public :: p_depth, p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
    public :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
    public :: p_error_estimate
@@ -84,15 +88,28 @@ module pavefric_model
    !> Variables the scene itself declares (the last id), and all of them
    !> with the components'.
    integer, parameter :: n_scene_parameters = p_batch_progress_every
-   integer, parameter :: n_parameters = n_scene_parameters + n_film_parameters
+   !> Where the rubber's variables begin (pavefric_rubber_models: the
+   !> group's shared ones, then each law's).
+   integer, parameter :: rubber_first = n_scene_parameters + n_film_parameters + 1
+   integer, parameter :: n_parameters = n_scene_parameters + n_film_parameters + &
+      & n_rubber_parameters
+   !> The ids of the &rubber variables, kept for code that used these names
+   !> (the variables are the rubber components' own, better found by name:
+   !> find_parameter(specs, "rubber", "stiffness")).
+   integer, parameter, public :: p_rubber_model = rubber_first, p_stiffness = rubber_first + 1, &
+      & p_temperature = rubber_first + 2, p_reference_temperature = rubber_first + 3, &
+      & p_wlf_c1 = rubber_first + 4, p_wlf_c2 = rubber_first + 5, &
+      & p_viscosity = rubber_first + n_rubber_shared_parameters, &
+      & p_prony_stiffness = p_viscosity + kelvin_voigt_n_parameters, &
+      & p_prony_times = p_prony_stiffness + 1
    !> Deprecated: &water alpha and beta are the pseudo-bearing's own
    !> (pavefric_film), the first wet model of the registry; their ids,
    !> kept for code that used these names, are better found by name
    !> (find_parameter(specs, "water", "alpha")).
    integer, parameter, public :: p_alpha = n_scene_parameters + 1, p_beta = n_scene_parameters + 2
    integer, parameter :: n_groups = 9
-   !> Most arms of a generalised Maxwell element.
-   integer, parameter, public :: max_arms = 100
+   !> Most arms of a generalised Maxwell element (pavefric_maxwell's).
+   public :: max_arms
 
    !> A namelist group and what it is for (docs/inputs.md sections).
    type :: group_spec_type
@@ -281,57 +298,6 @@ contains
          & lower=0.0_wp, upper=1.0_wp, plausible_lower=0.0_wp, plausible_upper=5.0e-3_wp, &
          & plausible_note="the paper's elements are 0.87 mm (its CTM's spacing)")
 
-      ! &rubber
-      s(p_rubber_model) = text("rubber", "model", "kelvin_voigt", "", "model", &
-         & "the element's law: 'kelvin_voigt', the paper's spring K and dashpot C in " // &
-         & "parallel (Eq. 3); 'maxwell', a generalised Maxwell (Prony) element: the " // &
-         & "equilibrium spring stiffness in parallel with the arms prony_stiffness, " // &
-         & "prony_times (docs/rubber.md)", choices="kelvin_voigt maxwell")
-      s(p_rubber_model)%keyword = "rubber_model"
-      s(p_stiffness) = real_param("rubber", "stiffness", "1.4e8", "N m-3", "model", &
-         & "spring modulus per unit length K (paper, Table 1); with model = 'maxwell' the " // &
-         & "equilibrium (long-time) spring K_inf. A layer of thickness h and Young's " // &
-         & "modulus E gives about E / h.", lower=0.0_wp, &
-         & lower_strict=.true., upper=1.0e15_wp, plausible_lower=1.0e5_wp, &
-         & plausible_upper=1.0e11_wp, plausible_note="tread rubber gives about 1e7 to 1e9")
-      s(p_viscosity) = real_param("rubber", "viscosity", "1.0e2", "N s m-3", "model", &
-         & "dashpot viscosity per unit length C (paper: fitted on GSSB at 20 km/h), at " // &
-         & "the reference temperature; 0 = elastic rubber: no viscous memory is kept. " // &
-         & "model = 'kelvin_voigt' only.", lower=0.0_wp, upper=1.0e12_wp)
-      s(p_prony_stiffness) = list_param("rubber", "prony_stiffness", "", "N m-3", "model", &
-         & "spring K_k of each Maxwell arm, per unit length like stiffness (model = " // &
-         & "'maxwell'; one per relaxation time; python -m pavefric prony fits them to " // &
-         & "dynamic mechanical data)", lower=0.0_wp, upper=1.0e15_wp, max_values=max_arms, &
-         & plausible_lower=0.0_wp, plausible_upper=1.0e13_wp, &
-         & plausible_note="glassy tread rubber is about 1e3 times stiffer than rubbery")
-      s(p_prony_times) = list_param("rubber", "prony_times", "", "s", "model", &
-         & "relaxation time tau_k of each Maxwell arm at the reference temperature " // &
-         & "(model = 'maxwell')", lower=0.0_wp, upper=1.0e30_wp, max_values=max_arms, &
-         & plausible_lower=1.0e-15_wp, plausible_upper=1.0e10_wp, &
-         & plausible_note="master curves of elastomers span about 1e-14 to 1e8 s")
-      s(p_prony_times)%lower_strict = .true.
-      s(p_temperature) = real_param("rubber", "temperature", "20", "degC", "model", &
-         & "rubber temperature T: every relaxation time (and the Kelvin-Voigt C) is " // &
-         & "multiplied by the WLF shift a_T, log10 a_T = -C1 (T - Tref) / (C2 + T - Tref)", &
-         & lower=-273.15_wp, lower_strict=.true., upper=1000.0_wp, plausible_lower=-40.0_wp, &
-         & plausible_upper=100.0_wp, plausible_note="road and tyre temperatures lie " // &
-         & "between -40 and 100 C")
-      s(p_reference_temperature) = real_param("rubber", "reference_temperature", "20", &
-         & "degC", "model", "reference temperature Tref of the relaxation times, the " // &
-         & "viscosity and the WLF constants", lower=-273.15_wp, lower_strict=.true., &
-         & upper=1000.0_wp)
-      s(p_wlf_c1) = real_param("rubber", "wlf_c1", "8.86", "1", "model", &
-         & "WLF constant C1 at the reference temperature (default: Williams, Landel & " // &
-         & "Ferry 1955 for Tref about 50 K above the glass transition)", lower=0.0_wp, &
-         & upper=1000.0_wp, plausible_lower=1.0_wp, plausible_upper=50.0_wp, &
-         & plausible_note="WLF fits of elastomers give C1 of about 3 to 30")
-      s(p_wlf_c2) = real_param("rubber", "wlf_c2", "101.6", "K", "model", &
-         & "WLF constant C2 at the reference temperature (default: Williams, Landel & " // &
-         & "Ferry 1955); temperatures at or below Tref - C2 are refused", lower=0.0_wp, &
-         & lower_strict=.true., upper=1.0e4_wp, plausible_lower=10.0_wp, &
-         & plausible_upper=1000.0_wp, plausible_note="WLF fits of elastomers give C2 of " // &
-         & "about 30 to 300 K")
-
       ! &water
       s(p_wet_model) = text("water", "wet_model", "kane2017", "", "model", &
          & "what the water does: 'kane2017', the paper's pseudo-bearing (Eqs. 13-15), a " // &
@@ -430,7 +396,8 @@ contains
       s(p_batch_progress_every) = int_param("batch", "progress_every", "0", "batch", &
          & "profiles between progress lines (0: about 20 lines)", 0, huge(1))
       ! the components' own variables, from their declarations
-      s(n_scene_parameters + 1:) = wet_model_parameters()
+      s(n_scene_parameters + 1:n_scene_parameters + n_film_parameters) = wet_model_parameters()
+      s(rubber_first:rubber_first + n_rubber_parameters - 1) = rubber_parameters()
    end function parameter_table
 
    ! --- values ----------------------------------------------------------------
@@ -1315,40 +1282,27 @@ contains
       call validate_rubber(m, error)
    end subroutine validate_model
 
-   !> The rubber's cross-checks: Prony arms in pairs, at least one for a
-   !> Maxwell element, and a temperature where the WLF equation holds.
+   !> The rubber's cross-checks: a law the registry knows, each law's own
+   !> (pavefric_rubber_models: the Maxwell arms in pairs, at least one), and
+   !> a temperature where the WLF equation holds.
    pure subroutine validate_rubber(m, error)
       type(model_type), intent(in) :: m
       type(error_type), allocatable, intent(out) :: error
-      character(len=:), allocatable :: why
+      character(len=:), allocatable :: why, names, listed
       real(wp) :: dt
-      integer :: n_k, n_t
-      if (.not. allocated(m%rubber_model) .or. .not. allocated(m%prony_stiffness) .or. &
-            & .not. allocated(m%prony_times)) then
+      if (.not. allocated(m%rubber_model) .or. .not. allocated(m%values)) then
          call fatal_error(error, "internal: a model_type not made by model_from_parameters")
          return
       end if
-      n_k = size(m%prony_stiffness)
-      n_t = size(m%prony_times)
-      select case (m%rubber_model)
-      case ("kelvin_voigt", "maxwell")
-      case default
+      call rubber_model_names(names)
+      call choice_list_text(names, listed)
+      if (index(" " // names // " ", " " // m%rubber_model // " ") == 0) then
          call fatal_error(error, "&rubber model = '" // m%rubber_model // "': unknown " // &
-            & "(expected 'kelvin_voigt' or 'maxwell')")
-         return
-      end select
-      if (n_k /= n_t) then
-         call fatal_error(error, "&rubber prony_stiffness has " // to_str(n_k) // &
-            & " values and prony_times " // to_str(n_t) // ": give one relaxation time " // &
-            & "per arm stiffness")
+            & "(expected " // listed // ")")
          return
       end if
-      if (m%rubber_model == "maxwell" .and. n_k < 1) then
-         call fatal_error(error, "&rubber model = 'maxwell': prony_stiffness and " // &
-            & "prony_times are empty; give at least one arm (python -m pavefric prony " // &
-            & "fits them to dynamic mechanical data)")
-         return
-      end if
+      call check_rubber(m%rubber_model, parameter_table(), m%values, error)
+      if (allocated(error)) return
       why = wlf_check(m%temperature, m%reference_temperature, m%wlf_c1, m%wlf_c2)
       dt = m%temperature - m%reference_temperature
       if (why == "diverges") then
@@ -1524,6 +1478,7 @@ contains
       type(param_set_type), intent(in) :: set
       character(len=:), allocatable, intent(inout) :: warnings
       type(film_entry_type), allocatable :: models(:)
+      type(rubber_entry_type), allocatable :: laws(:)
       integer :: k, j, i
       do k = 1, size(specs)
          if (.not. set%v(k)%set) cycle
@@ -1538,10 +1493,30 @@ contains
             end do
          end select
       end do
-      ! variables given that the chosen rubber does not use
-      if (set%v(p_rubber_model)%t == "maxwell" .and. set%v(p_viscosity)%set) &
-         & call add_warning(warnings, "&rubber viscosity = " // to_str(set%v(p_viscosity)%r) // &
-         & " is not used with &rubber model = 'maxwell' (the Prony arms carry the damping)")
+      ! variables given that the chosen rubber does not use (a law's own,
+      ! given for another)
+      laws = rubber_models()
+      do j = 1, size(laws)
+         if (laws(j)%name == set%v(p_rubber_model)%t) cycle
+         do i = 1, size(laws(j)%parameters)
+            k = find_parameter(specs, laws(j)%parameters(i)%group, laws(j)%parameters(i)%name)
+            if (k == 0) cycle
+            select case (specs(k)%kind)
+            case (kind_real_list)
+               if (.not. set%v(k)%set) cycle
+               if (.not. allocated(set%v(k)%list)) cycle
+               if (size(set%v(k)%list) == 0) cycle
+               call add_warning(warnings, "&rubber " // specs(k)%name // " is not used " // &
+                  & "with &rubber model = '" // set%v(p_rubber_model)%t // "' (a variable " // &
+                  & "of model = '" // laws(j)%name // "'; set it to use it)")
+            case default
+               if (given_other(specs(k), set%v(k))) call add_warning(warnings, "&rubber " // &
+                  & specs(k)%name // " = " // to_str(set%v(k)%r) // " is not used with " // &
+                  & "&rubber model = '" // set%v(p_rubber_model)%t // "' (a variable of " // &
+                  & "model = '" // laws(j)%name // "'; set it to use it)")
+            end select
+         end do
+      end do
       ! variables given that the chosen wet model does not use
       ! (a wet model's own variables, given for another)
       models = wet_models()
@@ -1562,14 +1537,6 @@ contains
             & to_str(set%v(p_microtexture_rms)%r) // " is not used with &water wet_model = '" // &
             & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' pierces its film " // &
             & "with the microtexture)")
-      end if
-      if (set%v(p_rubber_model)%t == "kelvin_voigt") then
-         do k = p_prony_stiffness, p_prony_times
-            if (.not. set%v(k)%set) cycle
-            if (size(set%v(k)%list) > 0) call add_warning(warnings, "&rubber " // &
-               & specs(k)%name // " is not used with &rubber model = 'kelvin_voigt' " // &
-               & "(set model = 'maxwell' for the Prony arms)")
-         end do
       end if
    end subroutine plausibility_warnings
 

@@ -23,12 +23,21 @@
 !> division by zero or overflow on the way.
 module pavefric_maxwell
    use pavefric_kinds, only: wp
-   use pavefric_rubber, only: rubber_model, rubber_step_type
+   use pavefric_error, only: error_type, fatal_error
+   use pavefric_format, only: to_str
+   use pavefric_params, only: param_spec_type, param_value_type, list_param, list_value
+   use pavefric_rubber, only: rubber_model, rubber_step_type, rubber_context_type, &
+      & rubber_entry_type
    implicit none
    private
 
    public :: maxwell_rubber, arm_weights, wlf_log10_shift, wlf_shift, wlf_check
-   public :: max_log10_shift
+   public :: max_log10_shift, maxwell_entry, maxwell_n_parameters
+
+   !> The variables the generalised Maxwell law declares (maxwell_entry).
+   integer, parameter :: maxwell_n_parameters = 2
+   !> Most arms of a generalised Maxwell element.
+   integer, parameter, public :: max_arms = 100
 
    !> Largest |log10 a_T| accepted: no WLF fit holds this far, and the
    !> shifted times stay far from overflow.
@@ -53,6 +62,60 @@ module pavefric_maxwell
    end type maxwell_rubber
 
 contains
+
+   !> The generalised Maxwell (Prony) law: the context's spring as K_inf in
+   !> parallel with the arms prony_stiffness, prony_times, every time
+   !> shifted to the temperature (tau_k(T) = a_T tau_k(Tref)).
+   pure function maxwell_entry() result(e)
+      type(rubber_entry_type) :: e
+      e%name = "maxwell"
+      allocate(e%parameters(maxwell_n_parameters))
+      e%parameters(1) = list_param("rubber", "prony_stiffness", "", "N m-3", "model", &
+         & "spring K_k of each Maxwell arm, per unit length like stiffness (model = " // &
+         & "'maxwell'; one per relaxation time; python -m pavefric prony fits them to " // &
+         & "dynamic mechanical data)", lower=0.0_wp, upper=1.0e15_wp, max_values=max_arms, &
+         & plausible_lower=0.0_wp, plausible_upper=1.0e13_wp, &
+         & plausible_note="glassy tread rubber is about 1e3 times stiffer than rubbery")
+      e%parameters(2) = list_param("rubber", "prony_times", "", "s", "model", &
+         & "relaxation time tau_k of each Maxwell arm at the reference temperature " // &
+         & "(model = 'maxwell')", lower=0.0_wp, upper=1.0e30_wp, max_values=max_arms, &
+         & plausible_lower=1.0e-15_wp, plausible_upper=1.0e10_wp, &
+         & plausible_note="master curves of elastomers span about 1e-14 to 1e8 s")
+      e%parameters(2)%lower_strict = .true.
+      e%build => maxwell_build
+      e%check => maxwell_check
+   end function maxwell_entry
+
+   subroutine maxwell_build(context, specs, values, rubber)
+      type(rubber_context_type), intent(in) :: context
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      class(rubber_model), allocatable, intent(out) :: rubber
+      allocate(rubber, source=maxwell_rubber(stiffness=context%stiffness, &
+         & arm_stiffness=list_value(specs, values, "rubber", "prony_stiffness"), &
+         & arm_times=context%shift * list_value(specs, values, "rubber", "prony_times")))
+   end subroutine maxwell_build
+
+   !> The arms come in pairs (whichever law is chosen: a list without its
+   !> partner is a mistake), and the law needs at least one.
+   pure subroutine maxwell_check(specs, values, chosen, error)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      logical, intent(in) :: chosen
+      type(error_type), allocatable, intent(out) :: error
+      integer :: n_k, n_t
+      n_k = size(list_value(specs, values, "rubber", "prony_stiffness"))
+      n_t = size(list_value(specs, values, "rubber", "prony_times"))
+      if (n_k /= n_t) then
+         call fatal_error(error, "&rubber prony_stiffness has " // to_str(n_k) // &
+            & " values and prony_times " // to_str(n_t) // ": give one relaxation time " // &
+            & "per arm stiffness")
+      else if (chosen .and. n_k < 1) then
+         call fatal_error(error, "&rubber model = 'maxwell': prony_stiffness and " // &
+            & "prony_times are empty; give at least one arm (python -m pavefric prony " // &
+            & "fits them to dynamic mechanical data)")
+      end if
+   end subroutine maxwell_check
 
    !> The compression u and each arm's relaxed compression v_k.
    pure integer function mx_state_size(self)

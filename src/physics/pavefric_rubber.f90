@@ -13,10 +13,36 @@
 !> any other linear model sit side by side behind one interface.
 module pavefric_rubber
    use pavefric_kinds, only: wp
+   use pavefric_error, only: error_type
+   use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
    implicit none
    private
 
    public :: rubber_model, rubber_step_type, kelvin_voigt_rubber
+   public :: rubber_context_type, rubber_entry_type, rubber_builder, rubber_checker
+   public :: kelvin_voigt_entry, kelvin_voigt_n_parameters
+
+   !> The variables the Kelvin-Voigt law declares (kelvin_voigt_entry).
+   integer, parameter :: kelvin_voigt_n_parameters = 1
+
+   !> What every rubber law is built with, from the &rubber group's shared
+   !> variables (pavefric_rubber_models): the spring K (a Maxwell element's
+   !> equilibrium spring K_inf, N m-3) and the WLF shift a_T of the scene's
+   !> temperature, by which every relaxation time is multiplied. A law's own
+   !> variables come from its declarations (rubber_entry_type).
+   type :: rubber_context_type
+      real(wp) :: stiffness = 0.0_wp, shift = 1.0_wp
+   end type rubber_context_type
+
+   !> A rubber law as the registry (pavefric_rubber_models) sees it: its
+   !> name (&rubber model), the variables it declares, how it is built from
+   !> them and, optionally, the checks that involve several of them.
+   type :: rubber_entry_type
+      character(len=:), allocatable :: name
+      type(param_spec_type), allocatable :: parameters(:)
+      procedure(rubber_builder), pointer, nopass :: build => null()
+      procedure(rubber_checker), pointer, nopass :: check => null()
+   end type rubber_entry_type
 
    !> What the time step makes of the rubber at each of a set of speeds
    !> (lanes): the same for every element. The driver advances all the
@@ -56,6 +82,28 @@ module pavefric_rubber
    end type rubber_model
 
    abstract interface
+      !> Build the law from the scene's context and its values (`specs`
+      !> and `values`: the whole table, a law reads its own by group and
+      !> name). Not pure: a polymorphic result.
+      subroutine rubber_builder(context, specs, values, rubber)
+         import :: rubber_context_type, param_spec_type, param_value_type, rubber_model
+         type(rubber_context_type), intent(in) :: context
+         type(param_spec_type), intent(in) :: specs(:)
+         type(param_value_type), intent(in) :: values(:)
+         class(rubber_model), allocatable, intent(out) :: rubber
+      end subroutine rubber_builder
+
+      !> Checks of the law's variables that involve several values (each
+      !> value's own range is checked by the table already). `chosen`: the
+      !> scene's &rubber model is this law (some checks apply only then).
+      pure subroutine rubber_checker(specs, values, chosen, error)
+         import :: param_spec_type, param_value_type, error_type
+         type(param_spec_type), intent(in) :: specs(:)
+         type(param_value_type), intent(in) :: values(:)
+         logical, intent(in) :: chosen
+         type(error_type), allocatable, intent(out) :: error
+      end subroutine rubber_checker
+
       pure integer function state_size_interface(self)
          import :: rubber_model
          class(rubber_model), intent(in) :: self
@@ -114,6 +162,28 @@ module pavefric_rubber
    end type kelvin_voigt_rubber
 
 contains
+
+   !> The paper's Kelvin-Voigt law (Eq. 3): the spring K of the context and
+   !> a dashpot C in parallel, C shifted to the temperature (C -> a_T C).
+   pure function kelvin_voigt_entry() result(e)
+      type(rubber_entry_type) :: e
+      e%name = "kelvin_voigt"
+      allocate(e%parameters(kelvin_voigt_n_parameters))
+      e%parameters(1) = real_param("rubber", "viscosity", "1.0e2", "N s m-3", "model", &
+         & "dashpot viscosity per unit length C (paper: fitted on GSSB at 20 km/h), at " // &
+         & "the reference temperature; 0 = elastic rubber: no viscous memory is kept. " // &
+         & "model = 'kelvin_voigt' only.", lower=0.0_wp, upper=1.0e12_wp)
+      e%build => kelvin_voigt_build
+   end function kelvin_voigt_entry
+
+   subroutine kelvin_voigt_build(context, specs, values, rubber)
+      type(rubber_context_type), intent(in) :: context
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      class(rubber_model), allocatable, intent(out) :: rubber
+      allocate(rubber, source=kelvin_voigt_rubber(stiffness=context%stiffness, &
+         & viscosity=context%shift * real_value(specs, values, "rubber", "viscosity")))
+   end subroutine kelvin_voigt_build
 
    pure integer function kv_state_size(self)
       class(kelvin_voigt_rubber), intent(in) :: self
