@@ -315,34 +315,44 @@ def test_the_deprecated_ids_of_the_bearing_s_variables_still_name_them():
                      text)
     names = [(p.group, p.name) for p in pavefric.parameters()]
     n_scene = next(k for k, p in enumerate(names) if p == ("water", "alpha"))
-    assert n_scene == len(names) - 3 - 9        # the wet models' three follow the scene's
+    assert n_scene == len(names) - 3 - 26       # the wet models' three follow the scene's
     assert names[n_scene:n_scene + 2] == [("water", "alpha"), ("water", "beta")]
     assert all(g != "water" or n in ("alpha", "beta", "squeeze_inlet_fraction")
                for g, n in names[n_scene:])
 
 
-def test_the_deprecated_ids_of_the_rubber_s_variables_still_name_them():
-    """p_stiffness, p_viscosity, ... (the scene's ids before the rubber laws
-    declared their own variables) index them in the table: the &rubber
-    group's shared variables, then each law's, after the wet models'."""
+def test_the_deprecated_ids_of_the_components_variables_still_name_them():
+    """p_stiffness, p_viscosity, p_dropouts, p_length, p_mu_loc, ... (the
+    scene's ids before the rubber laws, preprocessing, the pad and the
+    facets declared their own variables) index them in the table: each
+    component's block after the wet models', in the order of the model's
+    `*_first` constants."""
     text = (SRC / "model" / "pavefric_model.f90").read_text(encoding="utf-8")
     flat = re.sub(r"&\s*\n\s*&", "", text)
-    ids = dict(re.findall(r"\b(p_\w+) = (rubber_first(?: \+ \w+)?|p_\w+ \+ \w+)", flat))
-    assert set(ids) == {"p_rubber_model", "p_stiffness", "p_temperature",
-                        "p_reference_temperature", "p_wlf_c1", "p_wlf_c2", "p_viscosity",
-                        "p_prony_stiffness", "p_prony_times"}
     names = [(p.group, p.name) for p in pavefric.parameters()]
-    first = next(k for k, p in enumerate(names) if p == ("water", "alpha")) + 3
-    offsets = {"rubber_first": 0, "rubber_first + 1": 1, "rubber_first + 2": 2,
-               "rubber_first + 3": 3, "rubber_first + 4": 4, "rubber_first + 5": 5,
-               "rubber_first + n_rubber_shared_parameters": 6,
-               "p_viscosity + kelvin_voigt_n_parameters": 7, "p_prony_stiffness + 1": 8}
-    for pid, expr in ids.items():
-        assert names[first + offsets[expr]] == ("rubber", pid[2:].replace("rubber_model",
-                                                                          "model")), pid
-    assert names[first:] == [("rubber", n) for n in (
-        "model", "stiffness", "temperature", "reference_temperature", "wlf_c1", "wlf_c2",
-        "viscosity", "prony_stiffness", "prony_times")]
+    first = next(k for k, p in enumerate(names) if p == ("water", "alpha")) + 3 + 1
+    blocks = {"rubber": ["model", "stiffness", "temperature", "reference_temperature",
+                         "wlf_c1", "wlf_c2", "viscosity", "prony_stiffness", "prony_times"],
+              "preprocess": ["dropouts", "trim_plates", "plate_threshold", "plate_min_length",
+                             "plate_buffer", "spike_slope", "resample_dx",
+                             "lowpass_wavelength"],
+              "pad": ["length", "width", "thickness", "load", "shape", "radius",
+                      "element_length"]}
+    expected = [("rubber", n) for n in blocks["rubber"]] + \
+        [("preprocess", n) for n in blocks["preprocess"]] + \
+        [("pad", n) for n in blocks["pad"]] + [("surface", "mu_loc"), ("numerics", "theta_max_deg")]
+    assert names[first - 1:] == expected
+    # the Fortran ids (1-based), evaluated from their definitions
+    env = {"rubber_first": first, "preprocess_first": first + 9, "pad_first": first + 17,
+           "facet_first": first + 24, "n_rubber_shared_parameters": 6,
+           "kelvin_voigt_n_parameters": 1}
+    defs = re.findall(r"\b(p_\w+) = ((?:rubber|preprocess|pad|facet)_first(?: \+ \w+)?|"
+                      r"p_\w+ \+ \w+)", flat)
+    assert len(defs) == 9 + 8 + 7 + 2
+    for pid, expr in defs:
+        env[pid] = eval(expr, {}, env)
+        group, name = names[env[pid] - 1]
+        assert name == pid[2:].replace("rubber_model", "model"), (pid, expr, name)
 
 
 def test_nothing_under_python_uses_the_tests():

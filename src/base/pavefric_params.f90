@@ -12,7 +12,7 @@ module pavefric_params
    public :: param_spec_type, param_value_type
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
    public :: param_base, text_param, logical_param, int_param, real_param, list_param
-   public :: find_parameter, real_value, list_value
+   public :: find_parameter, real_value, list_value, logical_value, integer_value, text_value
 
    !> Kinds of value.
    integer, parameter :: kind_real = 1, kind_integer = 2, kind_logical = 3, kind_text = 4, &
@@ -168,6 +168,45 @@ contains
       k = find_parameter(specs, group, name)
       if (k > 0) real_value = values(k)%r
    end function real_value
+
+   !> The value of the logical variable &group name (.false. when `specs`
+   !> has none).
+   pure logical function logical_value(specs, values, group, name)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      character(len=*), intent(in) :: group, name
+      integer :: k
+      logical_value = .false.
+      k = find_parameter(specs, group, name)
+      if (k > 0) logical_value = values(k)%b
+   end function logical_value
+
+   !> The value of the integer variable &group name (0 when `specs` has none).
+   pure integer function integer_value(specs, values, group, name)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      character(len=*), intent(in) :: group, name
+      integer :: k
+      integer_value = 0
+      k = find_parameter(specs, group, name)
+      if (k > 0) integer_value = values(k)%i
+   end function integer_value
+
+   !> The value of the text variable &group name ("" when `specs` has none
+   !> or it has no value). A subroutine: gfortran keeps a deferred-length
+   !> function result's length in a static variable, which threads share.
+   pure subroutine text_value(specs, values, group, name, text)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      character(len=*), intent(in) :: group, name
+      character(len=:), allocatable, intent(out) :: text
+      integer :: k
+      text = ""
+      k = find_parameter(specs, group, name)
+      if (k > 0) then
+         if (allocated(values(k)%t)) text = values(k)%t
+      end if
+   end subroutine text_value
 
    !> The values of the list variable &group name (none when it has no
    !> value or `specs` has no such variable).

@@ -12,12 +12,11 @@ module pavefric_scene
       & default_parameters, apply_namelist, model_from_parameters, validate_model, &
       & plausibility_warnings, &
       & p_profile_file, p_profile_name, p_format, p_height_unit, p_x_column, p_z_column, &
-      & p_dx, p_closed, p_dropouts, p_trim_plates, p_plate_threshold, p_plate_min_length, &
-      & p_plate_buffer, p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_speeds_kmh, &
+      & p_dx, p_closed, p_speeds_kmh, &
       & p_output_file, p_series, p_batch_profiles, p_batch_profile_list, p_batch_depths, &
       & p_batch_restart, p_batch_progress_every
    use pavefric_fsys, only: dir_name, base_name, join_path
-   use pavefric_preprocess, only: preprocess_type
+   use pavefric_preprocess, only: preprocess_type, preprocess_from_values
    implicit none
    private
 
@@ -168,7 +167,8 @@ contains
       if (len(path) == 0) scene%name = "arrays"
       scene%parameters = set
       scene%is_batch = is_batch
-      call lay_out(scene)
+      specs = parameter_table()
+      call lay_out(scene, specs)
       scene%model = model_from_parameters(scene%parameters)
       call validate_model(scene%model, error)
       if (allocated(error)) return
@@ -210,13 +210,14 @@ contains
          end if
          scene%profile_file = join_path(dir_name(path), scene%profile_file)
       end if
-      specs = parameter_table()
       call plausibility_warnings(specs, scene%parameters, scene%warnings)
    end subroutine scene_from_parameters
 
    !> The scene's fields from its parameter values.
-   pure subroutine lay_out(scene)
+   pure subroutine lay_out(scene, specs)
       type(scene_type), intent(inout) :: scene
+      !> The table (parameter_table): preprocessing reads its own variables by name.
+      type(param_spec_type), intent(in) :: specs(:)
       associate(v => scene%parameters%v)
          scene%profile_file = v(p_profile_file)%t
          scene%profile_name = v(p_profile_name)%t
@@ -227,14 +228,7 @@ contains
          scene%dx = -1.0_wp
          if (v(p_dx)%set) scene%dx = v(p_dx)%r
          scene%closed = v(p_closed)%b
-         scene%preprocess%dropouts = v(p_dropouts)%t
-         scene%preprocess%trim_plates = v(p_trim_plates)%b
-         scene%preprocess%plate_threshold = v(p_plate_threshold)%r
-         scene%preprocess%plate_min_length = v(p_plate_min_length)%r
-         scene%preprocess%plate_buffer = v(p_plate_buffer)%r
-         scene%preprocess%spike_slope = v(p_spike_slope)%r
-         scene%preprocess%resample_dx = v(p_resample_dx)%r
-         scene%preprocess%lowpass_wavelength = v(p_lowpass_wavelength)%r
+         scene%preprocess = preprocess_from_values(specs, v)
          if (v(p_speeds_kmh)%set) scene%speeds_kmh = v(p_speeds_kmh)%list
          scene%output_file = v(p_output_file)%t
          scene%series = v(p_series)%b

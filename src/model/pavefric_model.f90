@@ -1,14 +1,16 @@
 !> The one description of pavefric's inputs: every namelist variable is
-!> declared once here, with its group, unit, default, valid range, plausible
-!> range and meaning. Namelist reading, validation messages, the echo into
+!> declared once, with its group, unit, default, valid range, plausible
+!> range and meaning (the scene's own here, the components' in their
+!> modules, gathered here into one table). Namelist reading, validation messages, the echo into
 !> the output, docs/inputs.md, the Python keywords and the C API all come
 !> from this table, so they cannot drift. The physical parameters are then
 !> gathered into `model_type` for the physics modules.
 !>
 !> The physics components declare their own variables next to their code
 !> (the wet models: pavefric_wet_models; the rubber laws and the &rubber
-!> group: pavefric_rubber_models); their rows follow the scene's own in the
-!> table, found by name. A new variable of the scene itself touches this
+!> group: pavefric_rubber_models; &preprocess: pavefric_preprocess; &pad:
+!> pavefric_pad; mu_loc and theta_max_deg: pavefric_facet); their rows
+!> follow the scene's own in the table, found by name. A new variable of the scene itself touches this
 !> module only: an id, a row in `parameter_table`, and (for a model
 !> parameter) a field of model_type and a line in `model_from_parameters`.
 module pavefric_model
@@ -22,6 +24,10 @@ module pavefric_model
    use pavefric_rubber_models, only: n_rubber_parameters, n_rubber_shared_parameters, &
       & rubber_parameters, rubber_model_names, check_rubber, rubber_models
    use pavefric_rubber, only: rubber_entry_type, kelvin_voigt_n_parameters
+   use pavefric_preprocess, only: preprocess_parameters, preprocess_n_parameters
+   use pavefric_pad, only: pad_parameters, pad_n_parameters, check_pad, shape_flat, &
+      & shape_rounded, shape_code
+   use pavefric_facet, only: facet_parameters, facet_n_parameters
    use pavefric_wet_models, only: n_film_parameters, wet_model_parameters, wet_model_names, &
       & wet_models
    use pavefric_film, only: film_entry_type
@@ -46,7 +52,6 @@ module pavefric_model
    real(wp), parameter :: tolerance_floor = 1.0e-14_wp
    !> The largest &numerics substeps, also where accuracy on demand stops halving.
    integer, parameter, public :: max_substeps = 4096
-   integer, parameter :: shape_flat = 0, shape_rounded = 1
 
    !> The values used, as a namelist that reproduces them (defaults
    !> included); optional variables not set are left out. `groups`
@@ -63,24 +68,18 @@ module pavefric_model
    ! (pavefric_wet_models) follow them in the table, found by name.
    enum, bind(c)
       enumerator :: p_profile_file = 1, p_profile_name, p_format, p_height_unit, p_x_column
-      enumerator :: p_z_column, p_dx, p_closed, p_mu_loc, p_microtexture_rms, p_dropouts
-      enumerator :: p_trim_plates, p_plate_threshold, p_plate_min_length, p_plate_buffer
-      enumerator :: p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_length, p_width
-      enumerator :: p_thickness, p_load, p_shape, p_radius, p_element_length
+      enumerator :: p_z_column, p_dx, p_closed, p_microtexture_rms
       enumerator :: p_wet_model, p_depth
-      enumerator :: p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
+      enumerator :: p_water_viscosity, p_speeds_kmh, p_substeps
       enumerator :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
       enumerator :: p_error_estimate, p_time_scheme, p_friction_scheme, p_output_file
       enumerator :: p_series, p_batch_profiles, p_batch_profile_list, p_batch_depths
       enumerator :: p_batch_restart, p_batch_progress_every
    end enum
    public :: p_profile_file, p_profile_name, p_format, p_height_unit, p_x_column
-   public :: p_z_column, p_dx, p_closed, p_mu_loc, p_microtexture_rms
-   public :: p_dropouts, p_trim_plates, p_plate_threshold, p_plate_min_length, p_plate_buffer
-   public :: p_spike_slope, p_resample_dx, p_lowpass_wavelength, p_length, p_width
-   public :: p_thickness, p_load, p_shape, p_radius, p_element_length
+   public :: p_z_column, p_dx, p_closed, p_microtexture_rms
    public :: p_wet_model
-   public :: p_depth, p_water_viscosity, p_speeds_kmh, p_theta_max_deg, p_substeps
+   public :: p_depth, p_water_viscosity, p_speeds_kmh, p_substeps
    public :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
    public :: p_error_estimate
    public :: p_time_scheme, p_friction_scheme, p_output_file, p_series, p_batch_profiles
@@ -91,8 +90,12 @@ module pavefric_model
    !> Where the rubber's variables begin (pavefric_rubber_models: the
    !> group's shared ones, then each law's).
    integer, parameter :: rubber_first = n_scene_parameters + n_film_parameters + 1
-   integer, parameter :: n_parameters = n_scene_parameters + n_film_parameters + &
-      & n_rubber_parameters
+   !> Where preprocessing's, the pad's and the facets' variables begin
+   !> (pavefric_preprocess, pavefric_pad, pavefric_facet).
+   integer, parameter :: preprocess_first = rubber_first + n_rubber_parameters
+   integer, parameter :: pad_first = preprocess_first + preprocess_n_parameters
+   integer, parameter :: facet_first = pad_first + pad_n_parameters
+   integer, parameter :: n_parameters = facet_first + facet_n_parameters - 1
    !> The ids of the &rubber variables, kept for code that used these names
    !> (the variables are the rubber components' own, better found by name:
    !> find_parameter(specs, "rubber", "stiffness")).
@@ -102,6 +105,17 @@ module pavefric_model
       & p_viscosity = rubber_first + n_rubber_shared_parameters, &
       & p_prony_stiffness = p_viscosity + kelvin_voigt_n_parameters, &
       & p_prony_times = p_prony_stiffness + 1
+   !> The ids of the components' other variables, kept likewise (better
+   !> found by name).
+   integer, parameter, public :: p_dropouts = preprocess_first, &
+      & p_trim_plates = preprocess_first + 1, p_plate_threshold = preprocess_first + 2, &
+      & p_plate_min_length = preprocess_first + 3, p_plate_buffer = preprocess_first + 4, &
+      & p_spike_slope = preprocess_first + 5, p_resample_dx = preprocess_first + 6, &
+      & p_lowpass_wavelength = preprocess_first + 7
+   integer, parameter, public :: p_length = pad_first, p_width = pad_first + 1, &
+      & p_thickness = pad_first + 2, p_load = pad_first + 3, p_shape = pad_first + 4, &
+      & p_radius = pad_first + 5, p_element_length = pad_first + 6
+   integer, parameter, public :: p_mu_loc = facet_first, p_theta_max_deg = facet_first + 1
    !> Deprecated: &water alpha and beta are the pseudo-bearing's own
    !> (pavefric_film), the first wet model of the registry; their ids,
    !> kept for code that used these names, are better found by name
@@ -191,7 +205,6 @@ contains
    pure function parameter_table() result(s)
       type(param_spec_type) :: s(n_parameters)
       character(len=:), allocatable :: wet_names
-      real(wp), parameter :: big = huge(1.0_wp)
 
       call wet_model_names(wet_names)
 
@@ -224,12 +237,6 @@ contains
          & ".true.: a closed Circular Track Meter circle (the pad wraps round; N spin-up " // &
          & "positions before averaging over all Np positions). .false.: an open profile " // &
          & "(Np - N + 1 positions, elements start relaxed).")
-      s(p_mu_loc) = real_param("surface", "mu_loc", "0.5", "1", "model", &
-         & "local friction of the facets: all texture scales finer than dx (British " // &
-         & "Pendulum SRT in the paper: 0.30-0.75). Set it for your surface.", &
-         & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=2.0_wp, &
-         & plausible_note="pendulum values of roads lie between 0.2 and 1.2")
-
       s(p_microtexture_rms) = real_param("surface", "microtexture_rms", "40e-6", "m", "model", &
          & "RMS height of the microtexture asperities (texture finer than dx) that pierce " // &
          & "the water film left under the contacts, for wet_model = 'squeeze': the share " // &
@@ -237,66 +244,6 @@ contains
          & "is the single value fitted to the PIARC speed gradient (docs/speed_gradient.md).", &
          & lower=0.0_wp, upper=1.0_wp, plausible_lower=1.0e-6_wp, plausible_upper=0.5e-3_wp, &
          & plausible_note="road microtexture asperities are 1 to 500 micrometres high")
-
-      ! &preprocess
-      s(p_dropouts) = text("preprocess", "dropouts", "error", "", "profile", &
-         & "'error': a dropout (empty or NaN height) stops the run naming file and line; " // &
-         & "'interpolate': linear interpolation (ISO 13473-1)", choices="error interpolate")
-      s(p_trim_plates) = logical_param("preprocess", "trim_plates", ".true.", "profile", &
-         & "cut reference plates (long runs far from the surface's heights) at the ends")
-      s(p_plate_threshold) = real_param("preprocess", "plate_threshold", "0.010", "m", "profile", &
-         & "a point this far from the median height is off the surface", lower=0.0_wp, &
-         & lower_strict=.true., upper=big)
-      s(p_plate_min_length) = real_param("preprocess", "plate_min_length", "0.005", "m", &
-         & "profile", "shortest run of such points that is a plate, not a spike", &
-         & lower=0.0_wp, upper=big)
-      s(p_plate_buffer) = real_param("preprocess", "plate_buffer", "0.002", "m", "profile", &
-         & "distance cut beyond a plate's edge", lower=0.0_wp, upper=big)
-      s(p_spike_slope) = real_param("preprocess", "spike_slope", "0", "1", "profile", &
-         & "a jump >= spike_slope x spacing flags both its points as a spike (0: off; " // &
-         & "ISO 13473-1: 3 at 0.5-1 mm spacing)", lower=0.0_wp, upper=big)
-      s(p_resample_dx) = real_param("preprocess", "resample_dx", "0", "m", "profile", &
-         & "resample by averaging into bins of this spacing (0: keep the spacing)", &
-         & lower=0.0_wp, upper=big)
-      s(p_lowpass_wavelength) = real_param("preprocess", "lowpass_wavelength", "0", "m", &
-         & "profile", "cut-off wavelength of a 2nd-order Butterworth low-pass run forwards " // &
-         & "and backwards (0: off; ISO 13473-1: 2.4e-3)", lower=0.0_wp, upper=big)
-
-      ! &pad
-      s(p_length) = real_param("pad", "length", "0.020", "m", "model", &
-         & "pad length L along the sliding direction; the pad has N = nint(L / dx) " // &
-         & "elements (23 at 0.87 mm)", lower=0.0_wp, lower_strict=.true., upper=100.0_wp, &
-         & plausible_lower=1.0e-3_wp, plausible_upper=1.0_wp, &
-         & plausible_note="a DFT pad is 20 mm long, a tyre's contact about 0.15 m")
-      s(p_width) = real_param("pad", "width", "0.016", "m", "model", &
-         & "pad width l across the sliding direction", lower=0.0_wp, lower_strict=.true., &
-         & upper=100.0_wp, plausible_lower=1.0e-3_wp, plausible_upper=1.0_wp, &
-         & plausible_note="a DFT pad is 16 mm wide, a tyre about 0.2 m")
-      s(p_thickness) = real_param("pad", "thickness", "0.006", "m", "model", &
-         & "rubber thickness; compression beyond it is reported (max_compression, a " // &
-         & "warning): the linear model has no hard floor", lower=0.0_wp, lower_strict=.true., &
-         & upper=100.0_wp, plausible_lower=1.0e-4_wp, plausible_upper=0.1_wp, &
-         & plausible_note="rubber treads are millimetres thick")
-      s(p_load) = real_param("pad", "load", "11.8", "N", "model", &
-         & "normal load W on the pad", lower=0.0_wp, lower_strict=.true., upper=1.0e9_wp, &
-         & plausible_lower=0.1_wp, plausible_upper=1.0e5_wp, &
-         & plausible_note="a DFT slider carries 11.8 N, a car tyre about 4e3 N")
-      s(p_shape) = text("pad", "shape", "flat", "", "model", &
-         & "'flat' (h_i = 0) or 'rounded' (a circular arc of radius across the length: " // &
-         & "h_i = R - sqrt(R^2 - x_i^2), x_i from the pad centre)", choices="flat rounded")
-      s(p_radius) = real_param("pad", "radius", "0.05", "m", "model", &
-         & "arc radius of a rounded pad; must exceed length / 2", lower=0.0_wp, &
-         & lower_strict=.true., upper=1.0e12_wp)
-      s(p_element_length) = real_param("pad", "element_length", "0.87e-3", "m", "model", &
-         & "length of a pad element along the sliding direction, a property of the pad, " // &
-         & "not of the instrument: the profile is low-pass filtered (the mean height over " // &
-         & "one element length) and resampled to this spacing before the pad slides over " // &
-         & "it, so mu_loc stands for the texture finer than element_length (default: the " // &
-         & "paper's CTM spacing, for which its mu_loc values hold; docs/model.md). A closed " // &
-         & "profile is resampled to a whole number of elements round its circumference. " // &
-         & "0 = the profile's own spacing (the paper's discretisation).", &
-         & lower=0.0_wp, upper=1.0_wp, plausible_lower=0.0_wp, plausible_upper=5.0e-3_wp, &
-         & plausible_note="the paper's elements are 0.87 mm (its CTM's spacing)")
 
       ! &water
       s(p_wet_model) = text("water", "wet_model", "kane2017", "", "model", &
@@ -323,10 +270,6 @@ contains
       s(p_speeds_kmh)%required = .true.
 
       ! &numerics
-      s(p_theta_max_deg) = real_param("numerics", "theta_max_deg", "85", "degree", "model", &
-         & "steepest facet angle plus friction angle; steeper facets are clamped to " // &
-         & "+-theta_max_deg and counted in n_clamped", lower=0.0_wp, lower_strict=.true., &
-         & upper=90.0_wp, upper_strict=.true.)
       s(p_substeps) = int_param("numerics", "substeps", "1", "model", &
          & "time steps per element spacing: the pad advances dx / substeps per step; " // &
          & "heights and facet tangents are interpolated linearly between samples", 1, &
@@ -398,6 +341,9 @@ contains
       ! the components' own variables, from their declarations
       s(n_scene_parameters + 1:n_scene_parameters + n_film_parameters) = wet_model_parameters()
       s(rubber_first:rubber_first + n_rubber_parameters - 1) = rubber_parameters()
+      s(preprocess_first:pad_first - 1) = preprocess_parameters()
+      s(pad_first:facet_first - 1) = pad_parameters()
+      s(facet_first:n_parameters) = facet_parameters()
    end function parameter_table
 
    ! --- values ----------------------------------------------------------------
@@ -1216,41 +1162,24 @@ contains
       end if
    end function list_or_empty
 
-   !> Integer code of a pad shape name; -1 when unknown.
-   pure function shape_code(name) result(code)
-      character(len=*), intent(in) :: name
-      integer :: code
-      select case (trim(adjustl(name)))
-      case ("flat")
-         code = shape_flat
-      case ("rounded")
-         code = shape_rounded
-      case default
-         code = -1
-      end select
-   end function shape_code
 
    !> Checks that involve several parameters (each value's own range is
    !> checked when it is read).
    pure subroutine validate_model(m, error)
       type(model_type), intent(in) :: m
       type(error_type), allocatable, intent(out) :: error
+      type(param_spec_type), allocatable :: specs(:)
       if (.not. allocated(m%shape)) then
          call fatal_error(error, "internal: a model_type not made by model_from_parameters")
          return
       end if
-      if (shape_code(m%shape) < 0) then
-         call fatal_error(error, "&pad shape = '" // m%shape // "': unknown (expected " // &
-            & "'flat' or 'rounded')")
+      if (.not. allocated(m%values)) then
+         call fatal_error(error, "internal: a model_type not made by model_from_parameters")
          return
       end if
-      if (shape_code(m%shape) == shape_rounded) then
-         if (.not. (m%radius > 0.5_wp * m%length)) then
-            call fatal_error(error, "&pad radius = " // to_str(m%radius) // &
-               & ": must exceed half the pad length (" // to_str(0.5_wp*m%length) // " m)")
-            return
-         end if
-      end if
+      specs = parameter_table()
+      call check_pad(specs, m%values, error)
+      if (allocated(error)) return
       ! accuracy on demand estimates the error from two successive halvings
       ! of the step: a start that leaves room for fewer would report no
       ! estimate (it was written as 1.797e308)
@@ -1279,14 +1208,15 @@ contains
             end if
          end if
       end if
-      call validate_rubber(m, error)
+      call validate_rubber(m, specs, error)
    end subroutine validate_model
 
    !> The rubber's cross-checks: a law the registry knows, each law's own
    !> (pavefric_rubber_models: the Maxwell arms in pairs, at least one), and
    !> a temperature where the WLF equation holds.
-   pure subroutine validate_rubber(m, error)
+   pure subroutine validate_rubber(m, specs, error)
       type(model_type), intent(in) :: m
+      type(param_spec_type), intent(in) :: specs(:)
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: why, names, listed
       real(wp) :: dt
@@ -1301,7 +1231,7 @@ contains
             & "(expected " // listed // ")")
          return
       end if
-      call check_rubber(m%rubber_model, parameter_table(), m%values, error)
+      call check_rubber(m%rubber_model, specs, m%values, error)
       if (allocated(error)) return
       why = wlf_check(m%temperature, m%reference_temperature, m%wlf_c1, m%wlf_c2)
       dt = m%temperature - m%reference_temperature

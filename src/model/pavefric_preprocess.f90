@@ -6,11 +6,17 @@ module pavefric_preprocess
    use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_format, only: to_str, round_sig
    use pavefric_profile_types, only: raw_profile_type, point_location
+   use pavefric_params, only: param_spec_type, param_value_type, text_param, logical_param, &
+      & real_param, real_value, logical_value, text_value
    implicit none
    private
 
    public :: preprocess_type, preprocess_report_type, clean_profile_type, preprocess, &
       & validate_preprocess, butterworth_filtfilt
+   public :: preprocess_parameters, preprocess_n_parameters, preprocess_from_values
+
+   !> The variables preprocessing declares (the &preprocess group).
+   integer, parameter :: preprocess_n_parameters = 8
 
    !> The &preprocess options (SI units).
    type :: preprocess_type
@@ -57,6 +63,52 @@ module pavefric_preprocess
    end type clean_profile_type
 
 contains
+
+   !> The &preprocess group, one variable per step's option.
+   pure function preprocess_parameters() result(s)
+      type(param_spec_type) :: s(preprocess_n_parameters)
+      real(wp), parameter :: big = huge(1.0_wp)
+      s(1) = text_param("preprocess", "dropouts", "error", "", "profile", &
+         & "'error': a dropout (empty or NaN height) stops the run naming file and line; " // &
+         & "'interpolate': linear interpolation (ISO 13473-1)", choices="error interpolate")
+      s(2) = logical_param("preprocess", "trim_plates", ".true.", "profile", &
+         & "cut reference plates (long runs far from the surface's heights) at the ends")
+      s(3) = real_param("preprocess", "plate_threshold", "0.010", "m", "profile", &
+         & "a point this far from the median height is off the surface", lower=0.0_wp, &
+         & lower_strict=.true., upper=big)
+      s(4) = real_param("preprocess", "plate_min_length", "0.005", "m", &
+         & "profile", "shortest run of such points that is a plate, not a spike", &
+         & lower=0.0_wp, upper=big)
+      s(5) = real_param("preprocess", "plate_buffer", "0.002", "m", "profile", &
+         & "distance cut beyond a plate's edge", lower=0.0_wp, upper=big)
+      s(6) = real_param("preprocess", "spike_slope", "0", "1", "profile", &
+         & "a jump >= spike_slope x spacing flags both its points as a spike (0: off; " // &
+         & "ISO 13473-1: 3 at 0.5-1 mm spacing)", lower=0.0_wp, upper=big)
+      s(7) = real_param("preprocess", "resample_dx", "0", "m", "profile", &
+         & "resample by averaging into bins of this spacing (0: keep the spacing)", &
+         & lower=0.0_wp, upper=big)
+      s(8) = real_param("preprocess", "lowpass_wavelength", "0", "m", &
+         & "profile", "cut-off wavelength of a 2nd-order Butterworth low-pass run forwards " // &
+         & "and backwards (0: off; ISO 13473-1: 2.4e-3)", lower=0.0_wp, upper=big)
+   end function preprocess_parameters
+
+   !> The options from the scene's values (`specs` and `values`: the whole
+   !> table; preprocessing reads its own by group and name).
+   pure function preprocess_from_values(specs, values) result(p)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      type(preprocess_type) :: p
+      character(len=:), allocatable :: dropouts
+      call text_value(specs, values, "preprocess", "dropouts", dropouts)
+      p%dropouts = dropouts
+      p%trim_plates = logical_value(specs, values, "preprocess", "trim_plates")
+      p%plate_threshold = real_value(specs, values, "preprocess", "plate_threshold")
+      p%plate_min_length = real_value(specs, values, "preprocess", "plate_min_length")
+      p%plate_buffer = real_value(specs, values, "preprocess", "plate_buffer")
+      p%spike_slope = real_value(specs, values, "preprocess", "spike_slope")
+      p%resample_dx = real_value(specs, values, "preprocess", "resample_dx")
+      p%lowpass_wavelength = real_value(specs, values, "preprocess", "lowpass_wavelength")
+   end function preprocess_from_values
 
    !> Check the options; messages name &preprocess and the variable.
    pure subroutine validate_preprocess(p, error)

@@ -1,12 +1,33 @@
 !> Facet angles of the profile and the local friction on them (Eqs. 5, 6, 10).
 module pavefric_facet
    use pavefric_kinds, only: wp, pi
+   use pavefric_params, only: param_spec_type, real_param
    implicit none
    private
 
    public :: facet_friction, facet_tangent
+   public :: facet_parameters, facet_n_parameters
+
+   !> The variables the facets' friction declares: &surface mu_loc and
+   !> &numerics theta_max_deg.
+   integer, parameter :: facet_n_parameters = 2
 
 contains
+
+   !> The facets' variables: the local friction of the texture finer than
+   !> the pad's elements, and the clamp on the steepest facet.
+   pure function facet_parameters() result(s)
+      type(param_spec_type) :: s(facet_n_parameters)
+      s(1) = real_param("surface", "mu_loc", "0.5", "1", "model", &
+         & "local friction of the facets: all texture scales finer than dx (British " // &
+         & "Pendulum SRT in the paper: 0.30-0.75). Set it for your surface.", &
+         & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=2.0_wp, &
+         & plausible_note="pendulum values of roads lie between 0.2 and 1.2")
+      s(2) = real_param("numerics", "theta_max_deg", "85", "degree", "model", &
+         & "steepest facet angle plus friction angle; steeper facets are clamped to " // &
+         & "+-theta_max_deg and counted in n_clamped", lower=0.0_wp, lower_strict=.true., &
+         & upper=90.0_wp, upper_strict=.true.)
+   end function facet_parameters
 
    !> For each sample k: tan(theta_k), theta_k = alpha_k + atan(mu_loc), with
    !> alpha_k = atan((z(k+1) - z(k-1)) / (2 dx)) (central difference; wraps on a

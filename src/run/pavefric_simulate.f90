@@ -9,7 +9,8 @@ module pavefric_simulate
    use pavefric_kinds, only: wp, i8, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
    use pavefric_format, only: to_str, round_sig
-   use pavefric_model, only: model_type, validate_model, shape_code, shape_rounded, max_substeps
+   use pavefric_model, only: model_type, validate_model, shape_code, max_substeps
+   use pavefric_pad, only: pad_bottom
    use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
    use pavefric_film, only: film_model, film_step_type
@@ -1177,20 +1178,7 @@ contains
             & ")", stat_memory)
          return
       end if
-      geo%h = 0.0_wp
-      if (shape_code(m%shape) == shape_rounded) then
-         r = m%radius
-         do i = 1, geo%n_el
-            xc = (real(i, wp) - 0.5_wp - 0.5_wp * real(geo%n_el, wp)) * geo%dx_el
-            if (r < 1.0e150_wp) then
-               geo%h(i) = r - sqrt(r**2 - xc**2)
-            else
-               ! R**2 would overflow: the same sagitta without the square,
-               ! x**2 / (R + sqrt(R - x) sqrt(R + x)) (a flat pad as R grows).
-               geo%h(i) = xc**2 / (r + sqrt(r - xc) * sqrt(r + xc))
-            end if
-         end do
-      end if
+      call pad_bottom(shape_code(m%shape), m%radius, geo%dx_el, geo%h)
    end subroutine build_geometry
 
    !> A set of speeds (lanes) over the same positions: spin-up, then the
