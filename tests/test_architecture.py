@@ -413,3 +413,30 @@ def test_the_command_line_is_one_module_per_command():
             words = shlex.split(example.split("&&")[0])
             assert words[:3] == ["python", "-m", "pavefric"] and words[3] == name, example
             parser.parse_args(words[3:])            # exits (SystemExit) if it does not parse
+
+
+def test_each_output_is_declared_by_its_component():
+    """Issue 22: every result variable is declared next to the code that
+    produces it (pad and numerics in the outputs table, facets, rubber, any
+    load-carrying film, each wet model's own in its entry), once, and the
+    table keeps the file's order (the C API's indices) as before."""
+    from pavefric.core import _tables
+
+    outs = _tables()[2]
+    names = [o[0] for o in outs]
+    assert names == [
+        "mu", "n_clamped", "hydroplaning_fraction", "wet_fraction", "max_balance_residual",
+        "mean_hydro_load", "max_compression", "bearing_evaluations", "memory_updates",
+        "viscous_memory_ran", "bearing_ran", "squeeze_film_ran", "mean_local_friction",
+        "mean_film_thickness", "mu_inst", "hydro_load", "penetration", "contact_elements",
+        "film_thickness", "local_friction", "mu_error_estimate", "substeps_used",
+        "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran"]
+    modules = {"pad": "model/pavefric_outputs.f90", "numerics": "model/pavefric_outputs.f90",
+               "facets": "physics/pavefric_facet.f90", "rubber": "physics/pavefric_rubber.f90",
+               "film": "physics/pavefric_film.f90", "squeeze": "physics/pavefric_squeeze.f90"}
+    owners = {o[0]: o[6] for o in outs}
+    assert set(owners.values()) == set(modules)
+    for name, owner in owners.items():
+        text = re.sub(r"\s+", " ", (SRC / modules[owner]).read_text(encoding="utf-8"))
+        assert re.search(rf'output_var\("{owner}", "{name}"', text), (name, owner)
+    assert owners["film_thickness"] == "squeeze" and owners["mu_hysteresis"] == "rubber"

@@ -261,9 +261,9 @@ def _tables() -> tuple:
     n_out = int(_core.pf_output_count())
     outputs = []
     for i in range(1, n_out + 1):
-        name, units, long_name, var_type, dims, written = _core.pf_output_info(i)
+        name, units, long_name, var_type, dims, written, owner = _core.pf_output_info(i)
         outputs.append((_text(name), _text(units), _text(long_name), int(var_type), int(dims),
-                        _text(written)))
+                        _text(written), _text(owner)))
     return tuple(params), tuple(groups), tuple(outputs)
 
 
@@ -536,7 +536,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     dtypes = {1: np.float64, 2: np.int64, 3: np.int32, 4: np.int8}
     data = {}
     slot = -1
-    for k, (name, units, long_name, var_type, dims, _) in enumerate(outputs):
+    for k, (name, units, long_name, var_type, dims, _, _) in enumerate(outputs):
         if not present[k]:
             continue
         if dims != 1:

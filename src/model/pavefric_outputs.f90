@@ -1,8 +1,13 @@
-!> The one description of a run's result variables: name, dimensions,
-!> units, meaning and type, and their values taken from a sim_result_type.
-!> The NetCDF writer, the Python layer (through f2py) and the C API all read
-!> results through this table, so every output variable is the same bits
-!> whichever way it is read.
+!> The one table of a run's result variables: each is declared by the
+!> component that produces it (pavefric_output_spec: name, units, meaning,
+!> type, dimensions, when it is written): the pad and its load balance and
+!> the numerics here, the facets in pavefric_facet, the rubber in
+!> pavefric_rubber, any load-carrying film in pavefric_film, each wet model's
+!> own in its registry entry (pavefric_wet_models). `file_order` lists their
+!> names in the order of the output file (and of the C API's indices); the
+!> values come from a sim_result_type. The NetCDF writer, the Python layer
+!> (through f2py) and the C API all read results through this table, so
+!> every output variable is the same bits whichever way it is read.
 module pavefric_outputs
    use pavefric_kinds, only: wp
    use pavefric_results, only: sim_result_type
@@ -11,8 +16,13 @@ module pavefric_outputs
    use pavefric_preprocess, only: preprocess_report_type
    use pavefric_model, only: param_set_type, model_type
    use pavefric_components, only: make_components
-   use pavefric_rubber, only: rubber_model
-   use pavefric_film, only: film_model
+   use pavefric_rubber, only: rubber_model, rubber_outputs, n_rubber_outputs
+   use pavefric_film, only: film_model, film_entry_type, film_outputs, n_film_outputs
+   use pavefric_facet, only: facet_outputs, n_facet_outputs
+   use pavefric_wet_models, only: wet_models
+   use pavefric_output_spec, only: output_var_type, output_var, out_double, out_int64, out_int, &
+      & out_flag, dim_speed, dim_position_speed, when_always, when_series, when_friction_film, &
+      & when_friction_film_series, when_error_estimate
    implicit none
    private
 
@@ -21,19 +31,21 @@ module pavefric_outputs
    public :: out_double, out_int64, out_int, out_flag, dim_speed, dim_position_speed
    public :: output_condition
 
-   !> Storage types (NetCDF: double, int64, int, byte 0/1 with flag meanings).
-   integer, parameter :: out_double = 1, out_int64 = 2, out_int = 3, out_flag = 4
-   !> Dimensions: per speed, or per position and speed (series).
-   integer, parameter :: dim_speed = 1, dim_position_speed = 2
+   !> The variables the pad, its balance and the numerics declare (below).
+   integer, parameter :: n_pad_outputs = 6, n_numerics_outputs = 4
+   !> Only the squeeze film's own (its registry entry).
+   integer, parameter :: n_wet_model_outputs = 5
+   integer, parameter :: n_outputs = n_pad_outputs + n_facet_outputs + n_rubber_outputs + &
+      & n_film_outputs + n_wet_model_outputs + n_numerics_outputs
 
-   integer, parameter :: n_outputs = 26
-
-   !> One result variable.
-   type :: output_var_type
-      character(len=:), allocatable :: name, units, long_name
-      integer :: type = out_double
-      integer :: dims = dim_speed
-   end type output_var_type
+   !> The output file's order of the variables (and the C API's indices).
+   character(len=*), parameter :: file_order(n_outputs) = [character(len=24) :: &
+      & "mu", "n_clamped", "hydroplaning_fraction", "wet_fraction", "max_balance_residual", &
+      & "mean_hydro_load", "max_compression", "bearing_evaluations", "memory_updates", &
+      & "viscous_memory_ran", "bearing_ran", "squeeze_film_ran", "mean_local_friction", &
+      & "mean_film_thickness", "mu_inst", "hydro_load", "penetration", "contact_elements", &
+      & "film_thickness", "local_friction", "mu_error_estimate", "substeps_used", &
+      & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran"]
 
    !> What the output says besides the result variables: where the results
    !> came from, the profile, its texture, the parameters used, warnings.
@@ -65,84 +77,67 @@ module pavefric_outputs
 
 contains
 
-   !> Every result variable, in the order of the output file.
+   !> Every result variable, in the order of the output file: each
+   !> component's declarations, placed by `file_order`.
    pure function output_table() result(t)
       type(output_var_type) :: t(n_outputs)
-      t(1) = var("mu", "1", "friction coefficient averaged over the profile (Kane et al. " // &
-         & "2017, Eq. 12)")
-      t(2) = var("n_clamped", "1", "contacts on facets clamped at theta_max, summed over " // &
-         & "averaged positions", out_int64)
-      t(3) = var("hydroplaning_fraction", "1", "share of averaged positions where no " // &
-         & "element touched the profile")
-      t(4) = var("wet_fraction", "1", "share of averaged positions where the water film " // &
-         & "carried load")
-      t(5) = var("max_balance_residual", "1", "largest |sum F + Wh - W| / W over averaged " // &
-         & "positions")
-      t(6) = var("mean_hydro_load", "N", "load carried by the water film, averaged over " // &
-         & "positions")
-      t(7) = var("max_compression", "m", "largest compression of a rubber element " // &
-         & "(compare with the pad thickness)")
-      t(8) = var("bearing_evaluations", "1", "evaluations of the film's load (0: no film " // &
-         & "took part in the balance)", out_int64)
-      t(9) = var("memory_updates", "1", "element-steps that updated the rubber's memory " // &
-         & "(0: no memory kept)", out_int64)
-      t(10) = var("viscous_memory_ran", "", "whether the rubber elements carried memory", &
-         & out_flag)
-      t(11) = var("bearing_ran", "", "whether a load-carrying water film took part in the " // &
-         & "load balance", out_flag)
-      t(12) = var("squeeze_film_ran", "", "whether the film drained from the contact " // &
-         & "plateaus changed the local friction", out_flag)
-      t(13) = var("mean_local_friction", "1", "local friction mu_loc times the share of " // &
-         & "microtexture piercing the film, force-weighted over contacts and positions")
-      t(14) = var("mean_film_thickness", "m", "water film left under the pad, averaged " // &
-         & "over elements and positions")
-      t(21) = var("mu_error_estimate", "1", "estimated error of mu from the time step " // &
-         & "(the pad's step along the road). At tolerance = 0 (&numerics error_estimate): " // &
-         & "three times the change of mu at half the step, 0 where the exact integrator " // &
-         & "ran. With &numerics tolerance: twice the larger of its last two changes as the " // &
-         & "step was halved, or where mu is extrapolated, the larger of the extrapolated " // &
-         & "value's change and the last change")
-      t(22) = var("substeps_used", "1", "time steps per element spacing of the reported " // &
-         & "mu: the tolerance's choice, or substeps as given at tolerance = 0", out_int64)
-      t(23) = var("mu_hysteresis", "1", "the rubber's part of mu: the work of the facet " // &
-         & "forces on the rubber (its stored energy returned over a closed profile, its " // &
-         & "dissipation kept) per unit load and distance slid; 0 for an elastic pad on " // &
-         & "a closed profile (docs/model.md)")
-      t(24) = var("mu_adhesion", "1", "the local friction's part of mu: the work of " // &
-         & "mu_loc on the facets per unit load and distance slid (0 with mu_loc = 0); " // &
-         & "mu = mu_hysteresis + mu_adhesion")
-      t(25) = var("mu_extrapolated", "1", "1 where mu (and its parts) is the Richardson " // &
-         & "value 2 mu(s) - mu(s/2) of the last two passes, 0 where it is the finest " // &
-         & "pass (&numerics tolerance, time_scheme)", out_int64)
-      t(26) = var("exact_integrator_ran", "", "whether the rubber was integrated exactly in " // &
-         & "time, from contact event to event (&numerics time_scheme = 'exact': a " // &
-         & "Kelvin-Voigt rubber with memory on a road without a film), else backward Euler", &
-         & out_flag)
-      t(15) = var("mu_inst", "1", "instantaneous friction coefficient (Kane et al. 2017, " // &
-         & "Eq. 11)", dims=dim_position_speed)
-      t(16) = var("hydro_load", "N", "load carried by the water film (Eq. 15)", &
-         & dims=dim_position_speed)
-      t(17) = var("penetration", "m", "global penetration delta of the pad (Eq. 4)", &
-         & dims=dim_position_speed)
-      t(18) = var("contact_elements", "1", "pad elements in contact with the profile", &
-         & out_int, dim_position_speed)
-      t(19) = var("film_thickness", "m", "water film under the pad, mean over its elements", &
-         & dims=dim_position_speed)
-      t(20) = var("local_friction", "1", "local friction of the contacts, force-weighted " // &
-         & "(mu_loc times the share of microtexture piercing the film)", &
-         & dims=dim_position_speed)
-   contains
-      pure function var(name, units, long_name, type, dims) result(v)
-         character(len=*), intent(in) :: name, units, long_name
-         integer, intent(in), optional :: type, dims
-         type(output_var_type) :: v
-         v%name = name
-         v%units = units
-         v%long_name = long_name
-         if (present(type)) v%type = type
-         if (present(dims)) v%dims = dims
-      end function var
+      type(output_var_type), allocatable :: declared(:)
+      type(film_entry_type), allocatable :: films(:)
+      integer :: k, j
+      declared = [pad_outputs(), facet_outputs(), rubber_outputs(), film_outputs(), &
+         & numerics_outputs()]
+      films = wet_models()
+      do j = 1, size(films)
+         if (allocated(films(j)%outputs)) declared = [declared, films(j)%outputs]
+      end do
+      do k = 1, n_outputs
+         do j = 1, size(declared)
+            if (declared(j)%name == trim(file_order(k))) then
+               t(k) = declared(j)
+               exit
+            end if
+         end do
+      end do
    end function output_table
+
+   !> What the pad and its load balance report.
+   pure function pad_outputs() result(t)
+      type(output_var_type) :: t(n_pad_outputs)
+      t(1) = output_var("pad", "mu", "1", "friction coefficient averaged over the profile " // &
+         & "(Kane et al. 2017, Eq. 12)")
+      t(2) = output_var("pad", "hydroplaning_fraction", "1", "share of averaged positions " // &
+         & "where no element touched the profile")
+      t(3) = output_var("pad", "max_balance_residual", "1", "largest |sum F + Wh - W| / W " // &
+         & "over averaged positions")
+      t(4) = output_var("pad", "mu_inst", "1", "instantaneous friction coefficient (Kane " // &
+         & "et al. 2017, Eq. 11)", dims=dim_position_speed, when=when_series)
+      t(5) = output_var("pad", "penetration", "m", "global penetration delta of the pad " // &
+         & "(Eq. 4)", dims=dim_position_speed, when=when_series)
+      t(6) = output_var("pad", "contact_elements", "1", "pad elements in contact with the " // &
+         & "profile", out_int, dim_position_speed, when=when_series)
+   end function pad_outputs
+
+   !> What the numerics report of their accuracy.
+   pure function numerics_outputs() result(t)
+      type(output_var_type) :: t(n_numerics_outputs)
+      t(1) = output_var("numerics", "mu_error_estimate", "1", "estimated error of mu from " // &
+         & "the time step (the pad's step along the road). At tolerance = 0 (&numerics " // &
+         & "error_estimate): three times the change of mu at half the step, 0 where the " // &
+         & "exact integrator ran. With &numerics tolerance: twice the larger of its last " // &
+         & "two changes as the step was halved, or where mu is extrapolated, the larger of " // &
+         & "the extrapolated value's change and the last change", when=when_error_estimate)
+      t(2) = output_var("numerics", "substeps_used", "1", "time steps per element spacing " // &
+         & "of the reported mu: the tolerance's choice, or substeps as given at tolerance " // &
+         & "= 0", out_int64, when=when_error_estimate)
+      t(3) = output_var("numerics", "mu_extrapolated", "1", "1 where mu (and its parts) is " // &
+         & "the Richardson value 2 mu(s) - mu(s/2) of the last two passes, 0 where it is " // &
+         & "the finest pass (&numerics tolerance, time_scheme)", out_int64, &
+         & when=when_error_estimate)
+      t(4) = output_var("numerics", "exact_integrator_ran", "", "whether the rubber was " // &
+         & "integrated exactly in time, from contact event to event (&numerics time_scheme " // &
+         & "= 'exact': a Kelvin-Voigt rubber with memory on a road without a film), else " // &
+         & "backward Euler", out_flag)
+   end function numerics_outputs
 
    !> When variable k is written (docs/outputs.md), as output_present decides.
    pure function output_condition(k) result(text)
@@ -165,33 +160,39 @@ contains
    pure subroutine output_condition_text(k, text)
       integer, intent(in) :: k
       character(len=:), allocatable, intent(out) :: text
-      select case (k)
-      case (12:14)
+      type(output_var_type) :: t(n_outputs)
+      t = output_table()
+      select case (t(k)%when)
+      case (when_friction_film)
          text = "when the drainage film (&water wet_model = 'squeeze') ran at any speed"
-      case (15:18)
+      case (when_series)
          text = "with &output series = .true."
-      case (19:20)
+      case (when_friction_film_series)
          text = "with &output series = .true. and the drainage film"
-      case (21:22)
-         text = "with &numerics tolerance > 0"
+      case (when_error_estimate)
+         text = "when mu's error was estimated (&numerics tolerance > 0, or error_estimate " // &
+            & "at tolerance = 0)"
       case default
          text = "always"
       end select
    end subroutine output_condition_text
 
-   !> Whether variable k is part of this run's results: series variables
-   !> only with series, the squeeze film's only when it ran.
+   !> Whether variable k is part of this run's results, by its declaration's
+   !> condition: series variables only with series, the friction film's
+   !> only when it ran, the error estimate's only when it was made.
    pure logical function output_present(res, k)
       type(sim_result_type), intent(in) :: res
       integer, intent(in) :: k
-      select case (k)
-      case (12:14)
+      type(output_var_type) :: t(n_outputs)
+      t = output_table()
+      select case (t(k)%when)
+      case (when_friction_film)
          output_present = any(res%friction_film_ran)
-      case (15:18)
+      case (when_series)
          output_present = allocated(res%mu_inst)
-      case (19:20)
+      case (when_friction_film_series)
          output_present = allocated(res%film_thickness)
-      case (21:22, 25)
+      case (when_error_estimate)
          output_present = allocated(res%mu_error)
       case default
          output_present = .true.
@@ -218,62 +219,64 @@ contains
       type(sim_result_type), intent(in) :: res
       integer, intent(in) :: k
       real(wp), intent(out) :: values(:)
+      type(output_var_type) :: t(n_outputs)
       integer :: ns, np
       ns = size(res%mu)
       np = 0
       if (allocated(res%mu_inst)) np = size(res%mu_inst, 1)
-      select case (k)
-      case (1)
+      t = output_table()
+      select case (t(k)%name)
+      case ("mu")
          values(1:ns) = res%mu
-      case (2)
+      case ("n_clamped")
          values(1:ns) = real(res%n_clamped, wp)
-      case (3)
+      case ("hydroplaning_fraction")
          values(1:ns) = res%hydroplaning_fraction
-      case (4)
+      case ("wet_fraction")
          values(1:ns) = res%wet_fraction
-      case (5)
+      case ("max_balance_residual")
          values(1:ns) = res%max_balance_residual
-      case (6)
+      case ("mean_hydro_load")
          values(1:ns) = res%mean_hydro_load
-      case (7)
+      case ("max_compression")
          values(1:ns) = res%max_compression
-      case (8)
+      case ("bearing_evaluations")
          values(1:ns) = real(res%bearing_evaluations, wp)
-      case (9)
+      case ("memory_updates")
          values(1:ns) = real(res%memory_updates, wp)
-      case (10)
+      case ("viscous_memory_ran")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%viscous_memory_ran)
-      case (11)
+      case ("bearing_ran")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%bearing_ran)
-      case (12)
+      case ("squeeze_film_ran")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%friction_film_ran)
-      case (13)
+      case ("mean_local_friction")
          values(1:ns) = res%mean_local_friction
-      case (14)
+      case ("mean_film_thickness")
          values(1:ns) = res%mean_film_thickness
-      case (15)
+      case ("mu_inst")
          values(1:np*ns) = reshape(res%mu_inst, [np*ns])
-      case (16)
+      case ("hydro_load")
          values(1:np*ns) = reshape(res%hydro_load, [np*ns])
-      case (17)
+      case ("penetration")
          values(1:np*ns) = reshape(res%penetration, [np*ns])
-      case (18)
+      case ("contact_elements")
          values(1:np*ns) = real(reshape(res%contact_elements, [np*ns]), wp)
-      case (19)
+      case ("film_thickness")
          values(1:np*ns) = reshape(res%film_thickness, [np*ns])
-      case (20)
+      case ("local_friction")
          values(1:np*ns) = reshape(res%local_friction, [np*ns])
-      case (21)
+      case ("mu_error_estimate")
          values(1:ns) = res%mu_error
-      case (22)
+      case ("substeps_used")
          values(1:ns) = real(res%substeps_used, wp)
-      case (23)
+      case ("mu_hysteresis")
          values(1:ns) = res%mu_hysteresis
-      case (24)
+      case ("mu_adhesion")
          values(1:ns) = res%mu_adhesion
-      case (25)
+      case ("mu_extrapolated")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%extrapolated)
-      case (26)
+      case ("exact_integrator_ran")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%exact_integrator_ran)
       end select
    end subroutine output_values

@@ -2,17 +2,31 @@
 module pavefric_facet
    use pavefric_kinds, only: wp, pi
    use pavefric_params, only: param_spec_type, real_param
+   use pavefric_output_spec, only: output_var_type, output_var, out_int64
    implicit none
    private
 
    public :: facet_friction, facet_tangent
-   public :: facet_parameters, facet_n_parameters
+   public :: facet_parameters, facet_n_parameters, facet_outputs, n_facet_outputs
+
+   !> The result variables of the facets' friction (facet_outputs).
+   integer, parameter :: n_facet_outputs = 2
 
    !> The variables the facets' friction declares: &surface mu_loc and
    !> &numerics theta_max_deg.
    integer, parameter :: facet_n_parameters = 2
 
 contains
+
+   !> What the time loop reports of the facets.
+   pure function facet_outputs() result(t)
+      type(output_var_type) :: t(n_facet_outputs)
+      t(1) = output_var("facets", "n_clamped", "1", "contacts on facets clamped at " // &
+         & "theta_max, summed over averaged positions", out_int64)
+      t(2) = output_var("facets", "mu_adhesion", "1", "the local friction's part of mu: the " // &
+         & "work of mu_loc on the facets per unit load and distance slid (0 with mu_loc = " // &
+         & "0); mu = mu_hysteresis + mu_adhesion")
+   end function facet_outputs
 
    !> The facets' variables: the local friction of the texture finer than
    !> the pad's elements, and the clamp on the steepest facet.

@@ -10,12 +10,18 @@ module pavefric_film
    use pavefric_kinds, only: wp, lanes
    use pavefric_bearing, only: bearing_prefactor, hydro_load
    use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
+   use pavefric_output_spec, only: output_var_type, output_var, out_int64, out_flag, &
+      & dim_position_speed, when_series
    implicit none
    private
 
    public :: film_model, film_step_type, pseudo_bearing_film
    public :: film_context_type, film_entry_type, film_builder
    public :: pseudo_bearing_entry, pseudo_bearing_n_parameters
+   public :: film_outputs, n_film_outputs
+
+   !> The result variables of a film that carries load (film_outputs).
+   integer, parameter :: n_film_outputs = 5
 
    !> What every film is built with, from the scene: the water depth H_in
    !> (m) and viscosity eta (Pa s), the pad's width and length (m) and the
@@ -93,6 +99,9 @@ module pavefric_film
       character(len=:), allocatable :: name
       type(param_spec_type), allocatable :: parameters(:)
       procedure(film_builder), pointer, nopass :: build => null()
+      !> The result variables only this wet model produces (beside every
+      !> load-carrying film's, film_outputs); none for most.
+      type(output_var_type), allocatable :: outputs(:)
    end type film_entry_type
 
    abstract interface
@@ -156,9 +165,26 @@ contains
 
    !> &water wet_model = 'kane2017': the paper's Eq. 15 with its coefficients
    !> &water alpha and beta.
+   !> What the load balance reports of any film that carries load (written
+   !> for every run: zero where no film took part).
+   pure function film_outputs() result(t)
+      type(output_var_type) :: t(n_film_outputs)
+      t(1) = output_var("film", "wet_fraction", "1", "share of averaged positions where " // &
+         & "the water film carried load")
+      t(2) = output_var("film", "mean_hydro_load", "N", "load carried by the water film, " // &
+         & "averaged over positions")
+      t(3) = output_var("film", "bearing_evaluations", "1", "evaluations of the film's " // &
+         & "load (0: no film took part in the balance)", out_int64)
+      t(4) = output_var("film", "bearing_ran", "", "whether a load-carrying water film took " // &
+         & "part in the load balance", out_flag)
+      t(5) = output_var("film", "hydro_load", "N", "load carried by the water film (Eq. 15)", &
+         & dims=dim_position_speed, when=when_series)
+   end function film_outputs
+
    pure function pseudo_bearing_entry() result(e)
       type(film_entry_type) :: e
       e%name = "kane2017"
+      allocate(e%outputs(0))
       allocate(e%parameters(pseudo_bearing_n_parameters))
       e%parameters(1) = real_param("water", "alpha", "11.8", "1", "model", &
          & "empirical bearing coefficient of Eq. 15, a calibration parameter. The default " // &

@@ -15,12 +15,17 @@ module pavefric_rubber
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type
    use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
+   use pavefric_output_spec, only: output_var_type, output_var, out_int64, out_flag
    implicit none
    private
 
    public :: rubber_model, rubber_step_type, kelvin_voigt_rubber
    public :: rubber_context_type, rubber_entry_type, rubber_builder, rubber_checker
    public :: kelvin_voigt_entry, kelvin_voigt_n_parameters
+   public :: rubber_outputs, n_rubber_outputs
+
+   !> The result variables of every rubber law (rubber_outputs).
+   integer, parameter :: n_rubber_outputs = 4
 
    !> The variables the Kelvin-Voigt law declares (kelvin_voigt_entry).
    integer, parameter :: kelvin_voigt_n_parameters = 1
@@ -162,6 +167,21 @@ module pavefric_rubber
    end type kelvin_voigt_rubber
 
 contains
+
+   !> What the time loop reports of the rubber, whichever its law.
+   pure function rubber_outputs() result(t)
+      type(output_var_type) :: t(n_rubber_outputs)
+      t(1) = output_var("rubber", "max_compression", "m", "largest compression of a " // &
+         & "rubber element (compare with the pad thickness)")
+      t(2) = output_var("rubber", "memory_updates", "1", "element-steps that updated the " // &
+         & "rubber's memory (0: no memory kept)", out_int64)
+      t(3) = output_var("rubber", "viscous_memory_ran", "", "whether the rubber elements " // &
+         & "carried memory", out_flag)
+      t(4) = output_var("rubber", "mu_hysteresis", "1", "the rubber's part of mu: the work " // &
+         & "of the facet forces on the rubber (its stored energy returned over a closed " // &
+         & "profile, its dissipation kept) per unit load and distance slid; 0 for an " // &
+         & "elastic pad on a closed profile (docs/model.md)")
+   end function rubber_outputs
 
    !> The paper's Kelvin-Voigt law (Eq. 3): the spring K of the context and
    !> a dashpot C in parallel, C shifted to the temperature (C -> a_T C).

@@ -23,6 +23,8 @@ module pavefric_squeeze
    use pavefric_kinds, only: wp
    use pavefric_film, only: film_model, film_step_type, film_context_type, film_entry_type
    use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
+   use pavefric_output_spec, only: output_var, out_flag, dim_position_speed, &
+      & when_friction_film, when_friction_film_series
    implicit none
    private
 
@@ -67,6 +69,22 @@ contains
          & lower_strict=.true., upper=1.0_wp, plausible_lower=0.05_wp, plausible_upper=1.0_wp, &
          & plausible_note="below 0.05 almost no water would reach the contact")
       e%build => squeeze_build
+      ! what only this film produces (written when it ran at any speed)
+      allocate(e%outputs(5))
+      e%outputs(1) = output_var("squeeze", "squeeze_film_ran", "", "whether the film " // &
+         & "drained from the contact plateaus changed the local friction", out_flag, &
+         & when=when_friction_film)
+      e%outputs(2) = output_var("squeeze", "mean_local_friction", "1", "local friction " // &
+         & "mu_loc times the share of microtexture piercing the film, force-weighted over " // &
+         & "contacts and positions", when=when_friction_film)
+      e%outputs(3) = output_var("squeeze", "mean_film_thickness", "m", "water film left " // &
+         & "under the pad, averaged over elements and positions", when=when_friction_film)
+      e%outputs(4) = output_var("squeeze", "film_thickness", "m", "water film under the " // &
+         & "pad, mean over its elements", dims=dim_position_speed, &
+         & when=when_friction_film_series)
+      e%outputs(5) = output_var("squeeze", "local_friction", "1", "local friction of the " // &
+         & "contacts, force-weighted (mu_loc times the share of microtexture piercing the " // &
+         & "film)", dims=dim_position_speed, when=when_friction_film_series)
    end function squeeze_entry
 
    subroutine squeeze_build(context, specs, values, film)
