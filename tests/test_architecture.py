@@ -440,3 +440,52 @@ def test_each_output_is_declared_by_its_component():
         text = re.sub(r"\s+", " ", (SRC / modules[owner]).read_text(encoding="utf-8"))
         assert re.search(rf'output_var\("{owner}", "{name}"', text), (name, owner)
     assert owners["film_thickness"] == "squeeze" and owners["mu_hysteresis"] == "rubber"
+
+
+def test_python_sets_parameters_as_typed_values():
+    """Issue 22: Python's keywords cross into the core as typed items
+    (variable id, kind, numbers, text), checked by the same declarations as
+    the C API's typed setters, not as namelist text written and re-parsed."""
+    import numpy as np
+
+    from pavefric import _core
+    from pavefric.core import _typed, _format, _spec
+
+    for name in ("pf_layout", "pf_simulate", "pf_profile_read_info", "pf_profile_read_data"):
+        doc = getattr(_core, name).__doc__
+        assert "t_ids" in doc and "t_reals" in doc and "settings" not in doc.split("\n")[0], name
+    core_text = (PY / "core.py").read_text(encoding="utf-8")
+    assert "_settings_text" not in core_text
+    # a value of each kind, and what the core makes of it
+    items = {("surface", "mu_loc"): _format(_spec("surface", "mu_loc"), 0.1 + 2.0**-55, "mu_loc"),
+             ("numerics", "substeps"): _format(_spec("numerics", "substeps"), 3, "substeps"),
+             ("surface", "closed"): _format(_spec("surface", "closed"), False, "closed"),
+             ("pad", "shape"): _format(_spec("pad", "shape"), "rounded", "shape"),
+             ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"),
+                                                  [20.0, 60.0], "speeds_kmh"),
+             ("surface", "dx"): _format(_spec("surface", "dx"), 0.87e-3, "dx")}
+    n_el, n_pos, n_series, status, message = _core.pf_layout(*_typed(items), 200)
+    assert status == 0, message
+    assert n_el == 23 and n_series == 4
+    # open, one speed step a third of the spacing: (200 - 23) x 3 + 1 positions
+    assert n_pos == (200 - 23) * 3 + 1 == pavefric.layout(200, 0.87e-3, closed=False,
+                                                          substeps=3)[1]
+    z = np.sin(np.arange(200) * 0.3) * 5e-4
+    ds = pavefric.simulate(z, 0.87e-3, [20.0, 60.0], mu_loc=0.1 + 2.0**-55, substeps=3,
+                           closed=False, shape="rounded")
+    assert ds.attrs["param_surface_mu_loc"] == 0.1 + 2.0**-55
+    assert ds.attrs["param_numerics_substeps"] == 3 and ds.attrs["param_pad_shape"] == "rounded"
+    # the declarations' checks and words
+    ids, kinds, counts, lengths, reals, text = _typed(items)
+    bad = [(np.array([0], np.int32), "internal: typed item 1 is malformed"),
+           (np.array([len(pavefric.parameters()) + 1], np.int32), "is malformed")]
+    for bad_ids, words in bad:
+        out = _core.pf_layout(bad_ids, kinds[:1], counts[:1], lengths[:1], reals[:1], text, 200)
+        assert out[3] != 0 and words in pavefric.core._text(out[4])
+    wrong = {("surface", "mu_loc"): (4, [], b"high")}      # a text for a real
+    out = _core.pf_layout(*_typed(wrong), 200)
+    assert out[3] != 0 and "&surface mu_loc: a real number is expected, not a text" in \
+        pavefric.core._text(out[4])
+    with pytest.raises(pavefric.PavefricError,
+                       match=r"&numerics substeps = 2.9: must be a whole number in \[1, 4096\]"):
+        pavefric.simulate(z, 0.87e-3, [20.0], substeps=2.9)

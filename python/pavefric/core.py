@@ -321,49 +321,65 @@ def defaults() -> dict[str, Any]:
     return {k: p.default for k, p in _keywords("model").items()}
 
 
-# --- formatting Python values as namelist text (parsed by the core) -----------
+# --- Python values as typed items (checked by the core's declarations) --------
+
+#: Kinds of a typed item (pavefric_model's apply_typed).
+_T_REAL, _T_INTEGER, _T_LOGICAL, _T_TEXT, _T_LIST = 1, 2, 3, 4, 5
+
 
 def _is_real(v) -> bool:
     return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
 
 
-def _format(spec: Parameter, value, label: str) -> str:
+def _format(spec: Parameter, value, label: str) -> tuple:
+    """One keyword's value as a typed item (kind, numbers, text), after the
+    checks only Python can make (its type); the core checks it against the
+    variable's declaration (range, choices) with the namelist reader's
+    messages."""
     where = f"&{spec.group} {spec.name}"
     if spec.kind == KIND_REAL:
         if not _is_real(value):
             raise PavefricError(f"{where} = {value!r}: {label} must be a number")
-        return repr(float(value))
+        return (_T_REAL, [float(value)], b"")
     if spec.kind == KIND_INTEGER:
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer, float,
                                                                           np.floating)):
             raise PavefricError(f"{where} = {value!r}: {label} must be a whole number")
-        if isinstance(value, (float, np.floating)):
-            return repr(float(value))          # the core refuses 2.9 (and says so)
-        return str(int(value))
+        return (_T_INTEGER, [float(value)], b"")       # the core refuses 2.9 (and says so)
     if spec.kind == KIND_LOGICAL:
         if not isinstance(value, (bool, np.bool_)):
             raise PavefricError(f"{where} = {value!r}: {label} must be True or False")
-        return ".true." if value else ".false."
+        return (_T_LOGICAL, [1.0 if value else 0.0], b"")
     if spec.kind == KIND_TEXT:
+        if isinstance(value, os.PathLike) and spec.unit == "path":
+            value = os.fspath(value)
         if not isinstance(value, str):
             raise PavefricError(f"{where} = {value!r}: {label} must be text")
         if "\n" in value or "\r" in value:
             raise PavefricError(f"{where} = {value!r}: {label} must be one line")
-        return "'" + value.replace("'", "''") + "'"
+        return (_T_TEXT, [], _b(value))
     values = np.atleast_1d(np.asarray(value))
     if values.ndim != 1 or values.dtype.kind not in "iuf":
         raise PavefricError(f"{where} = {value!r}: {label} must be a list of numbers")
-    return ", ".join(repr(float(v)) for v in values) if values.size else ""
+    return (_T_LIST, [float(v) for v in values], b"")
 
 
-def _settings_text(assignments: dict[tuple[str, str], str]) -> str:
-    """Namelist text of (group, name) -> value text, groups in the core's order."""
-    lines = []
-    for g in groups():
-        body = [f"  {n} = {v}" for (gg, n), v in assignments.items() if gg == g.name]
-        if body:
-            lines += [f"&{g.name}", *body, "/"]
-    return "\n".join(lines) + "\n"
+def _typed(assignments: dict[tuple[str, str], tuple]) -> tuple:
+    """The core's typed items of (group, name) -> _format's item: variable
+    ids (1-based, the declaration table's order), kinds, numbers and text
+    bytes per item, the numbers and the text (never empty for f2py)."""
+    index = {(p.group, p.name): k + 1 for k, p in enumerate(parameters())}
+    ids, kinds, counts, lengths, reals, text = [], [], [], [], [], b""
+    for key, (kind, numbers, raw) in assignments.items():
+        ids.append(index[key])
+        kinds.append(kind)
+        counts.append(len(numbers))
+        lengths.append(len(raw))
+        reals.extend(numbers)
+        text += raw
+    as_int = lambda v: np.asarray(v, dtype=np.int32)        # noqa: E731
+    return (as_int(ids), as_int(kinds), as_int(counts), as_int(lengths),
+            np.asarray(reals, dtype=np.float64), text or b" ")
 
 
 def _parameters(given: dict[str, Any], scope: str = "model") -> dict[tuple[str, str], str]:
@@ -432,8 +448,9 @@ def layout(n_points: int, dx: float, closed: bool = True, **parameters: Any) -> 
                 ("surface", "dx"): _format(_spec("surface", "dx"), dx, "dx"),
                 ("surface", "closed"): _format(_spec("surface", "closed"),
                                                _flag(closed, "closed"), "closed"),
-                ("operation", "speeds_kmh"): "0"}
-    n_el, n_pos, _, status, message = _core.pf_layout(_b(_settings_text(settings)), int(n_points))
+                ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"), [0.0],
+                                                     "speeds_kmh")}
+    n_el, n_pos, _, status, message = _core.pf_layout(*_typed(settings), int(n_points))
     _check(status, message, keywords=True)
     return int(n_el), int(n_pos)
 
@@ -449,9 +466,10 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
              closed: bool = True, series: bool = False, **parameters: Any):
     """Run the friction model on a profile and return an ``xarray.Dataset``.
 
-    The values go to the core as namelist text and are read, checked and
-    run exactly as the program reads a scene file, so the variables and
-    attributes are those of the program's NetCDF output, bit for bit.
+    The values go to the core as typed values (no namelist text), checked
+    against the same declarations as a scene file's and run by the
+    program's own path, so the variables and attributes are those of the
+    program's NetCDF output, bit for bit.
     Suspicious values raise a ``PavefricWarning`` (also in
     ``ds.attrs["warnings"]``).
 
@@ -500,18 +518,19 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                                                _flag(closed, "closed"), "closed"),
                 ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"), speeds,
                                                      "speeds_kmh"),
-                ("output", "series"): ".true." if _flag(series, "series") else ".false."}
-    text = _settings_text(settings)
+                ("output", "series"): _format(_spec("output", "series"), _flag(series, "series"),
+                                              "series")}
+    typed = _typed(settings)
     npos, n_series = 1, 1
     if series:
-        n_el, npos, n_series, status, message = _core.pf_layout(_b(text), z.size)
+        n_el, npos, n_series, status, message = _core.pf_layout(*typed, z.size)
         _check(status, message, keywords=True)
         npos = max(npos, 1)
     _, _, outputs = _tables()
-    ntext = 4096 + 2 * len(text)
+    ntext = 4096 + 2 * len(typed[-1]) + 32 * len(typed[0])
     while True:
         (speed, speed_kmh, values, series_values, present, position, counts, texture, estimate,
-         ifi, texts, lengths, status, message) = _core.pf_simulate(z, _b(text), speeds.size, npos, len(outputs),
+         ifi, texts, lengths, status, message) = _core.pf_simulate(z, *typed, speeds.size, npos, len(outputs),
                                                         n_series, ntext)
         _check(status, message, keywords=True)
         if series and int(counts[1]) != npos:

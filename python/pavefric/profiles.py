@@ -16,7 +16,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from . import _core
-from .core import (PavefricError, PavefricKeywordError, Profile, _check, _format, _settings_text,
+from .core import (PavefricError, PavefricKeywordError, Profile, _check, _format, _typed,
                    _spec, _text, parameters)
 
 __all__ = ["read_profile", "list_profiles", "write_profiles", "ProfileEntry", "element_profile"]
@@ -141,11 +141,11 @@ def read_profile(path: str | os.PathLike, height_unit: str | None = None, *,
             settings[("surface", name)] = _format(_spec("surface", name), value, name)
     for name, value in preprocess.items():
         settings[("preprocess", name)] = _format(_spec("preprocess", name), value, name)
-    text = _settings_text(settings)
-    n_raw, n_out, dx_out, has_x, status, message = _core.pf_profile_read_info(_b(text))
+    typed = _typed(settings)
+    n_raw, n_out, dx_out, has_x, status, message = _core.pf_profile_read_info(*typed)
     _check(status, message)
     (x_raw, z_raw, valid, z, frac, spike, counts, fmt, chainage, has_chainage, status,
-     message) = _core.pf_profile_read_data(_b(text), int(n_raw), int(n_out))
+     message) = _core.pf_profile_read_data(*typed, int(n_raw), int(n_out))
     _check(status, message)
     keys = ["points_read", "trimmed_start", "trimmed_end", "dropouts", "spikes", "points_out",
             "resampled", "filtered"]

@@ -16,7 +16,8 @@ module pavefric
    use pavefric_profile, only: profile_type, read_profile_text
    use pavefric_preprocess, only: clean_profile_type, preprocess_type
    use pavefric_simulate, only: sim_result_type, simulate, effects_text
-   use pavefric_scene, only: scene_type, read_scene, scene_from_text, scene_from_parameters
+   use pavefric_scene, only: scene_type, read_scene, scene_from_text, scene_from_parameters, &
+      & scene_from_typed
    use pavefric_run, only: run_scene, run_profile, load_scene_profile, ctm_dx
    use pavefric_outputs, only: output_var_type, output_table, output_present, output_values, &
       & n_outputs, output_metadata_type, dim_speed, dim_position_speed
@@ -36,7 +37,7 @@ module pavefric
    public :: parameter_table, default_parameters, apply_namelist, find_parameter
    public :: model_from_parameters, parameters_namelist, format_value
    ! scenes, profiles, runs
-   public :: scene_type, read_scene, scene_from_text, scene_from_parameters
+   public :: scene_type, read_scene, scene_from_text, scene_from_parameters, scene_from_typed
    public :: profile_type, read_profile_text, clean_profile_type, preprocess_type
    public :: load_scene_profile, run_profile, run_scene
    public :: sim_result_type, simulate, effects_text

@@ -9,6 +9,7 @@ module pavefric_scene
    use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_format, only: to_str
    use pavefric_model, only: model_type, param_spec_type, param_set_type, parameter_table, &
+      & apply_typed, &
       & default_parameters, apply_namelist, model_from_parameters, validate_model, &
       & plausibility_warnings, &
       & p_profile_file, p_profile_name, p_format, p_height_unit, p_x_column, p_z_column, &
@@ -21,6 +22,7 @@ module pavefric_scene
    private
 
    public :: scene_type, read_scene, scene_from_text, scene_from_parameters, read_text_file
+   public :: scene_from_typed
 
    !> A scene read from a namelist file.
    type :: scene_type
@@ -141,6 +143,48 @@ contains
          & profile_only)
       scene%text = text
    end subroutine scene_from_text
+
+   !> A scene from values given as typed items (apply_typed: the Python
+   !> layer's keywords, without namelist text), over the defaults; the
+   !> profile comes as arrays unless `profile_only` (then only &surface and
+   !> &preprocess may be given). The scene's text is left empty (the
+   !> values used are echoed from the set, as for every scene).
+   pure subroutine scene_from_typed(ids, kinds, reals, counts, text, text_lengths, scene, &
+         & error, profile_only)
+      integer, intent(in) :: ids(:), kinds(:), counts(:), text_lengths(:)
+      real(wp), intent(in) :: reals(:)
+      character(len=*), intent(in) :: text
+      type(scene_type), intent(out) :: scene
+      type(error_type), allocatable, intent(out) :: error
+      logical, intent(in), optional :: profile_only
+      type(param_spec_type), allocatable :: specs(:)
+      type(param_set_type) :: set
+      logical :: only_profile
+      integer :: k
+      only_profile = .false.
+      if (present(profile_only)) only_profile = profile_only
+      specs = parameter_table()
+      call default_parameters(specs, set, error)
+      if (allocated(error)) return
+      if (only_profile) then
+         do k = 1, size(ids)
+            if (ids(k) < 1 .or. ids(k) > size(specs)) cycle
+            if (specs(ids(k))%group /= "surface" .and. specs(ids(k))%group /= "preprocess") then
+               call fatal_error(error, "&" // specs(ids(k))%group // " " // &
+                  & specs(ids(k))%name // ": reading a profile takes only &surface and " // &
+                  & "&preprocess variables")
+               return
+            end if
+         end do
+      end if
+      call apply_typed(specs, set, ids, kinds, reals, counts, text, text_lengths, error)
+      if (allocated(error)) return
+      if (only_profile) then
+         call scene_from_parameters(set, "", .false., scene, error, profile_only=.true.)
+      else
+         call scene_from_parameters(set, "", .false., scene, error, arrays=.true.)
+      end if
+   end subroutine scene_from_typed
 
    !> A scene from its variables' values (`set`, checked value by value as
    !> the namelist reader or the typed setters check them): the scene's

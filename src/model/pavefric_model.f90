@@ -41,7 +41,10 @@ module pavefric_model
    public :: model_type, validate_model, shape_flat, shape_rounded, shape_code
    public :: param_spec_type, param_value_type, param_set_type, group_spec_type
    public :: parameter_table, group_table, default_parameters, apply_namelist, find_parameter
-   public :: typed_value
+   public :: typed_value, apply_typed
+   !> The kinds of a typed item (apply_typed).
+   integer, parameter, public :: typed_real = 1, typed_integer = 2, typed_logical = 3, &
+      & typed_text = 4, typed_list = 5
    public :: model_from_parameters, parameters_namelist, plausibility_warnings, format_value, &
       & parameters_namelist_text
    public :: kind_real, kind_integer, kind_logical, kind_text, kind_real_list
@@ -796,6 +799,74 @@ contains
       if (spec%kind == kind_real_list) new%set = size(x) > 0
       value = new
    end subroutine typed_value
+
+   !> Values given as typed items, without namelist text (the Python
+   !> layer's keywords): item k sets variable ids(k) of `specs` from a value
+   !> of kind kinds(k) (typed_*): counts(k) numbers taken in turn from
+   !> `reals` (a real; a whole number; a logical, 0 or 1; a list), or
+   !> text_lengths(k) characters taken in turn from `text`. Each is checked
+   !> against its declaration by typed_value, as the C API's typed setters
+   !> are.
+   pure subroutine apply_typed(specs, set, ids, kinds, reals, counts, text, text_lengths, error)
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_set_type), intent(inout) :: set
+      integer, intent(in) :: ids(:), kinds(:), counts(:), text_lengths(:)
+      real(wp), intent(in) :: reals(:)
+      character(len=*), intent(in) :: text
+      type(error_type), allocatable, intent(out) :: error
+      integer :: k, id, r0, t0, n, nt
+      real(wp) :: x
+      r0 = 0
+      t0 = 0
+      if (size(kinds) /= size(ids) .or. size(counts) /= size(ids) .or. &
+            & size(text_lengths) /= size(ids)) then
+         call fatal_error(error, "internal: typed items of unequal lengths")
+         return
+      end if
+      do k = 1, size(ids)
+         id = ids(k)
+         n = counts(k)
+         nt = text_lengths(k)
+         if (id < 1 .or. id > size(specs) .or. n < 0 .or. nt < 0 .or. &
+               & r0 + n > size(reals) .or. t0 + nt > len(text)) then
+            call fatal_error(error, "internal: typed item " // to_str(k) // " is malformed")
+            return
+         end if
+         if (kinds(k) /= typed_list .and. kinds(k) /= typed_text .and. n /= 1) then
+            call fatal_error(error, "internal: typed item " // to_str(k) // " has " // &
+               & to_str(n) // " numbers")
+            return
+         end if
+         select case (kinds(k))
+         case (typed_real)
+            call typed_value(specs(id), set%v(id), error, r=reals(r0 + 1))
+         case (typed_integer)
+            x = reals(r0 + 1)
+            if (abs(x) < real(huge(1), wp) .and. x == aint(x)) then
+               call typed_value(specs(id), set%v(id), error, i=int(x))
+            else if (specs(id)%kind == kind_integer) then
+               ! 2.9, or beyond the integers: the reader's words for it
+               call fatal_error(error, "&" // specs(id)%group // " " // specs(id)%name // &
+                  & " = " // to_str(x) // ": must be a whole number in [" // &
+                  & to_str(nint(specs(id)%lower)) // ", " // int_upper(specs(id)) // "]")
+            else
+               call typed_value(specs(id), set%v(id), error, r=x)
+            end if
+         case (typed_logical)
+            call typed_value(specs(id), set%v(id), error, b=reals(r0 + 1) /= 0.0_wp)
+         case (typed_text)
+            call typed_value(specs(id), set%v(id), error, t=text(t0 + 1:t0 + nt))
+         case (typed_list)
+            call typed_value(specs(id), set%v(id), error, list=reals(r0 + 1:r0 + n))
+         case default
+            call fatal_error(error, "internal: typed item " // to_str(k) // " of kind " // &
+               & to_str(kinds(k)))
+         end select
+         if (allocated(error)) return
+         r0 = r0 + n
+         t0 = t0 + nt
+      end do
+   end subroutine apply_typed
 
    !> Hard range check, with the message style of every range error. The
    !> message names the value as `prefix` followed by r (formatted only when

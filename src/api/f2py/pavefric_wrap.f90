@@ -120,17 +120,24 @@ subroutine pf_output_info(i, name, units, long_name, var_type, dims, written, ow
 end subroutine pf_output_info
 
 !> Pad elements and averaged positions of a profile of np points for the
-!> settings (namelist text, as pf_simulate takes it), and the number of
+!> settings (typed items, as pf_simulate takes them), and the number of
 !> series variables such a run produces, to size the series.
-subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, message)
-   use, intrinsic :: iso_c_binding, only: c_int
-   use pavefric_scene, only: scene_type, scene_from_text
+subroutine pf_layout(t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, t_text, np, &
+      & n_elements, n_positions, n_series, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use pavefric_scene, only: scene_type, scene_from_typed
    use pavefric_simulate, only: pad_elements, element_grid
    use pavefric_outputs, only: series_count
    use pavefric_kinds, only: wp
    use pavefric_error, only: error_type
    implicit none
-   character(len=*), intent(in) :: settings
+   !> The settings as typed items (pavefric_model's apply_typed): variable
+   !> ids (1-based, the table's order), kinds, numbers per item and text
+   !> characters per item, the numbers and the text.
+   integer(c_int), intent(in) :: t_n, t_nreal
+   integer(c_int), intent(in) :: t_ids(t_n), t_kinds(t_n), t_counts(t_n), t_lengths(t_n)
+   real(c_double), intent(in) :: t_reals(t_nreal)
+   character(len=*), intent(in) :: t_text
    integer(c_int), intent(in) :: np
    integer(c_int), intent(out) :: n_elements, n_positions, n_series, status
    character(len=2048), intent(out) :: message
@@ -139,7 +146,7 @@ subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, me
    integer :: npe
    real(wp) :: dxe
    n_elements = 0; n_positions = 0; n_series = 0; status = 0; message = ""
-   call scene_from_text(settings, "", scene, error, arrays=.true.)
+   call scene_from_typed(t_ids, t_kinds, t_reals, t_counts, t_text, t_lengths, scene, error)
    if (allocated(error)) then
       status = error%stat
       message = error%message
@@ -150,9 +157,9 @@ subroutine pf_layout(settings, np, n_elements, n_positions, n_series, status, me
    n_series = series_count(scene%model)
 end subroutine pf_layout
 
-!> Run the model on heights z (m) with `settings`, a namelist text of the
-!> scene's groups (&surface dx and closed, &operation speeds_kmh, &output
-!> series and any model variable): the same reading and the same run as the
+!> Run the model on heights z (m) with the settings as typed items (t_*:
+!> &surface dx and closed, &operation speeds_kmh, &output series and any
+!> model variable, checked by their declarations): the same run as the
 !> program's (pavefric_run's run_profile). Results come through the output
 !> table: per-speed values(ns, n_outputs) and, for the series variables
 !> this run produced in the table's order, series(npos, ns, nser) (nser from
@@ -161,12 +168,13 @@ end subroutine pf_layout
 !> when they do not fit, text_lengths says how much room to give and status
 !> is 0 (call again); when the series have more positions than npos (a
 !> tolerance run refined the step), counts(2) says how many, status 0.
-subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
+subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, t_text, &
+      & ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
       & series, present, position, counts, texture, estimate, ifi, texts, text_lengths, &
       & status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_kinds, only: wp
-   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_scene, only: scene_type, scene_from_typed
    use pavefric_simulate, only: sim_result_type
    use pavefric_outputs, only: output_metadata_type, output_present, output_values, n_outputs, &
       & output_var_type, output_table, dim_speed
@@ -176,7 +184,13 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
    implicit none
    integer(c_int), intent(in) :: np, ns, npos, nout, nser, ntext
    real(c_double), intent(in) :: z(np)
-   character(len=*), intent(in) :: settings
+   !> The settings as typed items (pavefric_model's apply_typed): variable
+   !> ids (1-based, the table's order), kinds, numbers per item and text
+   !> characters per item, the numbers and the text.
+   integer(c_int), intent(in) :: t_n, t_nreal
+   integer(c_int), intent(in) :: t_ids(t_n), t_kinds(t_n), t_counts(t_n), t_lengths(t_n)
+   real(c_double), intent(in) :: t_reals(t_nreal)
+   character(len=*), intent(in) :: t_text
    real(c_double), intent(out) :: speed(ns), speed_kmh(ns), values(ns, nout)
    real(c_double), intent(out) :: series(npos, ns, nser), position(npos), texture(3)
    !> The cost estimated before the run: element-steps (all speeds, first
@@ -201,7 +215,7 @@ subroutine pf_simulate(np, z, settings, ns, npos, nout, nser, ntext, speed, spee
 
    speed = 0; speed_kmh = 0; values = 0; series = 0; present = 0; position = 0; texture = 0
    estimate = 0; ifi = 0; counts = 0; text_lengths = 0; texts = " "; status = 0; message = ""
-   call scene_from_text(settings, "", scene, error, arrays=.true.)
+   call scene_from_typed(t_ids, t_kinds, t_reals, t_counts, t_text, t_lengths, scene, error)
    if (allocated(error)) goto 99
    if (size(scene%speeds_kmh) /= ns .or. nout /= n_outputs) then
       status = stat_internal
@@ -521,20 +535,27 @@ end subroutine pf_batch_run
 ! ---------------------------------------------------------------------------
 
 !> Read and preprocess a profile (first pass): sizes and spacing.
-!> Read and preprocess a profile file as a scene does (first pass): `settings`
-!> is namelist text of &surface (profile_file, format, height_unit,
-!> x_column, z_column, profile_name, dx) and &preprocess, read by the same
-!> code as a scene file's, and the profile by the program's own routine
+!> Read and preprocess a profile file as a scene does (first pass): the
+!> settings are typed items of &surface (profile_file, format, height_unit,
+!> x_column, z_column, profile_name, dx) and &preprocess, checked by the
+!> same declarations as a scene file's, and the profile by the program's own routine
 !> (pavefric_run's load_scene_profile). Sizes and spacing.
-subroutine pf_profile_read_info(settings, n_raw, n_out, dx, has_x, status, message)
+subroutine pf_profile_read_info(t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, &
+      & t_text, n_raw, n_out, dx, has_x, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_scene, only: scene_type, scene_from_typed
    use pavefric_run, only: load_scene_profile
    use pavefric_profile, only: raw_profile_type
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_error, only: error_type
    implicit none
-   character(len=*), intent(in) :: settings
+   !> The settings as typed items (pavefric_model's apply_typed): variable
+   !> ids (1-based, the table's order), kinds, numbers per item and text
+   !> characters per item, the numbers and the text.
+   integer(c_int), intent(in) :: t_n, t_nreal
+   integer(c_int), intent(in) :: t_ids(t_n), t_kinds(t_n), t_counts(t_n), t_lengths(t_n)
+   real(c_double), intent(in) :: t_reals(t_nreal)
+   character(len=*), intent(in) :: t_text
    integer(c_int), intent(out) :: n_raw, n_out, has_x, status
    real(c_double), intent(out) :: dx
    character(len=2048), intent(out) :: message
@@ -543,7 +564,8 @@ subroutine pf_profile_read_info(settings, n_raw, n_out, dx, has_x, status, messa
    type(clean_profile_type) :: clean
    type(error_type), allocatable :: error
    n_raw = 0; n_out = 0; dx = 0; has_x = 0; status = 0; message = ""
-   call scene_from_text(settings, "", scene, error, profile_only=.true.)
+   call scene_from_typed(t_ids, t_kinds, t_reals, t_counts, t_text, t_lengths, scene, error, &
+      & profile_only=.true.)
    if (.not. allocated(error)) call load_scene_profile(scene, clean, error, raw_out=raw)
    if (allocated(error)) then
       status = error%stat
@@ -559,16 +581,23 @@ end subroutine pf_profile_read_info
 !> Read and preprocess a profile (second pass): the raw points (distances
 !> from the file, else from its spacing), the clean heights (m), their
 !> quality, and the report.
-subroutine pf_profile_read_data(settings, n_raw, n_out, x_raw, z_raw, valid_raw, z, &
+subroutine pf_profile_read_data(t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, &
+      & t_text, n_raw, n_out, x_raw, z_raw, valid_raw, z, &
       & dropout_fraction, spike, counts, format_read, chainage, has_chainage, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
-   use pavefric_scene, only: scene_type, scene_from_text
+   use pavefric_scene, only: scene_type, scene_from_typed
    use pavefric_run, only: load_scene_profile
    use pavefric_profile, only: raw_profile_type
    use pavefric_preprocess, only: clean_profile_type
    use pavefric_error, only: error_type, stat_internal
    implicit none
-   character(len=*), intent(in) :: settings
+   !> The settings as typed items (pavefric_model's apply_typed): variable
+   !> ids (1-based, the table's order), kinds, numbers per item and text
+   !> characters per item, the numbers and the text.
+   integer(c_int), intent(in) :: t_n, t_nreal
+   integer(c_int), intent(in) :: t_ids(t_n), t_kinds(t_n), t_counts(t_n), t_lengths(t_n)
+   real(c_double), intent(in) :: t_reals(t_nreal)
+   character(len=*), intent(in) :: t_text
    integer(c_int), intent(in) :: n_raw, n_out
    real(c_double), intent(out) :: x_raw(n_raw), z_raw(n_raw), z(n_out), dropout_fraction(n_out)
    real(c_double), intent(out) :: chainage
@@ -582,7 +611,8 @@ subroutine pf_profile_read_data(settings, n_raw, n_out, x_raw, z_raw, valid_raw,
    integer :: i
    x_raw = 0; z_raw = 0; valid_raw = 0; z = 0; dropout_fraction = 0; spike = 0; counts = 0
    chainage = 0; has_chainage = 0; status = 0; message = ""; format_read = ""
-   call scene_from_text(settings, "", scene, error, profile_only=.true.)
+   call scene_from_typed(t_ids, t_kinds, t_reals, t_counts, t_text, t_lengths, scene, error, &
+      & profile_only=.true.)
    if (.not. allocated(error)) call load_scene_profile(scene, clean, error, raw_out=raw)
    if (allocated(error)) then
       status = error%stat
