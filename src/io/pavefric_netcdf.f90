@@ -315,7 +315,7 @@ contains
          & "distance slid from the first averaged position", v_pos)
       ids = -1
       do k = 1, n_outputs
-         if (.not. output_present(res, k)) cycle
+         if (.not. output_present(res, k, table)) cycle
          associate(v => table(k))
             if (v%dims == dim_speed) then
                call w%def(v%name, xtype(v%type), [d_speed], v%units, v%long_name, ids(k))
@@ -407,7 +407,7 @@ contains
       end if
       do k = 1, n_outputs
          if (ids(k) < 0) cycle
-         call output_values(res, k, values)
+         call output_values(res, k, values, table)
          associate(v => table(k))
             select case (v%type)
             case (out_double)

@@ -180,12 +180,21 @@ contains
    !> Whether variable k is part of this run's results, by its declaration's
    !> condition: series variables only with series, the friction film's
    !> only when it ran, the error estimate's only when it was made.
-   pure logical function output_present(res, k)
+   pure logical function output_present(res, k, table)
       type(sim_result_type), intent(in) :: res
       integer, intent(in) :: k
+      !> output_table(), when the caller has it (building it costs tens of
+      !> microseconds: a loop over the variables passes it).
+      type(output_var_type), intent(in), optional :: table(:)
       type(output_var_type) :: t(n_outputs)
-      t = output_table()
-      select case (t(k)%when)
+      integer :: when
+      if (present(table)) then
+         when = table(k)%when
+      else
+         t = output_table()
+         when = t(k)%when
+      end if
+      select case (when)
       case (when_friction_film)
          output_present = any(res%friction_film_ran)
       case (when_series)
@@ -215,17 +224,25 @@ contains
 
    !> Values of variable k as reals (exact for the integers and flags),
    !> speed-major for per-speed variables, (position, speed) for series.
-   pure subroutine output_values(res, k, values)
+   pure subroutine output_values(res, k, values, table)
       type(sim_result_type), intent(in) :: res
       integer, intent(in) :: k
       real(wp), intent(out) :: values(:)
+      !> output_table(), when the caller has it (as for output_present).
+      type(output_var_type), intent(in), optional :: table(:)
       type(output_var_type) :: t(n_outputs)
+      character(len=:), allocatable :: name
       integer :: ns, np
       ns = size(res%mu)
       np = 0
       if (allocated(res%mu_inst)) np = size(res%mu_inst, 1)
-      t = output_table()
-      select case (t(k)%name)
+      if (present(table)) then
+         name = table(k)%name
+      else
+         t = output_table()
+         name = t(k)%name
+      end if
+      select case (name)
       case ("mu")
          values(1:ns) = res%mu
       case ("n_clamped")

@@ -370,7 +370,7 @@ contains
          if (table(k)%name /= trim(name)) cycle
          n = 0
          if (.not. s%has_results) return
-         if (.not. output_present(s%res, k)) return
+         if (.not. output_present(s%res, k, table)) return
          if (table(k)%dims == dim_speed) then
             n = ns
          else
@@ -425,7 +425,7 @@ contains
       case default
          table = output_table()
          do k = 1, n_outputs
-            if (table(k)%name == trim(name)) call output_values(s%res, k, values)
+            if (table(k)%name == trim(name)) call output_values(s%res, k, values, table)
          end do
       end select
    contains

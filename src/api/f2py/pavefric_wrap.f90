@@ -246,9 +246,9 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    end if
    slot = 0
    do k = 1, n_outputs
-      if (.not. output_present(res, k)) cycle
+      if (.not. output_present(res, k, table)) cycle
       present(k) = 1
-      call output_values(res, k, v)
+      call output_values(res, k, v, table)
       if (table(k)%dims == dim_speed) then
          values(:, k) = v(1:ns)
       else
