@@ -174,170 +174,201 @@ contains
          end do
       end if
 
-      ! 1. reference plates at the ends
-      i0 = 1
-      i1 = n
-      x_start = -huge(1.0_wp)
-      if (p%trim_plates .and. count(raw%valid) > 0) then
-         call valid_median(raw%z, raw%valid, med, st)
-         if (st == 0) allocate(plate(n), stat=st)
+      call trim_reference_plates()
+      if (allocated(error)) return
+      call keep_points()
+      if (allocated(error)) return
+      call mend_dropouts()
+      if (allocated(error)) return
+      call resample_or_check_spacing()
+      if (allocated(error)) return
+      call replace_spikes()
+      if (allocated(error)) return
+      deallocate(x, ok)
+      call low_pass()
+      if (allocated(error)) return
+      clean%report%points_out = n
+      clean%report%dx_out = clean%dx
+   contains
+      !> 1. Reference plates at the ends: runs of points far from the
+      !> median height, longer than plate_min_length, cut with a buffer.
+      subroutine trim_reference_plates()
+         i0 = 1
+         i1 = n
+         x_start = -huge(1.0_wp)
+         if (p%trim_plates .and. count(raw%valid) > 0) then
+            call valid_median(raw%z, raw%valid, med, st)
+            if (st == 0) allocate(plate(n), stat=st)
+            if (st /= 0) then
+               call memory_error(raw, n, error)
+               return
+            end if
+            ! a dropout continues the state of the point before it (forward fill)
+            do i = 1, n
+               if (raw%valid(i)) then
+                  plate(i) = abs(raw%z(i) - med) > p%plate_threshold
+               else if (i > 1) then
+                  plate(i) = plate(i-1)
+               else
+                  plate(i) = .false.
+               end if
+            end do
+            call plate_bounds(x, plate, p%plate_min_length, x_start, x_end)
+            deallocate(plate)
+            if (x_start > -huge(1.0_wp)) then
+               x_start = x_start + p%plate_buffer
+               do while (i0 <= n)
+                  if (x(i0) >= x_start) exit
+                  i0 = i0 + 1
+               end do
+            end if
+            if (x_end < huge(1.0_wp)) then
+               x_end = x_end - p%plate_buffer
+               do while (i1 >= i0)
+                  if (x(i1) < x_end) exit
+                  i1 = i1 - 1
+               end do
+            end if
+            clean%report%trimmed_start = i0 - 1
+            clean%report%trimmed_end = n - i1
+            if (i1 - i0 + 1 < 2) then
+               call fatal_error(error, raw%path // ": nothing is left of the profile after " // &
+                  & "trimming reference plates; set &preprocess trim_plates = .false. or a " // &
+                  & "larger plate_threshold, and check the heights' unit (&surface height_unit)")
+               return
+            end if
+         end if
+      end subroutine trim_reference_plates
+
+      !> The kept points; distances from the trimming boundary (the
+      !> resampling bins start there). The line of point k is raw%line(i0+k-1).
+      subroutine keep_points()
+         m = i1 - i0 + 1
+         allocate(z(m), ok(m), stat=st)
+         if (st /= 0) then
+            call memory_error(raw, m, error)
+            return
+         end if
+         z(:) = raw%z(i0:i1)
+         ok(:) = raw%valid(i0:i1)
+         if (x_start > -huge(1.0_wp)) then
+            do k = 1, m
+               x(k) = x(i0 + k - 1) - x_start
+            end do
+         else if (i0 > 1) then
+            do k = 1, m
+               x(k) = x(i0 + k - 1)
+            end do
+         end if
+
+      end subroutine keep_points
+
+      !> 2. Dropouts: an error naming file and line, or interpolated.
+      subroutine mend_dropouts()
+         clean%report%dropouts = count(.not. ok)
+         if (clean%report%dropouts > 0) then
+            if (trim(p%dropouts) == "error") then
+               k = findloc(ok, .false., dim=1)
+               call fatal_error(error, point_location(raw, raw%line(i0 + k - 1)) // &
+                  & ": dropout (no valid height); set &preprocess dropouts = 'interpolate' " // &
+                  & "to interpolate dropouts (ISO 13473-1)")
+               return
+            end if
+            if (count(ok) == 0) then
+               call fatal_error(error, raw%path // ": every height is a dropout (NaN or " // &
+                  & "empty), nothing to interpolate; check the height column (&surface " // &
+                  & "z_column) and the file")
+               return
+            end if
+            call interpolate_gaps(x(1:m), z, ok)
+         end if
+         allocate(frac(m), stat=st)
+         if (st /= 0) then
+            call memory_error(raw, m, error)
+            return
+         end if
+         do k = 1, m
+            frac(k) = merge(0.0_wp, 1.0_wp, ok(k))
+         end do
+
+      end subroutine mend_dropouts
+
+      !> 3. Resampling into bins, or the file's own (uniform) spacing.
+      subroutine resample_or_check_spacing()
+         clean%report%dx_in = (x(m) - x(1)) / real(max(m - 1, 1), wp)
+         if (p%resample_dx > 0.0_wp) then
+            call resample_bins(x(1:m), z, frac, p%resample_dx, clean%z, clean%dropout_fraction, &
+               & error)
+            if (allocated(error)) then
+               error%message = raw%path // ": " // error%message
+               return
+            end if
+            deallocate(z, frac)
+            clean%dx = p%resample_dx
+            clean%report%resampled = .true.
+         else
+            if (m < 2) then
+               clean%dx = spacing
+            else
+               clean%dx = clean%report%dx_in
+               do i = 2, m
+                  step = x(i) - x(i-1)
+                  if (abs(step - clean%dx) > 0.05_wp * clean%dx) then
+                     call fatal_error(error, point_location(raw, raw%line(i0 + i - 1)) // &
+                        & ": spacing " // to_str(round_sig(step, 4)) // " m against the mean " // &
+                        & to_str(round_sig(clean%dx, 4)) // " m (more than 5 % off): resample " // &
+                        & "it (&preprocess resample_dx)")
+                     return
+                  end if
+               end do
+            end if
+            if (.not. raw%has_x) clean%dx = spacing
+            call move_alloc(z, clean%z)
+            call move_alloc(frac, clean%dropout_fraction)
+         end if
+         n = size(clean%z)
+
+      end subroutine resample_or_check_spacing
+
+      !> 4. Spikes: a jump of at least spike_slope * dx flags both its
+      !> points, which are then interpolated.
+      subroutine replace_spikes()
+         allocate(clean%spike(n), stat=st)
          if (st /= 0) then
             call memory_error(raw, n, error)
             return
          end if
-         ! a dropout continues the state of the point before it (forward fill)
-         do i = 1, n
-            if (raw%valid(i)) then
-               plate(i) = abs(raw%z(i) - med) > p%plate_threshold
-            else if (i > 1) then
-               plate(i) = plate(i-1)
-            else
-               plate(i) = .false.
-            end if
-         end do
-         call plate_bounds(x, plate, p%plate_min_length, x_start, x_end)
-         deallocate(plate)
-         if (x_start > -huge(1.0_wp)) then
-            x_start = x_start + p%plate_buffer
-            do while (i0 <= n)
-               if (x(i0) >= x_start) exit
-               i0 = i0 + 1
-            end do
-         end if
-         if (x_end < huge(1.0_wp)) then
-            x_end = x_end - p%plate_buffer
-            do while (i1 >= i0)
-               if (x(i1) < x_end) exit
-               i1 = i1 - 1
-            end do
-         end if
-         clean%report%trimmed_start = i0 - 1
-         clean%report%trimmed_end = n - i1
-         if (i1 - i0 + 1 < 2) then
-            call fatal_error(error, raw%path // ": nothing is left of the profile after " // &
-               & "trimming reference plates; set &preprocess trim_plates = .false. or a " // &
-               & "larger plate_threshold, and check the heights' unit (&surface height_unit)")
-            return
-         end if
-      end if
-      ! the kept points; distances from the trimming boundary (the
-      ! resampling bins start there). The line of point k is raw%line(i0+k-1).
-      m = i1 - i0 + 1
-      allocate(z(m), ok(m), stat=st)
-      if (st /= 0) then
-         call memory_error(raw, m, error)
-         return
-      end if
-      z(:) = raw%z(i0:i1)
-      ok(:) = raw%valid(i0:i1)
-      if (x_start > -huge(1.0_wp)) then
-         do k = 1, m
-            x(k) = x(i0 + k - 1) - x_start
-         end do
-      else if (i0 > 1) then
-         do k = 1, m
-            x(k) = x(i0 + k - 1)
-         end do
-      end if
-
-      ! 2. dropouts
-      clean%report%dropouts = count(.not. ok)
-      if (clean%report%dropouts > 0) then
-         if (trim(p%dropouts) == "error") then
-            k = findloc(ok, .false., dim=1)
-            call fatal_error(error, point_location(raw, raw%line(i0 + k - 1)) // &
-               & ": dropout (no valid height); set &preprocess dropouts = 'interpolate' " // &
-               & "to interpolate dropouts (ISO 13473-1)")
-            return
-         end if
-         if (count(ok) == 0) then
-            call fatal_error(error, raw%path // ": every height is a dropout (NaN or " // &
-               & "empty), nothing to interpolate; check the height column (&surface " // &
-               & "z_column) and the file")
-            return
-         end if
-         call interpolate_gaps(x(1:m), z, ok)
-      end if
-      allocate(frac(m), stat=st)
-      if (st /= 0) then
-         call memory_error(raw, m, error)
-         return
-      end if
-      do k = 1, m
-         frac(k) = merge(0.0_wp, 1.0_wp, ok(k))
-      end do
-
-      ! 3. resampling, or the file's own (uniform) spacing
-      clean%report%dx_in = (x(m) - x(1)) / real(max(m - 1, 1), wp)
-      if (p%resample_dx > 0.0_wp) then
-         call resample_bins(x(1:m), z, frac, p%resample_dx, clean%z, clean%dropout_fraction, &
-            & error)
-         if (allocated(error)) then
-            error%message = raw%path // ": " // error%message
-            return
-         end if
-         deallocate(z, frac)
-         clean%dx = p%resample_dx
-         clean%report%resampled = .true.
-      else
-         if (m < 2) then
-            clean%dx = spacing
-         else
-            clean%dx = clean%report%dx_in
-            do i = 2, m
-               step = x(i) - x(i-1)
-               if (abs(step - clean%dx) > 0.05_wp * clean%dx) then
-                  call fatal_error(error, point_location(raw, raw%line(i0 + i - 1)) // &
-                     & ": spacing " // to_str(round_sig(step, 4)) // " m against the mean " // &
-                     & to_str(round_sig(clean%dx, 4)) // " m (more than 5 % off): resample " // &
-                     & "it (&preprocess resample_dx)")
-                  return
+         clean%spike = .false.
+         if (p%spike_slope > 0.0_wp .and. n > 2) then
+            do i = 1, n - 1
+               if (abs(clean%z(i+1) - clean%z(i)) >= p%spike_slope * clean%dx) then
+                  clean%spike(i) = .true.
+                  clean%spike(i+1) = .true.
                end if
             end do
-         end if
-         if (.not. raw%has_x) clean%dx = spacing
-         call move_alloc(z, clean%z)
-         call move_alloc(frac, clean%dropout_fraction)
-      end if
-      n = size(clean%z)
-
-      ! 4. spikes: a jump of at least spike_slope * dx flags both its points
-      allocate(clean%spike(n), stat=st)
-      if (st /= 0) then
-         call memory_error(raw, n, error)
-         return
-      end if
-      clean%spike = .false.
-      if (p%spike_slope > 0.0_wp .and. n > 2) then
-         do i = 1, n - 1
-            if (abs(clean%z(i+1) - clean%z(i)) >= p%spike_slope * clean%dx) then
-               clean%spike(i) = .true.
-               clean%spike(i+1) = .true.
+            clean%report%spikes = count(clean%spike)
+            if (clean%report%spikes > 0 .and. clean%report%spikes < n) then
+               ! n <= m: x and ok have room
+               do i = 1, n
+                  x(i) = real(i - 1, wp) * clean%dx
+                  ok(i) = .not. clean%spike(i)
+               end do
+               call interpolate_gaps(x(1:n), clean%z, ok(1:n))
             end if
-         end do
-         clean%report%spikes = count(clean%spike)
-         if (clean%report%spikes > 0 .and. clean%report%spikes < n) then
-            ! n <= m: x and ok have room
-            do i = 1, n
-               x(i) = real(i - 1, wp) * clean%dx
-               ok(i) = .not. clean%spike(i)
-            end do
-            call interpolate_gaps(x(1:n), clean%z, ok(1:n))
          end if
-      end if
-      deallocate(x, ok)
+      end subroutine replace_spikes
 
-      ! 5. low-pass filter
-      if (p%lowpass_wavelength > 0.0_wp) then
-         call butterworth_filtfilt(clean%z, clean%dx, p%lowpass_wavelength, error)
-         if (allocated(error)) then
-            error%message = raw%path // ": " // error%message
-            return
+      !> 5. The low-pass filter (ISO 13473-1 Annex D).
+      subroutine low_pass()
+         if (p%lowpass_wavelength > 0.0_wp) then
+            call butterworth_filtfilt(clean%z, clean%dx, p%lowpass_wavelength, error)
+            if (allocated(error)) then
+               error%message = raw%path // ": " // error%message
+               return
+            end if
+            clean%report%filtered = .true.
          end if
-         clean%report%filtered = .true.
-      end if
-      clean%report%points_out = n
-      clean%report%dx_out = clean%dx
+      end subroutine low_pass
    end subroutine preprocess
 
    !> Not enough memory for the work arrays of n points.
