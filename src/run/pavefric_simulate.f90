@@ -1228,72 +1228,11 @@ contains
       !> Whether an element touched at the step before the first averaged one.
       logical, dimension(lanes) :: contact_before
 
-      n = geo%n_el
-      nl = size(speeds)
-      ! the lanes' arrays are sized for `lanes`; those beyond the chunk's
-      ! speeds repeat its last speed and are never used
-      v(1:nl) = speeds
-      v(nl+1:) = speeds(nl)
-      series = present(mu_inst)
-      call rubber%prepare(v(1:nl), geo%advance, n, rstep, stat)
-      if (stat /= 0) then
-         out%failed = 1
-         return
-      end if
-      ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
-      kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
-      kel(nl+1:) = kel(nl)
-      s_load = m%load / kel
-      any_memory = any(rstep%memory)
-      ! Simulate only the effects the scene calls for: a film needs water and
-      ! motion (Sect. 3); the rubber's memory needs viscosity and motion.
-      load_film = .false.
-      friction_film = .false.
-      allocate(fstep(lanes))
-      if (allocated(film)) then
-         do j = 1, nl
-            call film%prepare(v(j), geo%advance, fstep(j))
-            load_film(j) = fstep(j)%active .and. film%carries_load()
-            friction_film(j) = fstep(j)%active .and. film%changes_friction()
-         end do
-      end if
-      any_load = any(load_film)
-      any_friction = any(friction_film)
-      if (nl == 1 .and. exact_scheme(m) .and. .not. any_load .and. .not. any_friction .and. &
-         & rstep%memory(1)) then
-         select type (rubber)
-         type is (kelvin_voigt_rubber)
-            call slide_exact(geo, m, rubber, v(1), out(1), mu_inst, hydro_load, penetration, &
-               & contact, film_thickness, local_friction)
-            return
-         end select
-      end if
+      logical :: done
 
-      ns_state = rubber%state_size()
-      ! the lane count as a run-time value: the lane loops then compile to
-      ! vector loops (a constant count is unrolled into scalar code)
-      energy = .true.
-      if (allocated(m%friction_scheme)) energy = m%friction_scheme /= "paper"
-      allocate(c(nl, n), d(nl, n), push(nl, n), u_free(nl, n), work(n), &
-         & dl(n), gap(n), stat=stat)
-      if (stat == 0 .and. energy) allocate(u_prev(nl, n), push_prev(nl, n), stat=stat)
-      if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
-      if (stat == 0 .and. any_load) allocate(gaps(nl, n), stat=stat)
-      if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
-         & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
-      if (stat /= 0) then
-         out%failed = 1
-         return
-      end if
-      u_free = 0.0_wp
-      if (any_memory) state = 0.0_wp
-      tan_max = tan(m%theta_max_deg * acos(-1.0_wp) / 180.0_wp)
-      if (any_friction) then
-         do j = 1, nl
-            if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
-         end do
-      end if
-
+      done = .false.
+      call prepare_lanes(done)
+      if (done) return
       delta_prev = -huge(1.0_wp)
       delta_prev2 = -huge(1.0_wp)
       wh_prev = 0.0_wp
@@ -1326,21 +1265,7 @@ contains
       n_wet = 0
       lead_prev = -huge(1)
       do t = -maxval(spin(1:nl)), geo%n_avg - 1
-         ! a lane whose spin-up starts now begins from relaxed elements
-         ! (what it did before is discarded): its numbers are its own,
-         ! whichever speeds share its chunk
-         do j = 1, nl
-            if (t /= -spin(j) .or. t == -maxval(spin(1:nl))) cycle
-            if (any_memory) state(j, :, :) = 0.0_wp
-            u_free(j, :) = 0.0_wp
-            delta_prev(j) = -huge(1.0_wp)
-            delta_prev2(j) = -huge(1.0_wp)
-            wh_prev(j) = 0.0_wp
-            have_prev(j) = .false.
-            u_max(j) = 0.0_wp
-            n_eval(j) = 0
-            if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
-         end do
+         call restart_lanes(t)
          if (geo%closed) then
             k1 = modulo(t * geo%stride + 1, geo%npf) + 1
          else
@@ -1391,73 +1316,196 @@ contains
          n_clamp_j = nint(clamps)
          if (t == -1) contact_before = n_contact > 0
 
+         call friction_films(t, k1)
+         if (energy) call energy_step()
+         if (any_memory) call rubber%update(rstep, state, u_free, push)
+         delta_prev2 = merge(delta_prev, -huge(1.0_wp), delta_prev > -huge(1.0_wp))
+         wh_prev = wh
+         delta_prev = cmin + x
+         if (t < 0) cycle                                    ! spin-up
+
+         call accumulate(t)
+      end do
+
+      call summarise()
+   contains
+      !> The rubber's and the films' step coefficients per lane, and the
+      !> work arrays; the exact Kelvin-Voigt integrator instead where it
+      !> applies (`done`: it ran, or memory ran out: out%failed).
+      subroutine prepare_lanes(done)
+         logical, intent(out) :: done
+         integer :: j
+         done = .false.
+         n = geo%n_el
+         nl = size(speeds)
+         ! the lanes' arrays are sized for `lanes`; those beyond the chunk's
+         ! speeds repeat its last speed and are never used
+         v(1:nl) = speeds
+         v(nl+1:) = speeds(nl)
+         series = present(mu_inst)
+         call rubber%prepare(v(1:nl), geo%advance, n, rstep, stat)
+         if (stat /= 0) then
+            out%failed = 1
+            done = .true.
+            return
+         end if
+         ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
+         kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
+         kel(nl+1:) = kel(nl)
+         s_load = m%load / kel
+         any_memory = any(rstep%memory)
+         ! Simulate only the effects the scene calls for: a film needs water and
+         ! motion (Sect. 3); the rubber's memory needs viscosity and motion.
+         load_film = .false.
+         friction_film = .false.
+         allocate(fstep(lanes))
+         if (allocated(film)) then
+            do j = 1, nl
+               call film%prepare(v(j), geo%advance, fstep(j))
+               load_film(j) = fstep(j)%active .and. film%carries_load()
+               friction_film(j) = fstep(j)%active .and. film%changes_friction()
+            end do
+         end if
+         any_load = any(load_film)
+         any_friction = any(friction_film)
+         if (nl == 1 .and. exact_scheme(m) .and. .not. any_load .and. .not. any_friction .and. &
+            & rstep%memory(1)) then
+            select type (rubber)
+            type is (kelvin_voigt_rubber)
+               call slide_exact(geo, m, rubber, v(1), out(1), mu_inst, hydro_load, penetration, &
+                  & contact, film_thickness, local_friction)
+               done = .true.
+               return
+            end select
+         end if
+
+         ns_state = rubber%state_size()
+         ! the lane count as a run-time value: the lane loops then compile to
+         ! vector loops (a constant count is unrolled into scalar code)
+         energy = .true.
+         if (allocated(m%friction_scheme)) energy = m%friction_scheme /= "paper"
+         allocate(c(nl, n), d(nl, n), push(nl, n), u_free(nl, n), work(n), &
+            & dl(n), gap(n), stat=stat)
+         if (stat == 0 .and. energy) allocate(u_prev(nl, n), push_prev(nl, n), stat=stat)
+         if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
+         if (stat == 0 .and. any_load) allocate(gaps(nl, n), stat=stat)
+         if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
+            & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
+         if (stat /= 0) then
+            out%failed = 1
+            done = .true.
+            return
+         end if
+         u_free = 0.0_wp
+         if (any_memory) state = 0.0_wp
+         tan_max = tan(m%theta_max_deg * acos(-1.0_wp) / 180.0_wp)
          if (any_friction) then
-            ! the film on the road samples entering under the leading edge
-            ! (counted without wrapping round a closed profile)
-            lead = t * geo%stride + n * geo%spacing + merge(1, 0, geo%closed)
-            if (lead_prev == -huge(1)) lead_prev = lead
-            do i = 1, n
-               do q = 1, geo%spacing
-                  samples((i-1) * geo%spacing + q) = physical(k1 + (i-1) * geo%spacing + q - 1)
-               end do
-            end do
             do j = 1, nl
-               if (.not. friction_film(j)) cycle
-               do k = lead_prev + 1, lead
-                  call film%enter(fstep(j), fstate(:, :, j), physical(k))
-               end do
-               pl = push(j, :)
-               pressure = rstep%k_eff(j) * pl
-               call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
-                  & geo%dx_el, share)
-               film_sum = 0.0_wp
-               sum_ft(j) = 0.0_wp
-               sum_fa(j) = 0.0_wp
-               n_clamp_j(j) = 0
+               if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
+            end do
+         end if
+
+      end subroutine prepare_lanes
+
+      !> A lane whose spin-up starts at step t begins from relaxed elements
+      !> (what it did before is discarded): its numbers are its own,
+      !> whichever speeds share its chunk.
+      subroutine restart_lanes(t)
+         integer, intent(in) :: t
+         integer :: j
+            do j = 1, nl
+               if (t /= -spin(j) .or. t == -maxval(spin(1:nl))) cycle
+               if (any_memory) state(j, :, :) = 0.0_wp
+               u_free(j, :) = 0.0_wp
+               delta_prev(j) = -huge(1.0_wp)
+               delta_prev2(j) = -huge(1.0_wp)
+               wh_prev(j) = 0.0_wp
+               have_prev(j) = .false.
+               u_max(j) = 0.0_wp
+               n_eval(j) = 0
+               if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
+            end do
+      end subroutine restart_lanes
+
+      !> The friction films (lane by lane): the water entering under the
+      !> leading edge, the share of mu_loc each element keeps, the facets'
+      !> tangents and work with it, and the film's series.
+      subroutine friction_films(t, k1)
+         integer, intent(in) :: t, k1
+         integer :: i, j, k, q
+            if (any_friction) then
+               ! the film on the road samples entering under the leading edge
+               ! (counted without wrapping round a closed profile)
+               lead = t * geo%stride + n * geo%spacing + merge(1, 0, geo%closed)
+               if (lead_prev == -huge(1)) lead_prev = lead
                do i = 1, n
-                  k = k1 + (i-1) * geo%spacing
-                  if (share(i) >= 1.0_wp) then
-                     tan_el(i) = geo%tan_theta(k)
-                     clamped = geo%clamped(k)
-                     mu_eff = m%mu_loc
-                  else
-                     mu_eff = m%mu_loc * share(i)
-                     call facet_tangent(geo%slope(k), mu_eff, tan_max, tan_el(i), clamped)
-                  end if
-                  sum_ft(j) = sum_ft(j) + pl(i) * tan_el(i)
-                  if (share(i) >= 1.0_wp) then
-                     sum_fa(j) = sum_fa(j) + pl(i) * geo%adhesion(k)
-                  else
-                     sum_fa(j) = sum_fa(j) + pl(i) * adhesion_tangent(geo%slope(k), &
-                        & tan_el(i), clamped, mu_eff, tan_max)
-                  end if
-                  n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, pl(i) > 0.0_wp .and. clamped)
-                  if (t >= 0) local_sum(j) = local_sum(j) + pl(i) * mu_eff
-                  film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing &
-                     & + 1), j))
+                  do q = 1, geo%spacing
+                     samples((i-1) * geo%spacing + q) = physical(k1 + (i-1) * geo%spacing + q - 1)
+                  end do
                end do
-               if (t >= 0) then
-                  force_sum(j) = force_sum(j) + sum_f(j)
-                  film_mean_sum(j) = film_mean_sum(j) + film_sum / real(n, wp)
-                  if (series .and. present(film_thickness)) then
-                     film_thickness(t+1, j) = film_sum / real(n, wp)
-                     local_friction(t+1, j) = 0.0_wp
-                     if (sum_f(j) > 0.0_wp) local_friction(t+1, j) = &
-                        & local_partial(pl, share, m%mu_loc) / sum_f(j)
+               do j = 1, nl
+                  if (.not. friction_film(j)) cycle
+                  do k = lead_prev + 1, lead
+                     call film%enter(fstep(j), fstate(:, :, j), physical(k))
+                  end do
+                  pl = push(j, :)
+                  pressure = rstep%k_eff(j) * pl
+                  call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
+                     & geo%dx_el, share)
+                  film_sum = 0.0_wp
+                  sum_ft(j) = 0.0_wp
+                  sum_fa(j) = 0.0_wp
+                  n_clamp_j(j) = 0
+                  do i = 1, n
+                     k = k1 + (i-1) * geo%spacing
+                     if (share(i) >= 1.0_wp) then
+                        tan_el(i) = geo%tan_theta(k)
+                        clamped = geo%clamped(k)
+                        mu_eff = m%mu_loc
+                     else
+                        mu_eff = m%mu_loc * share(i)
+                        call facet_tangent(geo%slope(k), mu_eff, tan_max, tan_el(i), clamped)
+                     end if
+                     sum_ft(j) = sum_ft(j) + pl(i) * tan_el(i)
+                     if (share(i) >= 1.0_wp) then
+                        sum_fa(j) = sum_fa(j) + pl(i) * geo%adhesion(k)
+                     else
+                        sum_fa(j) = sum_fa(j) + pl(i) * adhesion_tangent(geo%slope(k), &
+                           & tan_el(i), clamped, mu_eff, tan_max)
+                     end if
+                     n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, pl(i) > 0.0_wp .and. clamped)
+                     if (t >= 0) local_sum(j) = local_sum(j) + pl(i) * mu_eff
+                     film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing &
+                        & + 1), j))
+                  end do
+                  if (t >= 0) then
+                     force_sum(j) = force_sum(j) + sum_f(j)
+                     film_mean_sum(j) = film_mean_sum(j) + film_sum / real(n, wp)
+                     if (series .and. present(film_thickness)) then
+                        film_thickness(t+1, j) = film_sum / real(n, wp)
+                        local_friction(t+1, j) = 0.0_wp
+                        if (sum_f(j) > 0.0_wp) local_friction(t+1, j) = &
+                           & local_partial(pl, share, m%mu_loc) / sum_f(j)
+                     end if
                   end if
-               end if
-            end do
-            lead_prev = lead
-         end if
-         if (t >= 0 .and. series .and. present(film_thickness)) then
-            ! speeds where the film is off (no motion): no film, the full mu_loc
-            do j = 1, nl
-               if (friction_film(j)) cycle
-               film_thickness(t+1, j) = 0.0_wp
-               local_friction(t+1, j) = merge(m%mu_loc, 0.0_wp, sum_f(j) > 0.0_wp)
-            end do
-         end if
-         if (energy) then
+               end do
+               lead_prev = lead
+            end if
+            if (t >= 0 .and. series .and. present(film_thickness)) then
+               ! speeds where the film is off (no motion): no film, the full mu_loc
+               do j = 1, nl
+                  if (friction_film(j)) cycle
+                  film_thickness(t+1, j) = 0.0_wp
+                  local_friction(t+1, j) = merge(m%mu_loc, 0.0_wp, sum_f(j) > 0.0_wp)
+               end do
+            end if
+      end subroutine friction_films
+
+      !> The energy scheme's step: the work the facets did on the elements
+      !> beyond the pad's own descent (lane_work), and the pad's descent
+      !> against the film.
+      subroutine energy_step()
+         integer :: j
             ! the work of the step on the elements beyond the pad's own
             ! descent: what the facets did (lane_work)
             if (any(have_prev(1:nl))) then
@@ -1480,13 +1528,14 @@ contains
                & push_prev)
             delta_last = cmin + x
             have_prev = .true.
-         end if
-         if (any_memory) call rubber%update(rstep, state, u_free, push)
-         delta_prev2 = merge(delta_prev, -huge(1.0_wp), delta_prev > -huge(1.0_wp))
-         wh_prev = wh
-         delta_prev = cmin + x
-         if (t < 0) cycle                                    ! spin-up
+      end subroutine energy_step
 
+      !> The step's friction (Eq. 11, as the facets' work per distance: the
+      !> rubber's part and the local friction's) and the means, counts and
+      !> series of an averaged position t.
+      subroutine accumulate(t)
+         integer, intent(in) :: t
+         integer :: j
          do j = 1, nl
             sum_f(j) = kel(j) * sum_f(j)
             ! Eq. 11 (divided by W), as the facets' work per distance: the
@@ -1518,49 +1567,53 @@ contains
                contact(t+1, j) = n_contact(j)
             end if
          end do
-      end do
+      end subroutine accumulate
 
-      do j = 1, nl
-         out(j)%mu = mu_sum(j) / real(geo%n_avg, wp)                   ! Eq. 12
-         out(j)%mu_hysteresis = hyst_sum(j) / real(geo%n_avg, wp)
-         out(j)%mu_adhesion = adh_sum(j) / real(geo%n_avg, wp)
-         if (energy) then
-            ! mu is the dissipation: the rubber's and the local friction's
-            ! (the mean of mu_inst, the facets' work, differs from it by the
-            ! film's work round the profile over W and the distance)
-            if (geo%closed .and. .not. rstep%memory(j)) then
-               ! An elastic rubber dissipates nothing: round a closed profile
-               ! its work returns exactly, and the sum of the steps' work
-               ! differs from 0 by rounding only (~1e-19).
-               out(j)%mu_hysteresis = 0.0_wp
+      !> Each lane's summary (Eq. 12 and the effects that ran).
+      subroutine summarise()
+         integer :: j
+         do j = 1, nl
+            out(j)%mu = mu_sum(j) / real(geo%n_avg, wp)                   ! Eq. 12
+            out(j)%mu_hysteresis = hyst_sum(j) / real(geo%n_avg, wp)
+            out(j)%mu_adhesion = adh_sum(j) / real(geo%n_avg, wp)
+            if (energy) then
+               ! mu is the dissipation: the rubber's and the local friction's
+               ! (the mean of mu_inst, the facets' work, differs from it by the
+               ! film's work round the profile over W and the distance)
+               if (geo%closed .and. .not. rstep%memory(j)) then
+                  ! An elastic rubber dissipates nothing: round a closed profile
+                  ! its work returns exactly, and the sum of the steps' work
+                  ! differs from 0 by rounding only (~1e-19).
+                  out(j)%mu_hysteresis = 0.0_wp
+               end if
+               if (n_nocontact(j) == geo%n_avg .and. .not. contact_before(j)) then
+                  ! nothing touched: no facet did any work, and what the film
+                  ! did round the profile is not friction
+                  out(j)%mu_hysteresis = 0.0_wp
+               end if
+               out(j)%mu = out(j)%mu_hysteresis + out(j)%mu_adhesion
             end if
-            if (n_nocontact(j) == geo%n_avg .and. .not. contact_before(j)) then
-               ! nothing touched: no facet did any work, and what the film
-               ! did round the profile is not friction
-               out(j)%mu_hysteresis = 0.0_wp
+            out(j)%hydroplaning_fraction = real(n_nocontact(j), wp) / real(geo%n_avg, wp)
+            out(j)%wet_fraction = real(n_wet(j), wp) / real(geo%n_avg, wp)
+            out(j)%max_balance_residual = resid_max(j)
+            out(j)%mean_hydro_load = wh_sum(j) / real(geo%n_avg, wp)
+            out(j)%max_compression = u_max(j)
+            out(j)%n_clamped = n_clamped(j)
+            out(j)%bearing_evaluations = n_eval(j)
+            if (rstep%memory(j)) out(j)%memory_updates = int(n, i8) * int(geo%n_avg + spin(j), i8)
+            out(j)%spinup = spin(j)
+            out(j)%viscous_memory_ran = rstep%memory(j)
+            out(j)%bearing_ran = load_film(j)
+            out(j)%friction_film_ran = friction_film(j)
+            if (friction_film(j)) then
+               if (force_sum(j) > 0.0_wp) out(j)%mean_local_friction = local_sum(j) / force_sum(j)
+               out(j)%mean_film_thickness = film_mean_sum(j) / real(geo%n_avg, wp)
+            else
+               out(j)%mean_local_friction = m%mu_loc            ! no film: the full mu_loc
             end if
-            out(j)%mu = out(j)%mu_hysteresis + out(j)%mu_adhesion
-         end if
-         out(j)%hydroplaning_fraction = real(n_nocontact(j), wp) / real(geo%n_avg, wp)
-         out(j)%wet_fraction = real(n_wet(j), wp) / real(geo%n_avg, wp)
-         out(j)%max_balance_residual = resid_max(j)
-         out(j)%mean_hydro_load = wh_sum(j) / real(geo%n_avg, wp)
-         out(j)%max_compression = u_max(j)
-         out(j)%n_clamped = n_clamped(j)
-         out(j)%bearing_evaluations = n_eval(j)
-         if (rstep%memory(j)) out(j)%memory_updates = int(n, i8) * int(geo%n_avg + spin(j), i8)
-         out(j)%spinup = spin(j)
-         out(j)%viscous_memory_ran = rstep%memory(j)
-         out(j)%bearing_ran = load_film(j)
-         out(j)%friction_film_ran = friction_film(j)
-         if (friction_film(j)) then
-            if (force_sum(j) > 0.0_wp) out(j)%mean_local_friction = local_sum(j) / force_sum(j)
-            out(j)%mean_film_thickness = film_mean_sum(j) / real(geo%n_avg, wp)
-         else
-            out(j)%mean_local_friction = m%mu_loc            ! no film: the full mu_loc
-         end if
-      end do
-   contains
+         end do
+      end subroutine summarise
+
       !> The road sample an extended index stands for.
       pure integer function physical(kk)
          integer, intent(in) :: kk
