@@ -140,7 +140,11 @@ module pavefric_model
    end type param_set_type
 
    !> Everything the friction model needs besides the profile and speeds.
-   !> SI units; built from the table by model_from_parameters.
+   !> SI units; built from the table by model_from_parameters. The
+   !> components (rubber law, film, pad checks) build themselves from
+   !> `values`, so the fields are a view of them: to change a variable,
+   !> change its value in the set (or use the typed setters) and build the
+   !> model again, not the field.
    type :: model_type
       real(wp) :: mu_loc = 0.0_wp, microtexture_rms = 0.0_wp
       real(wp) :: length = 0.0_wp, width = 0.0_wp, thickness = 0.0_wp, load = 0.0_wp
