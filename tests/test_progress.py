@@ -172,7 +172,7 @@ def test_bench_counts_its_sections(monkeypatch, capsys, quiet):
     for name in ("sweep", "whole_program", "throughput", "scaling_elements", "scaling_length",
                  "threads", "api_threads", "mpi_batch", "estimate_accuracy", "accuracy_cost"):
         monkeypatch.setattr(bench, name, stub(name))
-    monkeypatch.setattr(bench, "_reference", lambda: None)
+    monkeypatch.setattr(bench, "_reference", lambda path=None: None)
     monkeypatch.setattr(bench, "PlainLoop", lambda tmp: None)
     monkeypatch.setattr(bench_io, "reading", stub("reading"))
     monkeypatch.setattr(bench_mpi, "run", stub("batch"))
