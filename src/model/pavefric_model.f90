@@ -1484,7 +1484,7 @@ contains
       character(len=:), allocatable, intent(inout) :: warnings
       type(film_entry_type), allocatable :: models(:)
       type(rubber_entry_type), allocatable :: laws(:)
-      integer :: k, j, i
+      integer :: k, j
       do k = 1, size(specs)
          if (.not. set%v(k)%set) cycle
          select case (specs(k)%kind)
@@ -1498,43 +1498,19 @@ contains
             end do
          end select
       end do
-      ! variables given that the chosen rubber does not use (a law's own,
-      ! given for another)
+      ! variables given that the chosen rubber law or wet model does not
+      ! use (another law's or model's own)
       laws = rubber_models()
       do j = 1, size(laws)
-         if (laws(j)%name == set%v(p_rubber_model)%t) cycle
-         do i = 1, size(laws(j)%parameters)
-            k = find_parameter(specs, laws(j)%parameters(i)%group, laws(j)%parameters(i)%name)
-            if (k == 0) cycle
-            select case (specs(k)%kind)
-            case (kind_real_list)
-               if (.not. set%v(k)%set) cycle
-               if (.not. allocated(set%v(k)%list)) cycle
-               if (size(set%v(k)%list) == 0) cycle
-               call add_warning(warnings, "&rubber " // specs(k)%name // " is not used " // &
-                  & "with &rubber model = '" // set%v(p_rubber_model)%t // "' (a variable " // &
-                  & "of model = '" // laws(j)%name // "'; set it to use it)")
-            case default
-               if (given_other(specs(k), set%v(k))) call add_warning(warnings, "&rubber " // &
-                  & specs(k)%name // " = " // to_str(set%v(k)%r) // " is not used with " // &
-                  & "&rubber model = '" // set%v(p_rubber_model)%t // "' (a variable of " // &
-                  & "model = '" // laws(j)%name // "'; set it to use it)")
-            end select
-         end do
+         if (laws(j)%name /= set%v(p_rubber_model)%t) call warn_unused(specs, set, &
+            & laws(j)%parameters, "&rubber model", set%v(p_rubber_model)%t, "model", &
+            & laws(j)%name, warnings)
       end do
-      ! variables given that the chosen wet model does not use
-      ! (a wet model's own variables, given for another)
       models = wet_models()
       do j = 1, size(models)
-         if (models(j)%name == set%v(p_wet_model)%t) cycle
-         do i = 1, size(models(j)%parameters)
-            k = find_parameter(specs, models(j)%parameters(i)%group, models(j)%parameters(i)%name)
-            if (k == 0) cycle
-            if (given_other(specs(k), set%v(k))) call add_warning(warnings, "&" // &
-               & specs(k)%group // " " // specs(k)%name // " = " // to_str(set%v(k)%r) // &
-               & " is not used with &water wet_model = '" // set%v(p_wet_model)%t // &
-               & "' (a variable of wet_model = '" // models(j)%name // "'; set it to use it)")
-         end do
+         if (models(j)%name /= set%v(p_wet_model)%t) call warn_unused(specs, set, &
+            & models(j)%parameters, "&water wet_model", set%v(p_wet_model)%t, "wet_model", &
+            & models(j)%name, warnings)
       end do
       if (set%v(p_wet_model)%t /= "squeeze" .and. &
             & given_other(specs(p_microtexture_rms), set%v(p_microtexture_rms))) then
@@ -1544,6 +1520,34 @@ contains
             & "with the microtexture)")
       end if
    end subroutine plausibility_warnings
+
+   !> A warning for each variable of a component that is not the chosen
+   !> one (`own`: its declarations; `owner` its name, `key` the variable
+   !> that selects it, `selector` that variable as "&group name", `chosen`
+   !> its value) given a value other than its default.
+   pure subroutine warn_unused(specs, set, own, selector, chosen, key, owner, warnings)
+      type(param_spec_type), intent(in) :: specs(:), own(:)
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in) :: selector, chosen, key, owner
+      character(len=:), allocatable, intent(inout) :: warnings
+      character(len=:), allocatable :: given
+      integer :: i, k
+      do i = 1, size(own)
+         k = find_parameter(specs, own(i)%group, own(i)%name)
+         if (k == 0) cycle
+         if (specs(k)%kind == kind_real_list) then
+            if (.not. set%v(k)%set .or. .not. allocated(set%v(k)%list)) cycle
+            if (size(set%v(k)%list) == 0) cycle
+            given = ""
+         else
+            if (.not. given_other(specs(k), set%v(k))) cycle
+            given = " = " // to_str(set%v(k)%r)
+         end if
+         call add_warning(warnings, "&" // specs(k)%group // " " // specs(k)%name // given // &
+            & " is not used with " // selector // " = '" // chosen // "' (a variable of " // &
+            & key // " = '" // owner // "'; set it to use it)")
+      end do
+   end subroutine warn_unused
 
    !> Whether a real variable was given a value other than its default (a
    !> value given equal to the default changes nothing: Python passes every

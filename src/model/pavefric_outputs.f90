@@ -139,6 +139,21 @@ contains
          & "backward Euler", out_flag)
    end function numerics_outputs
 
+   !> Variable k's declaration: from `table` (output_table(), when the
+   !> caller has it), else from a table built here.
+   pure function declaration(k, table) result(v)
+      integer, intent(in) :: k
+      type(output_var_type), intent(in), optional :: table(:)
+      type(output_var_type) :: v
+      type(output_var_type) :: t(n_outputs)
+      if (present(table)) then
+         v = table(k)
+      else
+         t = output_table()
+         v = t(k)
+      end if
+   end function declaration
+
    !> When variable k is written (docs/outputs.md), as output_present decides.
    pure function output_condition(k) result(text)
       integer, intent(in) :: k
@@ -160,9 +175,9 @@ contains
    pure subroutine output_condition_text(k, text)
       integer, intent(in) :: k
       character(len=:), allocatable, intent(out) :: text
-      type(output_var_type) :: t(n_outputs)
-      t = output_table()
-      select case (t(k)%when)
+      type(output_var_type) :: v
+      v = declaration(k)
+      select case (v%when)
       case (when_friction_film)
          text = "when the drainage film (&water wet_model = 'squeeze') ran at any speed"
       case (when_series)
@@ -186,15 +201,9 @@ contains
       !> output_table(), when the caller has it (building it costs tens of
       !> microseconds: a loop over the variables passes it).
       type(output_var_type), intent(in), optional :: table(:)
-      type(output_var_type) :: t(n_outputs)
-      integer :: when
-      if (present(table)) then
-         when = table(k)%when
-      else
-         t = output_table()
-         when = t(k)%when
-      end if
-      select case (when)
+      type(output_var_type) :: v
+      v = declaration(k, table)
+      select case (v%when)
       case (when_friction_film)
          output_present = any(res%friction_film_ran)
       case (when_series)
@@ -230,19 +239,13 @@ contains
       real(wp), intent(out) :: values(:)
       !> output_table(), when the caller has it (as for output_present).
       type(output_var_type), intent(in), optional :: table(:)
-      type(output_var_type) :: t(n_outputs)
-      character(len=:), allocatable :: name
+      type(output_var_type) :: v
       integer :: ns, np
       ns = size(res%mu)
       np = 0
       if (allocated(res%mu_inst)) np = size(res%mu_inst, 1)
-      if (present(table)) then
-         name = table(k)%name
-      else
-         t = output_table()
-         name = t(k)%name
-      end if
-      select case (name)
+      v = declaration(k, table)
+      select case (v%name)
       case ("mu")
          values(1:ns) = res%mu
       case ("n_clamped")
