@@ -489,3 +489,24 @@ def test_python_sets_parameters_as_typed_values():
     with pytest.raises(pavefric.PavefricError,
                        match=r"&numerics substeps = 2.9: must be a whole number in \[1, 4096\]"):
         pavefric.simulate(z, 0.87e-3, [20.0], substeps=2.9)
+
+
+def test_reading_a_profile_takes_only_its_groups_typed_values(tmp_path):
+    """The typed path of read_profile (scene_from_typed with profile_only)
+    refuses a variable of another group, naming it, as the namelist path
+    refuses another group."""
+    from pavefric import _core
+    from pavefric.core import _format, _spec, _typed
+
+    path = tmp_path / "p.txt"
+    path.write_text("height_mm\n" + "\n".join(str(0.1 * (k % 7)) for k in range(200)) + "\n")
+    items = {("surface", "profile_file"): _format(_spec("surface", "profile_file"), str(path),
+                                                  "path"),
+             ("pad", "load"): _format(_spec("pad", "load"), 20.0, "load")}
+    out = _core.pf_profile_read_info(*_typed(items))
+    assert out[-2] != 0
+    assert "&pad load: reading a profile takes only &surface and &preprocess variables" in \
+        pavefric.core._text(out[-1])
+    del items[("pad", "load")]
+    out = _core.pf_profile_read_info(*_typed(items))
+    assert out[-2] == 0 and out[0] == 200, pavefric.core._text(out[-1])

@@ -103,3 +103,16 @@ def test_the_checkout_is_recognised():
 
     assert in_checkout(ROOT)
     assert not in_checkout(ROOT / "docs")
+
+
+def test_bench_refuses_a_missing_reference_in_one_line(tmp_path):
+    """bench --reference names a file that is not there: one line naming it,
+    exit status 1, before any measurement (nothing written)."""
+    report = tmp_path / "performance.md"
+    r = cli("bench", "--quick", "-q", "--reference", str(tmp_path / "nope.py"), "--report",
+            str(report), cwd=ROOT)
+    assert r.returncode == 1, r.stdout + r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.stderr
+    assert "bench --reference" in lines[0] and "nope.py: no such file" in lines[0]
+    assert not report.exists()
