@@ -72,6 +72,9 @@ BATCH_VARS = ["depth", "speed", "speed_kmh", "mu", "wet_fraction", "hydroplaning
 # 0.1.0 computed the paper's scheme on the profile's own spacing; the same
 # settings now reproduce it (tests/test_regression.py's 0.1.0 comparisons)
 PAPER = {"numerics": ("friction_scheme", "'paper'"), "pad": ("element_length", "0.0")}
+# ... and the bearing's alpha calibrated then (the default and the scenes'
+# value until it was refitted in 2026-11-26 to 12.0, docs/validation.md)
+PAPER_ALPHA = "11.8"
 NUMERIC_ATTRS = ["pad_elements", "averaged_positions", "spinup_positions", "profile_points",
                  "profile_dx"]
 
@@ -216,6 +219,12 @@ def paper_scene(scene: Path, directory: Path) -> Path:
 
     text = re.sub(r"(\b(?:profile_file|profiles|profile_list)\s*=\s*)(['\"])(.*?)\2", absolute,
                   text)
+    if re.search(r"^\s*alpha\s*=", text, re.M):
+        text = re.sub(r"^(\s*alpha\s*=\s*)[-+0-9.eEdD]+", rf"\g<1>{PAPER_ALPHA}", text,
+                      flags=re.M)
+    elif re.search(r"^\s*&water\b", text, re.M | re.I):
+        text = re.sub(r"^(\s*&water\b[^\n]*)$", rf"\1\n  alpha = {PAPER_ALPHA}", text,
+                      count=1, flags=re.M | re.I)
     for group, (name, value) in PAPER.items():
         pattern = re.compile(rf"^(\s*&{group}\b[^\n]*)$", re.M | re.I)
         if pattern.search(text):
@@ -258,6 +267,8 @@ def run_case(case, paper: bool = False) -> dict:
     kw = dict(kw)
     if paper:
         kw.update(friction_scheme="paper", element_length=0.0)
+        if kw.get("depth", 0.0) > 0.0:
+            kw.setdefault("alpha", float(PAPER_ALPHA))
     closed = kw.pop("closed", True)
     series = kw.pop("series", False)
     with warnings.catch_warnings():

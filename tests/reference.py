@@ -8,8 +8,10 @@ position averaged), on the profile's own spacing (&pad element_length = 0).
 
 Two friction schemes (MODEL.md §3 and §10): 'paper', Eq. 10 on
 central-difference slopes; 'energy', the facets' work: the rubber's part from
-the elements' work over each step (trapezoidal in time) less the pad's
-descent, the local friction's part mu (1 + s^2) / (1 - mu s) per unit force;
+the elements' work over each step (each element's force K u + C du/dt
+averaged along the step's path, u linear in time from the step's start to its
+end, times the rise of the road under it; none for an element off the road at
+both ends) less the pad's descent, the local friction's part mu (1 + s^2) / (1 - mu s) per unit force;
 per position (series) the facets' work, on average the dissipation (the
 facets' work less the film's: the load the elements did not carry times the
 pad's descent).
@@ -152,9 +154,17 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                 work = film = 0.0
                 if prev is not None:
                     f_old, d_old = prev
-                    work = (0.5 * (f_old + force) * ((u - u_old) - (delta - d_old))).sum()
+                    # K u + C du/dt along u linear over the step (dt = dx/V);
+                    # an element off the road at both ends touches nothing
+                    rate = viscosity * v / dx * (u - u_old)
+                    f_mean = width * dx * (stiffness * 0.5 * (u_old + u) + rate)
+                    f_mean = np.where((f_old > 0) | (force > 0), f_mean, 0.0)
+                    work = (f_mean * ((u - u_old) - (delta - d_old))).sum()
                     # the load the elements did not carry, times the descent
-                    film = (load - 0.5 * (f_old.sum() + force.sum())) * (delta - d_old)
+                    # (a road with a film only: dry, the friction is the
+                    # facets' work)
+                    if depth > 0 and v > 0:
+                        film = (load - f_mean.sum()) * (delta - d_old)
                 adhesion = (force * adh[k]).sum() / load
                 mu_j = work / (load * dx) + adhesion             # the facets' work (series)
                 mean_j = (work - film) / (load * dx) + adhesion  # the dissipation (mean)

@@ -181,3 +181,32 @@ def test_a_coarse_pass_would_miss_the_wet_error():
     assert 7e-3 < error < 9e-3
     assert abs(coarse - one) < error / 20.0            # 34x too small
     assert error < 3.0 * abs(half - one) < 3.0 * error  # the chosen pass bounds it
+
+
+def test_the_warning_is_relative_to_mu():
+    """Issue 23's reproducers: the default wet run on inputs/ctm_wet.nml is
+    12 % off at 60 km/h, and the shipped compound's hysteresis (mu_loc = 0,
+    30 C) three quarters off, both far below the old absolute 0.1 and silent
+    before; each now warns with the share, and the warning is recorded."""
+    scene = pavefric.load_scene(ROOT / "inputs" / "ctm_wet.nml")
+    with pytest.warns(pavefric.PavefricWarning, match=r"mu_error_estimate") as said:
+        ds = scene.simulate(speeds_kmh=[20.0, 60.0])
+    est, mu = ds["mu_error_estimate"].values, ds["mu"].values
+    assert np.max(est) < 0.1 and np.max(est / mu) > 0.05
+    text = [str(w.message) for w in said if "mu_error_estimate" in str(w.message)][0]
+    share = 100 * est[1] / mu[1]
+    assert f"({share:.2g} % of mu" in text and "at 60 km/h" in text
+    assert "mu_error_estimate" in ds.attrs["warnings"]
+    from pavefric.rubber import compound
+    rubber = {k: v for k, v in compound(ROOT / "inputs" / "rubber" / "tread_compound.nml").items()
+              if k != "temperature"}
+    profile = pavefric.load_scene(ROOT / "inputs" / "ctm_dry.nml")
+    with pytest.warns(pavefric.PavefricWarning, match=r"% of mu"):
+        ds = profile.simulate(speeds_kmh=[20.0], mu_loc=0.0, temperature=30.0, **rubber)
+    assert ds["mu_error_estimate"].values[0] > 0.3 * ds["mu"].values[0]
+    # below 5 % of mu, or below 0.001, it stays silent
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pavefric.PavefricWarning)
+        ds = scene.simulate(speeds_kmh=[20.0], tolerance=1e-3)
+        quiet = pavefric.load_scene(ROOT / "inputs" / "ctm_dry.nml").simulate(speeds_kmh=[20.0])
+    assert quiet["mu_error_estimate"].values[0] < 0.05 * quiet["mu"].values[0]

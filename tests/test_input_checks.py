@@ -187,7 +187,7 @@ def test_a_default_given_again_is_no_reason_to_warn(tmp_path):
     """Python passes every variable of a scene, defaults included: the value
     decides, so the program and Python record the same warnings."""
     scene = write_scene(tmp_path, groups={"water": "depth = 1e-3, wet_model = 'squeeze', "
-                                                   "alpha = 11.8, beta = 1.75"})
+                                                   "alpha = 12.0, beta = 1.75"})
     out = tmp_path / "o.nc"
     r = run_program(scene, "-o", out)
     assert r.returncode == 0 and "is not used" not in r.stderr, r.stderr

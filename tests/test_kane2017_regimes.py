@@ -61,5 +61,7 @@ def test_the_drainage_model_is_quiet_in_the_same_scenes(medium):
 
 
 def test_an_ordinary_wet_scene_is_quiet(medium):
+    """No regime warning (the default step's own error at 60 km/h, 8 % of mu,
+    is said by the error estimate's warning: not a regime of Eq. 15)."""
     _, said = run(medium, [20.0, 40.0, 60.0], depth=1e-3)
-    assert said == []
+    assert [w for w in said if "mu_error_estimate" not in w] == []

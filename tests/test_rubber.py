@@ -192,17 +192,29 @@ def sinusoid_case(per_wave: int, pad_waves: int = 16, waves: int = 64, speed_kmh
     loss = np.sum(arms * w * taus / (1 + (w * taus) ** 2))
     mu_cont = n * width * dx * k * amplitude**2 * loss / (2 * load)
     # the scheme's own: exact step on the sampled (piecewise-linear) sinusoid,
-    # E*_d(theta) = K_inf + sum K G (1 - e^-i theta)/(1 - E e^-i theta), central slopes
-    # ('paper'); the energy scheme's trapezoid of the force over the step's
-    # compression, (p' + p)/2 (u - u'), averages to the same A^2 sin(theta)
-    # E''_d / 2 per element: (1 + e^-i theta)(1 - e^i theta) = -2i sin(theta)
+    # u_n = A e^(i theta n): each arm's stretch w = u - v is W u_n with
+    # W = G (1 - e^-i theta)/(1 - E e^-i theta), so the step's end pressure is
+    # E*_d u, E*_d = K_inf + sum K W. 'paper': Eq. 10 on central slopes,
+    # A^2 sin(theta) E''_d / 2 per element. 'energy': the pressure averaged
+    # along the step's path, K_inf (u + u')/2 + sum K [H (u' - u) + G w]
+    # (H = (1 - G)/r), times u' - u: per element and step on average
+    # A^2 sum K [2 H (1 - cos theta) - G^2 Re (1 - e^-i theta)^2/(1 - E e^-i theta)] / 2,
+    # the dashpots' dissipation (0 for K_inf: elastic)
     dt = dx / v
     r = dt / taus
     e = np.exp(-r)
     g = -np.expm1(-r) / r
     theta = k * dx
-    e_d = k_inf + np.sum(arms * g * (1 - np.exp(-1j * theta)) / (1 - e * np.exp(-1j * theta)))
-    mu_disc = n * width * dx * (np.sin(k * dx) / dx) * amplitude**2 * e_d.imag / (2 * load)
+    if scheme == "paper":
+        e_d = k_inf + np.sum(arms * g * (1 - np.exp(-1j * theta))
+                             / (1 - e * np.exp(-1j * theta)))
+        per_element = np.sin(theta) * e_d.imag
+    else:
+        h = (1 - g) / r
+        q = 1 - np.exp(-1j * theta)
+        per_element = np.sum(arms * (2 * h * (1 - np.cos(theta))
+                                     - g**2 * (q**2 / (1 - e * np.exp(-1j * theta))).real))
+    mu_disc = n * width * amplitude**2 * per_element / (2 * load)
     return ds, mu_cont, mu_disc, n
 
 

@@ -52,15 +52,15 @@ def test_reported_error_bounds_the_actual_error(name, depth):
 
 
 def test_extrapolation_meets_a_tolerance_at_fewer_substeps():
-    """GSP dry at 20 and 60 km/h: Euler needs substeps 64 and 128 for 1e-3,
-    the extrapolated value 16 and 32 (measured; docs/accuracy.md), and is
-    closer to the limit."""
+    """GSP dry at 20 and 60 km/h: Euler needs substeps 64 for 1e-3, the
+    extrapolated value 32 (measured 2026-11-26 with the step's mean force:
+    64 and 128 against 16 and 32 before it; docs/accuracy.md)."""
     scene = pavefric.load_scene(ROOT / "inputs" / "surfaces" / "GSP.nml")
     kw = dict(speeds_kmh=[20.0, 60.0], depth=0.0, tolerance=1e-3)
     euler = scene.simulate(time_scheme="euler", **kw)
     extra = scene.simulate(**kw)                  # the default scheme
     assert extra["mu_extrapolated"].values.tolist() == [1, 1]
-    assert np.all(4 * extra["substeps_used"].values <= euler["substeps_used"].values)
+    assert np.all(2 * extra["substeps_used"].values <= euler["substeps_used"].values)
 
 
 def test_a_tighter_tolerance_costs_more_and_errs_less(profile_m):
@@ -95,7 +95,9 @@ def test_program_records_the_estimate_and_series_share_positions(tmp_path, profi
         assert ds["mu_inst"].shape == (2, ds.sizes["position"])
         # the series are the finest pass's (mu_inst's mean is its mu)
         scene_now = pavefric.load_scene(scene)
-        finest = scene_now.simulate(substeps=int(ds["substeps_used"].values[0]), tolerance=0.0)
+        finest = scene_now.simulate(substeps=int(ds["substeps_used"].values[0]), tolerance=0.0,
+                                    series=True)
+        np.testing.assert_allclose(ds["mu_inst"].values, finest["mu_inst"].values, rtol=1e-12)
         np.testing.assert_allclose(ds["mu_inst"].mean("position").values,
                                    finest["mu"].values, rtol=1e-12)
         assert ds.attrs["param_numerics_tolerance"] == 1e-3

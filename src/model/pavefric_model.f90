@@ -173,7 +173,7 @@ module pavefric_model
       !> forces balances the elements' stored energy and dissipation) or
       !> 'paper' (Eq. 10 on central-difference slopes).
       character(len=:), allocatable :: friction_scheme
-      !> &numerics time_scheme: 'extrapolated', 'euler' or 'exact'.
+      !> &numerics time_scheme: 'auto', 'extrapolated', 'euler' or 'exact'.
       character(len=:), allocatable :: time_scheme
       !> Every variable's value, in the table's order: components read their
       !> own by group and name (pavefric_wet_models).
@@ -305,17 +305,21 @@ contains
          & "with tolerance = 0, every speed's error from the time step is estimated from " // &
          & "a second pass at half the step (substeps doubled; about twice the run's cost) " // &
          & "as three times the change, recorded as mu_error_estimate, with a warning where it " // &
-         & "exceeds 0.1; speeds the exact integrator ran need no pass (estimate 0). " // &
+         & "exceeds 5 % of mu (and 0.001); speeds the exact integrator ran need no pass (estimate 0). " // &
          & ".false.: no second pass and no estimate (docs/accuracy.md)")
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
-         & "'exact': a Kelvin-Voigt rubber on a road without a film is integrated exactly " // &
-         & "in time, from contact event to event (other rubbers and films run backward " // &
-         & "Euler, with a warning); needs position_stride = 1. With tolerance > 0, " // &
-         & "'extrapolated' reports the Richardson value of the last two backward-Euler " // &
-         & "passes, 2 mu(s) - mu(s/2), where the passes are in their first-order range and " // &
-         & "its estimate is the smaller (mu_extrapolated says where), meeting a tolerance at " // &
-         & "2 to 4 times fewer substeps; 'euler' reports the finest pass (docs/accuracy.md)", &
-         & choices="extrapolated euler exact")
+         & "'auto': 'exact' where it applies (the Kelvin-Voigt rubber on a dry road, " // &
+         & "position_stride = 1, friction_scheme = 'energy'), else 'extrapolated', with no " // &
+         & "warning; exact_integrator_ran says which ran. 'exact': a Kelvin-Voigt rubber on a road " // &
+         & "without a film is integrated exactly in time, from contact event to event " // &
+         & "(other rubbers and films run backward Euler, with a warning); needs " // &
+         & "position_stride = 1. With tolerance > 0, 'extrapolated' reports the Richardson " // &
+         & "value of the last two backward-Euler passes, 2 mu(s) - mu(s/2), where the " // &
+         & "passes are in their first-order range and its estimate is the smaller " // &
+         & "(mu_extrapolated says where), meeting a tolerance at 2 to 4 times fewer " // &
+         & "substeps; 'euler' reports the finest pass: with substeps = 1 the paper's one " // &
+         & "step per sample (docs/accuracy.md)", &
+         & choices="auto extrapolated euler exact")
       s(p_friction_scheme) = text("numerics", "friction_scheme", "energy", "", "model", &
          & "'energy': the friction of a step is the work the facet forces do, the " // &
          & "elements' stored energy change plus their dissipation (trapezoidal in time), " // &

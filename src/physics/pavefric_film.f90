@@ -186,7 +186,7 @@ contains
       e%name = "kane2017"
       allocate(e%outputs(0))
       allocate(e%parameters(pseudo_bearing_n_parameters))
-      e%parameters(1) = real_param("water", "alpha", "11.8", "1", "model", &
+      e%parameters(1) = real_param("water", "alpha", "12.0", "1", "model", &
          & "empirical bearing coefficient of Eq. 15, a calibration parameter. The default " // &
          & "is the value fitted on the paper's six 20 km/h DFT measurements with the " // &
          & "reference surfaces (python -m pavefric validate, docs/validation.md); the " // &

@@ -58,6 +58,7 @@ module pavefric_maxwell
       procedure :: prepare => mx_prepare
       procedure :: free_compression => mx_free
       procedure :: update => mx_update
+      procedure :: mean_push => mx_mean
       procedure :: memory_effect => mx_memory_effect
    end type maxwell_rubber
 
@@ -125,7 +126,10 @@ contains
 
    !> Step coefficients per lane. coef(:, 1) = sum_k K_k (G_k - E_k) / k_eff
    !> and coef(:, 1+k) = K_k E_k / k_eff give u_free; coef(:, 1+n+k) = 1 - G_k,
-   !> coef(:, 1+2n+k) = G_k - E_k and coef(:, 1+3n+k) = E_k update v_k.
+   !> coef(:, 1+2n+k) = G_k - E_k and coef(:, 1+3n+k) = E_k update v_k;
+   !> coef(:, 2+4n) = K_inf / k_eff, coef(:, 2+4n+k) = K_k H_k / k_eff and
+   !> coef(:, 2+5n+k) = K_k G_k / k_eff give the step's mean pressure
+   !> (mx_mean; H = (1 - G)/r).
    !> V = 0 is the static limit: every arm relaxed, k_eff = K_inf, no memory.
    pure subroutine mx_prepare(self, speeds, advance, elements, step, stat)
       class(maxwell_rubber), intent(in) :: self
@@ -133,21 +137,23 @@ contains
       integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
       integer, intent(out) :: stat
-      real(wp) :: e, g, one_g, g_e, k_eff, a
-      real(wp), allocatable :: ke(:)
+      real(wp) :: e, g, one_g, g_e, k_eff, a, h
+      real(wp), allocatable :: ke(:), kh(:), kg(:)
       integer :: j, k, n, i, nl
       n = size(self%arm_stiffness)
       allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
-         & step%coef(size(speeds), 1 + 4 * n), ke(n), step%mode_decay(size(speeds), n), &
-         & step%mode_weight(size(speeds), n), stat=stat)
+         & step%coef(size(speeds), n_coef(n)), ke(n), kh(n), kg(n), &
+         & step%mode_decay(size(speeds), n), step%mode_weight(size(speeds), n), stat=stat)
       if (stat /= 0) return
       do j = 1, size(speeds)
          step%memory(j) = speeds(j) > 0.0_wp
          k_eff = self%stiffness
          do k = 1, n
-            call arm_weights(speeds(j) * self%arm_times(k), advance, e, g, one_g, g_e)
+            call arm_weights(speeds(j) * self%arm_times(k), advance, e, g, one_g, g_e, h)
             k_eff = k_eff + self%arm_stiffness(k) * g
             ke(k) = e
+            kh(k) = self%arm_stiffness(k) * h
+            kg(k) = self%arm_stiffness(k) * g
             step%coef(j, 1 + n + k) = one_g
             step%coef(j, 1 + 2 * n + k) = g_e
             step%coef(j, 1 + 3 * n + k) = e
@@ -156,7 +162,10 @@ contains
          do k = 1, n
             a = a + self%arm_stiffness(k) * step%coef(j, 1 + 2 * n + k)
             step%coef(j, 1 + k) = self%arm_stiffness(k) * ke(k) / k_eff
+            step%coef(j, 2 + 4 * n + k) = kh(k) / k_eff
+            step%coef(j, 2 + 5 * n + k) = kg(k) / k_eff
          end do
+         step%coef(j, 2 + 4 * n) = self%stiffness / k_eff
          step%coef(j, 1) = a / k_eff
          step%k_eff(j) = k_eff
          ! the arms are the memory's modes: each decays by E_k a step
@@ -168,9 +177,9 @@ contains
       ! every lane's coefficients repeated for each element: the kernels then
       ! run over lanes and elements as one contiguous loop
       nl = size(speeds)
-      allocate(step%per_element(nl * elements, 1 + 4 * n), stat=stat)
+      allocate(step%per_element(nl * elements, n_coef(n)), stat=stat)
       if (stat /= 0) return
-      do k = 1, 1 + 4 * n
+      do k = 1, n_coef(n)
          do i = 1, elements
             step%per_element((i - 1) * nl + 1 : i * nl, k) = step%coef(:, k)
          end do
@@ -198,11 +207,51 @@ contains
          & u_free, push)
    end subroutine mx_update
 
+   !> The number of step coefficients of n arms (mx_prepare).
+   pure integer function n_coef(n)
+      integer, intent(in) :: n
+      n_coef = 2 + 6 * n
+   end function n_coef
+
+   !> Along u linear from u0 to u1 over the step, arm k's spring stretch
+   !> w = u - v_k obeys dw/dt = (u1 - u0)/dt - w/tau, whose mean over the
+   !> step is H (u1 - u0) + G w0 (H = (1 - G)/r): the mean pressure is
+   !>     K_inf (u0 + u1)/2 + sum_k K_k [H_k (u1 - u0) + G_k (u0 - v_k)],
+   !> here over k_eff. Its work (u1 - u0) times that is the change of
+   !> K_inf u^2/2 + sum_k K_k w_k^2/2 plus the dashpots' dissipation
+   !> sum_k K_k int w_k^2/tau_k dt >= 0.
+   pure subroutine mx_mean(self, step, state, u_free, push, mean)
+      class(maxwell_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
+      real(wp), intent(out), contiguous :: mean(:, :)
+      call mean_kernel(size(u_free), size(self%arm_stiffness), step%per_element, state, &
+         & u_free, push, mean)
+   end subroutine mx_mean
+
+   !> mx_mean over m = lanes x elements values, one loop per arm.
+   pure subroutine mean_kernel(m, na, coef, state, u_free, push, mean)
+      integer, intent(in) :: m, na
+      real(wp), intent(in) :: coef(m, 2 + 6 * na), state(m, 1 + na), u_free(m), push(m)
+      real(wp), intent(out) :: mean(m)
+      integer :: p, k
+      do p = 1, m
+         mean(p) = 0.5_wp * coef(p, 2 + 4 * na) * (state(p, 1) + u_free(p) + push(p))
+      end do
+      do k = 1, na
+         do p = 1, m
+            mean(p) = mean(p) + coef(p, 2 + 4 * na + k) * (u_free(p) + push(p) - state(p, 1)) &
+               & + coef(p, 2 + 5 * na + k) * (state(p, 1) - state(p, 1 + k))
+         end do
+      end do
+   end subroutine mean_kernel
+
    !> mx_free over m = lanes x elements values as one loop per arm (long,
    !> contiguous vector loops); each value's sum in the arms' order.
    pure subroutine free_kernel(m, na, coef, state, u_free)
       integer, intent(in) :: m, na
-      real(wp), intent(in) :: coef(m, 1 + 4 * na), state(m, 1 + na)
+      real(wp), intent(in) :: coef(m, 2 + 6 * na), state(m, 1 + na)
       real(wp), intent(out) :: u_free(m)
       integer :: p, k
       do p = 1, m
@@ -219,7 +268,7 @@ contains
    !> again for each arm: the same value).
    pure subroutine update_kernel(m, na, coef, state, u_free, push)
       integer, intent(in) :: m, na
-      real(wp), intent(in) :: coef(m, 1 + 4 * na), u_free(m), push(m)
+      real(wp), intent(in) :: coef(m, 2 + 6 * na), u_free(m), push(m)
       real(wp), intent(inout) :: state(m, 1 + na)
       integer :: p, k
       do k = 1, na
@@ -243,10 +292,11 @@ contains
    !> The exact weights of one arm over a step of length dt = advance / V,
    !> given vt = V tau: r = dt/tau, e = exp(-r), g = (1 - e)/r, one_g = 1 - g,
    !> g_e = g - e, each to a few ulps for every r >= 0 (see the module's
-   !> comment). vt <= 0 (V = 0) is r = infinity.
-   pure elemental subroutine arm_weights(vt, advance, e, g, one_g, g_e)
+   !> comment), and h = (1 - g)/r (1/2 at r = 0, 0 at r = infinity).
+   !> vt <= 0 (V = 0) is r = infinity.
+   pure elemental subroutine arm_weights(vt, advance, e, g, one_g, g_e, h)
       real(wp), intent(in) :: vt, advance
-      real(wp), intent(out) :: e, g, one_g, g_e
+      real(wp), intent(out) :: e, g, one_g, g_e, h
       real(wp) :: r, s
       integer :: n
       if (.not. (vt > advance * 1.0e-300_wp)) then
@@ -255,6 +305,7 @@ contains
          g = 0.0_wp
          one_g = 1.0_wp
          g_e = 0.0_wp
+         h = 0.0_wp
          return
       end if
       r = advance / vt
@@ -265,6 +316,7 @@ contains
             s = 1.0_wp / real(factorial(n + 1), wp) - r * s
          end do
          one_g = r * s
+         h = s
          g = 1.0_wp - one_g
          e = exp(-r)
          ! G - E = (1 - E) - (1 - G), 1 - E = r G
@@ -278,6 +330,7 @@ contains
          g = (1.0_wp - e) / r
          one_g = 1.0_wp - g
          g_e = g - e
+         h = one_g / r
       end if
    end subroutine arm_weights
 

@@ -68,6 +68,11 @@ module pavefric_rubber
       !> The driver spins a closed profile up until what is left of the
       !> start can no longer change the state from one lap to the next.
       real(wp), allocatable :: mode_decay(:, :), mode_weight(:, :)
+      !> A law whose step-mean pressure (mean_push) is linear in the step's
+      !> two compressions alone, mean = c0 u0 + c1 u1 (in units of k_eff),
+      !> gives (c0, c1) per lane here: the driver then forms it within its
+      !> own pass (not allocated by laws with other internal state).
+      real(wp), allocatable :: mean_weights(:, :)
    end type rubber_step_type
 
    !> A rubber element model.
@@ -82,6 +87,9 @@ module pavefric_rubber
       procedure(free_interface), deferred :: free_compression
       !> New state after a step whose compression ends at u_free + push.
       procedure(update_interface), deferred :: update
+      !> The element's pressure averaged over the step, exactly for the
+      !> step's own path (before update: the state is the step's start).
+      procedure(mean_interface), deferred :: mean_push
       !> The effect the element's memory stands for, for the output ('viscous_memory').
       procedure(name_interface), deferred :: memory_effect
    end type rubber_model
@@ -145,6 +153,22 @@ module pavefric_rubber
          real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       end subroutine update_interface
 
+      !> The mean over the step of each element's pressure, in units of
+      !> k_eff (as push): (1/dt) int p dt / k_eff along the path the update
+      !> integrates exactly (u linear in time from the state's u0 to
+      !> u_free + push). Its product with u1 - u0 is then the step's work on
+      !> the element, exactly its stored-energy change plus a non-negative
+      !> dissipation (docs/model.md, "Energy"). Called before update.
+      pure subroutine mean_interface(self, step, state, u_free, push, mean)
+         import :: rubber_model, rubber_step_type, wp
+         class(rubber_model), intent(in) :: self
+         type(rubber_step_type), intent(in) :: step
+         real(wp), intent(in), contiguous :: state(:, :, :)
+         real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
+         !> (lanes, elements)
+         real(wp), intent(out), contiguous :: mean(:, :)
+      end subroutine mean_interface
+
       !> A name, into a deferred-length argument (not a function result:
       !> gfortran keeps such a result's length in a static variable).
       pure subroutine name_interface(self, name)
@@ -163,6 +187,7 @@ module pavefric_rubber
       procedure :: prepare => kv_prepare
       procedure :: free_compression => kv_free
       procedure :: update => kv_update
+      procedure :: mean_push => kv_mean
       procedure :: memory_effect => kv_memory_effect
    end type kelvin_voigt_rubber
 
@@ -225,7 +250,7 @@ contains
       nl = size(speeds)
       allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
          & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1), &
-         & stat=stat)
+         & step%mean_weights(nl, 2), stat=stat)
       if (stat /= 0) return
       do j = 1, nl
          cv = self%viscosity * speeds(j)
@@ -239,6 +264,9 @@ contains
          ! one mode: the compression's relaxation, all of the element
          step%mode_decay(j, 1) = step%coef(j, 1)
          step%mode_weight(j, 1) = 1.0_wp
+         ! kv_mean's (1 - b)(u0 + u1)/2 + b (u1 - u0) as weights of u0, u1
+         step%mean_weights(j, 1) = 0.5_wp * (1.0_wp - step%coef(j, 1)) - step%coef(j, 1)
+         step%mean_weights(j, 2) = 0.5_wp * (1.0_wp - step%coef(j, 1)) + step%coef(j, 1)
       end do
       do i = 1, elements
          step%per_element((i - 1) * nl + 1 : i * nl, 1) = step%coef(:, 1)
@@ -261,6 +289,31 @@ contains
       real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       call kv_update_kernel(size(u_free), state, u_free, push)
    end subroutine kv_update
+
+   !> Along u linear from u0 to u1 = u_free + push, p = K u + C (u1 - u0)/dt
+   !> averages K (u0 + u1)/2 + C (u1 - u0)/dt; over k_eff = K + C/dt, with
+   !> b = (C/dt)/k_eff (coef 1): (1 - b)(u0 + u1)/2 + b (u1 - u0). The work
+   !> is K (u1^2 - u0^2)/2 + C (u1 - u0)^2/dt: stored plus dissipated.
+   pure subroutine kv_mean(self, step, state, u_free, push, mean)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
+      real(wp), intent(out), contiguous :: mean(:, :)
+      call kv_mean_kernel(size(u_free), step%per_element, state, u_free, push, mean)
+   end subroutine kv_mean
+
+   pure subroutine kv_mean_kernel(m, b, state, u_free, push, mean)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: b(m), state(m), u_free(m), push(m)
+      real(wp), intent(out) :: mean(m)
+      integer :: p
+      real(wp) :: u1
+      do p = 1, m
+         u1 = u_free(p) + push(p)
+         mean(p) = 0.5_wp * (1.0_wp - b(p)) * (state(p) + u1) + b(p) * (u1 - state(p))
+      end do
+   end subroutine kv_mean_kernel
 
    !> Over m = lanes x elements values as one contiguous loop.
    pure subroutine kv_free_kernel(m, relax, state, u_free)

@@ -72,9 +72,14 @@ module pavefric_simulate
    real(wp), parameter :: sec_bearing_step = 1.7e-8_wp, sec_bearing_position = 7.1e-7_wp
    real(wp), parameter :: sec_squeeze_step = 4.1e-8_wp, sec_squeeze_position = 0.0_wp
    real(wp), parameter :: sec_run = 1.0e-3_wp, sec_point_pass = 4.5e-7_wp
-   !> mu's estimated error from the time step above which a run at
-   !> tolerance = 0 warns (&numerics error_estimate).
-   real(wp), parameter :: estimate_warning = 0.1_wp
+   !> mu's estimated error from the time step, as a share of mu, above
+   !> which a run at tolerance = 0 warns (&numerics error_estimate); an
+   !> estimate below `estimate_floor` never warns (mu itself near 0).
+   real(wp), parameter :: estimate_warning = 0.05_wp, estimate_floor = 1.0e-3_wp
+   !> Round a closed profile, a negative rubber part no larger than this
+   !> share of the steps' mean |work| is the stored energy's rounding (the
+   !> dissipation it stands for is >= 0 by construction) and reads 0.
+   real(wp), parameter :: rounding_share = 1.0e-10_wp
 
 
    !> One speed's averaged results (see sim_result_type for their meaning).
@@ -469,7 +474,8 @@ contains
       mm = m
       mm%tolerance = 0.0_wp            ! each pass runs its substeps as given
       extrapolate = .true.
-      if (allocated(m%time_scheme)) extrapolate = m%time_scheme == "extrapolated"
+      if (allocated(m%time_scheme)) extrapolate = m%time_scheme == "extrapolated" .or. &
+         & m%time_scheme == "auto"
       call simulate_fixed(mm, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
       allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), active(ns))
@@ -617,17 +623,32 @@ contains
    end subroutine estimate_step_error
 
    !> After a run at tolerance = 0 (all of the pad's grid phases merged): a
-   !> warning where mu's estimated error exceeds `estimate_warning`.
+   !> warning where mu's estimated error exceeds `estimate_warning` of mu
+   !> (and `estimate_floor`), at the speed where its share is largest.
    subroutine warn_estimate(m, res)
       type(model_type), intent(in) :: m
       type(sim_result_type), intent(inout) :: res
-      integer :: worst
+      integer :: worst, j
+      real(wp) :: share, worst_share
       if (m%tolerance > 0.0_wp .or. .not. allocated(res%mu_error)) return
       if (size(res%mu_error) == 0) return
-      worst = maxloc(res%mu_error, dim=1)
-      if (res%mu_error(worst) > estimate_warning) call add_warning(res%warnings, &
+      worst = 0
+      worst_share = estimate_warning
+      do j = 1, size(res%mu_error)
+         if (.not. (res%mu_error(j) > estimate_floor)) cycle
+         ! (mu = 0 with an estimate above the floor: an infinite share)
+         share = huge(1.0_wp)
+         if (abs(res%mu(j)) > 0.0_wp) share = res%mu_error(j) / abs(res%mu(j))
+         if (share > worst_share) then
+            worst = j
+            worst_share = share
+         end if
+      end do
+      if (worst > 0) call add_warning(res%warnings, &
          & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
-         & // " at " // to_str(res%speed_kmh(worst)) // " km/h from the pad's step along " // &
+         & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
+         & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
+         & to_str(res%speed_kmh(worst)) // " km/h from the pad's step along " // &
          & "the road (mu_error_estimate: three times the change at half the step, " // &
          & "substeps doubled): set &numerics " // &
          & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry road " // &
@@ -817,7 +838,7 @@ contains
             & "'extrapolated' (and report the scene: it is a bug)", stat_internal)
          return
       end if
-      if (exact_scheme(m)) then
+      if (exact_scheme(m) .and. .not. scheme_is(m, "auto")) then
          do j = 1, ns
             if (res%exact_integrator_ran(j) .or. .not. res%viscous_memory_ran(j)) cycle
             call add_warning(res%warnings, "&numerics time_scheme = 'exact' integrates the " // &
@@ -1205,6 +1226,7 @@ contains
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
       real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:), u_prev(:,:), push_prev(:,:)
+      real(wp), allocatable :: pmean(:,:)
       integer, allocatable :: samples(:)
       !> The penetration two positions back and the film's load at the
       !> previous position: the wet balance's warm start.
@@ -1214,7 +1236,7 @@ contains
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
       real(wp), dimension(lanes) :: sum_fa, hyst, hyst_sum, adh_sum, delta_last
-      real(wp), dimension(lanes) :: film_work, push_total_prev
+      real(wp), dimension(lanes) :: film_work, push_total_prev, mean_total, hyst_abs_sum
       integer(i8), dimension(lanes) :: n_clamped, n_eval
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
@@ -1251,6 +1273,7 @@ contains
       film_work = 0.0_wp
       push_total_prev = 0.0_wp
       hyst_sum = 0.0_wp
+      hyst_abs_sum = 0.0_wp
       adh_sum = 0.0_wp
       mu_sum = 0.0_wp
       wh_sum = 0.0_wp
@@ -1387,6 +1410,8 @@ contains
          allocate(c(nl, n), d(nl, n), push(nl, n), u_free(nl, n), work(n), &
             & dl(n), gap(n), stat=stat)
          if (stat == 0 .and. energy) allocate(u_prev(nl, n), push_prev(nl, n), stat=stat)
+         if (stat == 0 .and. energy .and. any_memory .and. .not. allocated(rstep%mean_weights)) &
+            & allocate(pmean(nl, n), stat=stat)
          if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
          if (stat == 0 .and. any_load) allocate(gaps(nl, n), stat=stat)
          if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
@@ -1509,14 +1534,36 @@ contains
             ! the work of the step on the elements beyond the pad's own
             ! descent: what the facets did (lane_work)
             if (any(have_prev(1:nl))) then
-               ! (lane_work also remembers this step for the next)
-               call lane_work(nl, n, u_free, push, u_prev, push_prev, cmin + x - delta_last, hyst)
+               if (any_memory .and. allocated(rstep%mean_weights)) then
+                  ! the same, for a law whose mean is linear in the step's two
+                  ! compressions (u_prev is the step's start): in one pass
+                  call lane_work_linear(nl, n, u_free, push, rstep%mean_weights, u_prev, &
+                     & push_prev, cmin + x - delta_last, hyst, mean_total)
+               else if (any_memory) then
+                  ! each element's mean pressure over the step, exact for the
+                  ! path the rubber integrates (the state is still the
+                  ! step's start): the work is then the stored energy's
+                  ! change plus a dissipation >= 0, element by element
+                  call rubber%mean_push(rstep, state, u_free, push, pmean)
+                  call lane_work_mean(nl, n, u_free, push, pmean, u_prev, push_prev, &
+                     & cmin + x - delta_last, hyst, mean_total)
+               else
+                  ! an elastic pad: the trapezoid is the exact mean
+                  ! (lane_work also remembers this step for the next)
+                  call lane_work(nl, n, u_free, push, u_prev, push_prev, &
+                     & cmin + x - delta_last, hyst)
+                  mean_total(1:nl) = 0.5_wp * (push_total_prev(1:nl) + sum_f(1:nl))
+               end if
                ! what the pad's descent did against the film: the load the
-               ! elements did not carry (W - their mean force, the film's
-               ! lift to rounding) times the descent (0 on a dry road)
+               ! elements did not carry on average over the step (W - their
+               ! mean force) times the descent. Without a film there is
+               ! none: W - their mean force is then only the step's path
+               ! between two balances, and the friction is the facets' work
+               ! (a flat road has none, whatever the pad's creep)
                do j = 1, nl
-                  film_work(j) = (m%load - 0.5_wp * kel(j) * (push_total_prev(j) + sum_f(j))) &
-                     & * (cmin(j) + x(j) - delta_last(j))
+                  film_work(j) = 0.0_wp
+                  if (load_film(j)) film_work(j) = (m%load - kel(j) * mean_total(j)) * &
+                     & (cmin(j) + x(j) - delta_last(j))
                end do
             end if
             where (.not. have_prev)
@@ -1552,6 +1599,7 @@ contains
             ! it takes and gives back round the profile is not friction)
             if (energy) hyst_j = hyst_j - film_work(j) / (m%load * geo%advance)
             hyst_sum(j) = hyst_sum(j) + hyst_j
+            hyst_abs_sum(j) = hyst_abs_sum(j) + abs(hyst_j)
             adh_sum(j) = adh_sum(j) + adh_j
             resid = abs(sum_f(j) + wh(j) - m%load) / m%load
             mu_sum(j) = mu_sum(j) + mu_j
@@ -1584,6 +1632,16 @@ contains
                   ! An elastic rubber dissipates nothing: round a closed profile
                   ! its work returns exactly, and the sum of the steps' work
                   ! differs from 0 by rounding only (~1e-19).
+                  out(j)%mu_hysteresis = 0.0_wp
+               end if
+               if (geo%closed .and. rstep%memory(j) .and. out(j)%mu_hysteresis < 0.0_wp &
+                  & .and. out(j)%mu_hysteresis >= -rounding_share * hyst_abs_sum(j) &
+                  & / real(geo%n_avg, wp)) then
+                  ! Round a closed profile the rubber's part is the elements'
+                  ! dissipation in contact (each step's >= 0, mean_push) plus
+                  ! what they lose relaxing off the road; the steps' work holds
+                  ! the stored energy too, which returns, and what is left of
+                  ! it is rounding, below zero only by that
                   out(j)%mu_hysteresis = 0.0_wp
                end if
                if (n_nocontact(j) == geo%n_avg .and. .not. contact_before(j)) then
@@ -1879,6 +1937,63 @@ contains
       w = 0.5_wp * w
    end subroutine lane_work
 
+   !> lane_work with each element's mean push over the step given (the
+   !> rubber's mean_push): sum_i mean_i x ((u_i - u_i') - (delta - delta')),
+   !> and each lane's sum of the means (total). An element off the road at
+   !> both ends of the step (no push at either) touches no facet: it does
+   !> no work, whatever its path's mean (it relaxes on its own, and what it
+   !> stored is dissipated inside it).
+   pure subroutine lane_work_mean(nl, n, u_free, push, mean, u_prev, push_prev, ddelta, w, &
+         & total)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: u_free(nl, n), push(nl, n), mean(nl, n)
+      real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n)
+      real(wp), intent(in) :: ddelta(nl)
+      real(wp), intent(out) :: w(nl), total(nl)
+      integer :: i, j
+      real(wp) :: u, f
+      w = 0.0_wp
+      total = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            u = u_free(j, i) + push(j, i)
+            f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + push(j, i) > 0.0_wp) * mean(j, i)
+            w(j) = w(j) + f * ((u - u_prev(j, i)) - ddelta(j))
+            total(j) = total(j) + f
+            u_prev(j, i) = u
+            push_prev(j, i) = push(j, i)
+         end do
+      end do
+   end subroutine lane_work_mean
+
+   !> lane_work_mean with each element's mean push c0 u' + c1 u formed here
+   !> from the lane's weights (the rubber's mean_weights; u' = u_prev, the
+   !> step's start), in the same pass.
+   pure subroutine lane_work_linear(nl, n, u_free, push, weights, u_prev, push_prev, ddelta, &
+         & w, total)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: u_free(nl, n), push(nl, n), weights(nl, 2)
+      real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n)
+      real(wp), intent(in) :: ddelta(nl)
+      real(wp), intent(out) :: w(nl), total(nl)
+      integer :: i, j
+      real(wp) :: u, f
+      w = 0.0_wp
+      total = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            u = u_free(j, i) + push(j, i)
+            ! (a 0/1 factor, not a branch: the loop stays a vector loop)
+            f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + push(j, i) > 0.0_wp) * &
+               & (weights(j, 1) * u_prev(j, i) + weights(j, 2) * u)
+            w(j) = w(j) + f * ((u - u_prev(j, i)) - ddelta(j))
+            total(j) = total(j) + f
+            u_prev(j, i) = u
+            push_prev(j, i) = push(j, i)
+         end do
+      end do
+   end subroutine lane_work_linear
+
    !> The step's compressions and pushes, for the next step's lane_work.
    pure subroutine lane_remember(nl, n, u_free, push, u_prev, push_prev)
       integer, intent(in) :: nl, n
@@ -1893,11 +2008,33 @@ contains
       end do
    end subroutine lane_remember
 
-   !> Whether the scene asks for the exact Kelvin-Voigt integrator.
+   !> Whether the scene's &numerics time_scheme is `name`.
+   pure logical function scheme_is(m, name)
+      type(model_type), intent(in) :: m
+      character(len=*), intent(in) :: name
+      scheme_is = .false.
+      if (allocated(m%time_scheme)) scheme_is = m%time_scheme == name
+   end function scheme_is
+
+   !> Whether the scene runs the exact Kelvin-Voigt integrator where it
+   !> applies: it asks for it ('exact'), or leaves the choice to the code
+   !> ('auto', the default) on a scene it can serve: the Kelvin-Voigt rubber
+   !> on a dry road, every position, the energy scheme (elsewhere backward
+   !> Euler, as 'extrapolated').
    pure logical function exact_scheme(m)
       type(model_type), intent(in) :: m
       exact_scheme = .false.
-      if (allocated(m%time_scheme)) exact_scheme = m%time_scheme == "exact"
+      if (.not. allocated(m%time_scheme)) return
+      select case (m%time_scheme)
+      case ("exact")
+         exact_scheme = .true.
+      case ("auto")
+         exact_scheme = m%depth <= 0.0_wp .and. m%position_stride == 1
+         if (allocated(m%rubber_model)) exact_scheme = exact_scheme .and. &
+            & m%rubber_model == "kelvin_voigt"
+         if (allocated(m%friction_scheme)) exact_scheme = exact_scheme .and. &
+            & m%friction_scheme /= "paper"
+      end select
    end function exact_scheme
 
    !> One speed of a Kelvin-Voigt pad on a road without a film, integrated

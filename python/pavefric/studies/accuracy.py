@@ -156,7 +156,7 @@ def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
     mu = []
     for k in s:
         ds = scene.simulate(speeds_kmh=speeds, series=False, substeps=int(k), tolerance=0.0,
-                            error_estimate=False)
+                            error_estimate=False, time_scheme="euler")
         mu.append(ds["mu"].values.copy())
         if on_step:
             on_step(f"order, substeps = {k}")

@@ -13,14 +13,14 @@
 !> HEIGHTS.bin: the heights in metres as raw float64. Prints one JSON line:
 !> the compute time (the reading excluded), the element-steps done and mu
 !> per speed. Paper parameters: mu_loc 0.5, 20 mm x 16 mm pad, W 11.8 N,
-!> K 1.4e8, C 1e2, water viscosity 1e-3, alpha 11.8, beta 1.75, theta_max 85.
+!> K 1.4e8, C 1e2, water viscosity 1e-3, alpha 12.0, beta 1.75, theta_max 85.
 program plain_loop
    use, intrinsic :: iso_fortran_env, only: int64, real64
    implicit none
    integer, parameter :: wp = real64
    real(wp), parameter :: mu_loc = 0.5_wp, length = 0.020_wp, width = 0.016_wp, &
       & load = 11.8_wp, stiffness = 1.4e8_wp, viscosity = 1.0e2_wp, eta = 1.0e-3_wp, &
-      & alpha = 11.8_wp, beta = 1.75_wp, theta_max_deg = 85.0_wp
+      & alpha = 12.0_wp, beta = 1.75_wp, theta_max_deg = 85.0_wp
    real(wp), allocatable :: z(:), tan_t(:), u(:), c(:), cs(:), speeds(:), mu(:)
    real(wp), allocatable :: ze(:), te(:)
    real(wp) :: dx, depth, v, k_eff, kel, decay, pref, delta, s, level, total, mu_sum, wh

@@ -219,7 +219,7 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "A run at `tolerance = 0` (the default) estimates its own error from the time "
         "step (`&numerics error_estimate = .true.`, the default): one more backward-Euler "
         "pass at half the step (`substeps` doubled), and three times the change of mu as "
-        "`mu_error_estimate`, with a warning where it exceeds 0.1; the reported mu is the "
+        "`mu_error_estimate`, with a warning where it exceeds 5 % of mu (and 0.001); the reported mu is the "
         "run's own. The pass costs about twice the run (`error_estimate = .false.` skips "
         "it; speeds the exact integrator ran need none and report 0). A coarse pass "
         "(`position_stride = 2`, half the cost) was tried first and rejected: it keeps the "
