@@ -153,7 +153,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             else:
                 work = film = 0.0
                 if prev is not None:
-                    f_old, d_old = prev
+                    f_old, d_old, wh_old = prev
                     # K u + C du/dt along u linear over the step (dt = dx/V);
                     # an element off the road at both ends touches nothing
                     rate = viscosity * v / dx * (u - u_old)
@@ -161,14 +161,14 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                     f_mean = np.where((f_old > 0) | (force > 0), f_mean, 0.0)
                     work = (f_mean * ((u - u_old) - (delta - d_old))).sum()
                     # the load the elements did not carry, times the descent
-                    # (a road with a film only: dry, the friction is the
-                    # facets' work)
-                    if depth > 0 and v > 0:
+                    # (only where the film carries load at either end of the
+                    # step: elsewhere the friction is the facets' work)
+                    if depth > 0 and v > 0 and (wh > 0 or wh_old > 0):
                         film = (load - f_mean.sum()) * (delta - d_old)
                 adhesion = (force * adh[k]).sum() / load
                 mu_j = work / (load * dx) + adhesion             # the facets' work (series)
                 mean_j = (work - film) / (load * dx) + adhesion  # the dissipation (mean)
-            prev = (force, delta)
+            prev = (force, delta, wh)
             if closed and j < 1:
                 continue
             mus.append(mu_j)

@@ -78,7 +78,9 @@ module pavefric_simulate
    real(wp), parameter :: estimate_warning = 0.05_wp, estimate_floor = 1.0e-3_wp
    !> Round a closed profile, a negative rubber part no larger than this
    !> share of the steps' mean |work| is the stored energy's rounding (the
-   !> dissipation it stands for is >= 0 by construction) and reads 0.
+   !> dissipation it stands for is >= 0 by construction; a dry road's path
+   !> imbalance, docs/model.md "Friction", is far above this where it is
+   !> not 0) and reads 0.
    real(wp), parameter :: rounding_share = 1.0e-10_wp
 
 
@@ -1556,13 +1558,16 @@ contains
                end if
                ! what the pad's descent did against the film: the load the
                ! elements did not carry on average over the step (W - their
-               ! mean force) times the descent. Without a film there is
-               ! none: W - their mean force is then only the step's path
-               ! between two balances, and the friction is the facets' work
-               ! (a flat road has none, whatever the pad's creep)
+               ! mean force) times the descent. Without a film carrying load
+               ! at either end of the step there is none: W - their mean
+               ! force is then only the step's path between two balances, and
+               ! the friction is the facets' work (a flat road has none,
+               ! whatever the pad's creep; a film that lifts nothing gives the
+               ! dry numbers)
                do j = 1, nl
                   film_work(j) = 0.0_wp
-                  if (load_film(j)) film_work(j) = (m%load - kel(j) * mean_total(j)) * &
+                  if (load_film(j) .and. (wh(j) > 0.0_wp .or. wh_prev(j) > 0.0_wp)) &
+                     & film_work(j) = (m%load - kel(j) * mean_total(j)) * &
                      & (cmin(j) + x(j) - delta_last(j))
                end do
             end if
@@ -1639,9 +1644,10 @@ contains
                   & / real(geo%n_avg, wp)) then
                   ! Round a closed profile the rubber's part is the elements'
                   ! dissipation in contact (each step's >= 0, mean_push) plus
-                  ! what they lose relaxing off the road; the steps' work holds
-                  ! the stored energy too, which returns, and what is left of
-                  ! it is rounding, below zero only by that
+                  ! what they lose relaxing off the road (and, dry, the path
+                  ! imbalance); the steps' work holds the stored energy too,
+                  ! which returns, and what is left of it is rounding, below
+                  ! zero only by that
                   out(j)%mu_hysteresis = 0.0_wp
                end if
                if (n_nocontact(j) == geo%n_avg .and. .not. contact_before(j)) then
