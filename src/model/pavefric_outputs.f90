@@ -135,7 +135,7 @@ contains
          & when=when_error_estimate)
       t(4) = output_var("numerics", "exact_integrator_ran", "", "whether the rubber was " // &
          & "integrated exactly in time, from contact event to event (&numerics time_scheme " // &
-         & "= 'auto', the default, or 'exact': a Kelvin-Voigt rubber with memory on a road " // &
+         & "= 'auto' or 'exact': a Kelvin-Voigt rubber with memory on a road " // &
          & "without a film), else backward Euler", out_flag)
    end function numerics_outputs
 

@@ -264,7 +264,8 @@ contains
          ! one mode: the compression's relaxation, all of the element
          step%mode_decay(j, 1) = step%coef(j, 1)
          step%mode_weight(j, 1) = 1.0_wp
-         ! kv_mean's (1 - b)(u0 + u1)/2 + b (u1 - u0) as weights of u0, u1
+         ! the mean (1 - b)(u0 + u1)/2 + b (u1 - u0) (kv_mean) as weights
+         ! of u0 and u1
          step%mean_weights(j, 1) = 0.5_wp * (1.0_wp - step%coef(j, 1)) - step%coef(j, 1)
          step%mean_weights(j, 2) = 0.5_wp * (1.0_wp - step%coef(j, 1)) + step%coef(j, 1)
       end do
@@ -300,18 +301,21 @@ contains
       real(wp), intent(in), contiguous :: state(:, :, :)
       real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       real(wp), intent(out), contiguous :: mean(:, :)
-      call kv_mean_kernel(size(u_free), step%per_element, state, u_free, push, mean)
+      call kv_mean_kernel(size(u_free, 1), size(u_free, 2), step%mean_weights, state, u_free, &
+         & push, mean)
    end subroutine kv_mean
 
-   pure subroutine kv_mean_kernel(m, b, state, u_free, push, mean)
-      integer, intent(in) :: m
-      real(wp), intent(in) :: b(m), state(m), u_free(m), push(m)
-      real(wp), intent(out) :: mean(m)
-      integer :: p
-      real(wp) :: u1
-      do p = 1, m
-         u1 = u_free(p) + push(p)
-         mean(p) = 0.5_wp * (1.0_wp - b(p)) * (state(p) + u1) + b(p) * (u1 - state(p))
+   !> kv_mean from the lanes' mean_weights (kv_prepare), the one form of it
+   !> the driver also uses; the state is (lanes, elements), u0 per element.
+   pure subroutine kv_mean_kernel(nl, n, weights, state, u_free, push, mean)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: weights(nl, 2), state(nl, n), u_free(nl, n), push(nl, n)
+      real(wp), intent(out) :: mean(nl, n)
+      integer :: i, j
+      do i = 1, n
+         do j = 1, nl
+            mean(j, i) = weights(j, 1) * state(j, i) + weights(j, 2) * (u_free(j, i) + push(j, i))
+         end do
       end do
    end subroutine kv_mean_kernel
 

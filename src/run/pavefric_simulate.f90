@@ -2024,7 +2024,7 @@ contains
 
    !> Whether the scene runs the exact Kelvin-Voigt integrator where it
    !> applies: it asks for it ('exact'), or leaves the choice to the code
-   !> ('auto', the default) on a scene it can serve: the Kelvin-Voigt rubber
+   !> ('auto') on a scene it can serve: the Kelvin-Voigt rubber
    !> on a dry road, every position, the energy scheme (elsewhere backward
    !> Euler, as 'extrapolated').
    pure logical function exact_scheme(m)
