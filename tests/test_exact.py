@@ -152,3 +152,27 @@ def test_threads_change_no_bit(tmp_path, profile_m):
     assert out["1"]["exact_integrator_ran"].values.all()
     for var in ("mu", "mu_hysteresis", "mu_inst", "penetration", "max_balance_residual"):
         assert np.array_equal(out["1"][var].values, out["2"][var].values), var
+
+
+def test_auto_runs_the_exact_integrator_where_it_applies(profile_m):
+    """time_scheme = 'auto': on a dry Kelvin-Voigt road it is 'exact' bit for
+    bit; where the exact integrator does not apply (a film, the Maxwell
+    compound, position_stride > 1, the paper's friction scheme) it is
+    'extrapolated' bit for bit, with no warning of the fallback (and no
+    refusal where 'exact' refuses)."""
+    kw = dict(viscosity=3e3)
+    auto = pavefric.simulate(profile_m, 0.87e-3, SPEEDS, time_scheme="auto", **kw)
+    exact = pavefric.simulate(profile_m, 0.87e-3, SPEEDS, time_scheme="exact", **kw)
+    assert auto["exact_integrator_ran"].values.tolist() == [1, 1]
+    np.testing.assert_array_equal(auto["mu"].values, exact["mu"].values)
+    maxwell = dict(rubber_model="maxwell", prony_stiffness=[1e8], prony_times=[1e-4])
+    for other in (dict(depth=1e-3, **kw), dict(maxwell), dict(position_stride=2, **kw),
+                  dict(friction_scheme="paper", **kw)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", pavefric.PavefricWarning)
+            euler = pavefric.simulate(profile_m, 0.87e-3, SPEEDS, time_scheme="extrapolated",
+                                      **other)
+            auto = pavefric.simulate(profile_m, 0.87e-3, SPEEDS, time_scheme="auto", **other)
+        assert auto["exact_integrator_ran"].values.tolist() == [0, 0], other
+        np.testing.assert_array_equal(auto["mu"].values, euler["mu"].values)
+        assert "time_scheme = 'exact' integrates" not in auto.attrs["warnings"], other

@@ -78,6 +78,13 @@ def main() -> None:
         print(f"  {t:4d} C: {np.round(ds['mu'].values, 4)}")
     ds = pavefric.simulate(z, DX, [1.0], mu_loc=0.0, temperature=200.0, **rubber)
     print(f"   200 C, 1 km/h: {ds['mu'].values[0]:.4f}")
+    print("Time step, shipped compound, mu_loc = 0, dry, 20 km/h, 20/30/40 C "
+          "(one element per sample; substeps 64 is converged in time)")
+    for substeps in (1, 4, 64):
+        mus = [pavefric.simulate(z, DX, [20.0], mu_loc=0.0, temperature=t, substeps=substeps,
+                                 error_estimate=False, **rubber)["mu"].values[0]
+               for t in (20.0, 30.0, 40.0)]
+        print(f"  substeps {substeps:2d}: " + ", ".join(f"{v:.4f}" for v in mus))
     print("Peaks of tan delta and of the loss compliance E''/|E*|^2 (shipped compound)")
     k_inf = rubber["stiffness"]
     arms = np.array(rubber["prony_stiffness"])
