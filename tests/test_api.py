@@ -210,7 +210,7 @@ def test_c_typed_setters_give_the_programs_numbers(tmp_path, pc_env):
         "infinite_depth": "&water depth = Infinity: must be finite",
         "zero_substeps": "&numerics substeps = 0: must lie in [1, 4096]",
         "real_for_integer": "&numerics substeps: a whole number is expected, not a real number",
-        "unknown_choice": "&water wet_model = 'reynolds2': unknown (expected 'kane2017' or 'squeeze')",
+        "unknown_choice": "&water wet_model = 'reynolds2': unknown (expected 'kane2017', 'squeeze' or 'reynolds')",
         "text_for_real": "&water depth: a real number is expected, not a text",
         "bool_two": "&numerics error_estimate = 2: must be 1 (.true.) or 0 (.false.)",
         "negative_speed": "&operation speeds_kmh(2) = -5: must be finite and >= 0",

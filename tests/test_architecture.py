@@ -217,13 +217,13 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
     registry = tree / "src" / "model" / "pavefric_wet_models.f90"
     text = registry.read_text()
     for old, new in [
-            ("   use pavefric_squeeze, only: squeeze_entry, squeeze_n_parameters\n",
-             "   use pavefric_squeeze, only: squeeze_entry, squeeze_n_parameters\n"
+            ("   use pavefric_reynolds, only: reynolds_entry, reynolds_n_parameters\n",
+             "   use pavefric_reynolds, only: reynolds_entry, reynolds_n_parameters\n"
              "   use pavefric_cushion, only: cushion_entry, cushion_n_parameters\n"),
-            ("pseudo_bearing_n_parameters + squeeze_n_parameters",
-             "pseudo_bearing_n_parameters + squeeze_n_parameters + cushion_n_parameters"),
-            ("e = [pseudo_bearing_entry(), squeeze_entry()]",
-             "e = [pseudo_bearing_entry(), squeeze_entry(), cushion_entry()]")]:
+            ("& + reynolds_n_parameters",
+             "& + reynolds_n_parameters + cushion_n_parameters"),
+            ("e = [pseudo_bearing_entry(), squeeze_entry(), reynolds_entry()]",
+             "e = [pseudo_bearing_entry(), squeeze_entry(), reynolds_entry(), cushion_entry()]")]:
         assert text.count(old) == 1, old
         text = text.replace(old, new)
     registry.write_text(text)
@@ -315,9 +315,9 @@ def test_the_deprecated_ids_of_the_bearing_s_variables_still_name_them():
                      text)
     names = [(p.group, p.name) for p in pavefric.parameters()]
     n_scene = next(k for k, p in enumerate(names) if p == ("water", "alpha"))
-    assert n_scene == len(names) - 3 - 26       # the wet models' three follow the scene's
+    assert n_scene == len(names) - 4 - 26       # the wet models' four follow the scene's
     assert names[n_scene:n_scene + 2] == [("water", "alpha"), ("water", "beta")]
-    assert all(g != "water" or n in ("alpha", "beta", "squeeze_inlet_fraction")
+    assert all(g != "water" or n in ("alpha", "beta", "squeeze_inlet_fraction", "density")
                for g, n in names[n_scene:])
 
 
@@ -330,7 +330,7 @@ def test_the_deprecated_ids_of_the_components_variables_still_name_them():
     text = (SRC / "model" / "pavefric_model.f90").read_text(encoding="utf-8")
     flat = re.sub(r"&\s*\n\s*&", "", text)
     names = [(p.group, p.name) for p in pavefric.parameters()]
-    first = next(k for k, p in enumerate(names) if p == ("water", "alpha")) + 3 + 1
+    first = next(k for k, p in enumerate(names) if p == ("water", "alpha")) + 4 + 1
     blocks = {"rubber": ["model", "stiffness", "temperature", "reference_temperature",
                          "wlf_c1", "wlf_c2", "viscosity", "prony_stiffness", "prony_times"],
               "preprocess": ["dropouts", "trim_plates", "plate_threshold", "plate_min_length",

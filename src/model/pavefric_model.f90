@@ -248,7 +248,9 @@ contains
          & "RMS height of the microtexture asperities (texture finer than dx) that pierce " // &
          & "the water film left under the contacts, for wet_model = 'squeeze': the share " // &
          & "erfc(h / (sqrt(2) microtexture_rms)) of mu_loc acts through a film h. The default " // &
-         & "is the single value fitted to the PIARC speed gradient (docs/speed_gradient.md).", &
+         & "is the single value fitted to the PIARC speed gradient (docs/speed_gradient.md). " // &
+         & "With wet_model = 'reynolds' it sets the flow factors and the mean gap of a " // &
+         & "contact (at least 1e-6 m is used there).", &
          & lower=0.0_wp, upper=1.0_wp, plausible_lower=1.0e-6_wp, plausible_upper=0.5e-3_wp, &
          & plausible_note="road microtexture asperities are 1 to 500 micrometres high")
 
@@ -257,7 +259,9 @@ contains
          & "what the water does: 'kane2017', the paper's pseudo-bearing (Eqs. 13-15), a " // &
          & "film that lifts the pad; 'squeeze', the film drained from the contact plateaus " // &
          & "by squeeze flow, pierced by the microtexture (lowers the local friction, no " // &
-         & "lift; docs/model.md)", choices=wet_names)
+         & "lift; docs/model.md); 'reynolds', the water's flow under the pad (average " // &
+         & "Reynolds equation with flow factors, cavitation and the inlet's inertia), a " // &
+         & "film that lifts the pad (a first version; docs/model.md)", choices=wet_names)
       s(p_depth) = real_param("water", "depth", "0.0", "m", "model", &
          & "water depth, the bearing's inlet film H_in. 0 = dry: no film is simulated.", &
          & lower=0.0_wp, upper=100.0_wp, plausible_lower=0.0_wp, plausible_upper=0.02_wp, &
@@ -1516,12 +1520,12 @@ contains
             & models(j)%parameters, "&water wet_model", set%v(p_wet_model)%t, "wet_model", &
             & models(j)%name, warnings)
       end do
-      if (set%v(p_wet_model)%t /= "squeeze" .and. &
+      if (set%v(p_wet_model)%t /= "squeeze" .and. set%v(p_wet_model)%t /= "reynolds" .and. &
             & given_other(specs(p_microtexture_rms), set%v(p_microtexture_rms))) then
          call add_warning(warnings, "&surface microtexture_rms = " // &
             & to_str(set%v(p_microtexture_rms)%r) // " is not used with &water wet_model = '" // &
-            & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' pierces its film " // &
-            & "with the microtexture)")
+            & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' and 'reynolds' use the " // &
+            & "microtexture)")
       end if
    end subroutine plausibility_warnings
 

@@ -11,20 +11,22 @@ module pavefric_wet_models
    use pavefric_film, only: film_model, film_context_type, film_entry_type, &
       & pseudo_bearing_entry, pseudo_bearing_n_parameters
    use pavefric_squeeze, only: squeeze_entry, squeeze_n_parameters
+   use pavefric_reynolds, only: reynolds_entry, reynolds_n_parameters
    implicit none
    private
 
    public :: wet_models, wet_model_names, wet_model_parameters, build_film, n_film_parameters
 
    !> The variables the wet models declare, all together.
-   integer, parameter :: n_film_parameters = pseudo_bearing_n_parameters + squeeze_n_parameters
+   integer, parameter :: n_film_parameters = pseudo_bearing_n_parameters + squeeze_n_parameters &
+      & + reynolds_n_parameters
 
 contains
 
    !> Every wet model, the default first.
    pure function wet_models() result(e)
       type(film_entry_type), allocatable :: e(:)
-      e = [pseudo_bearing_entry(), squeeze_entry()]
+      e = [pseudo_bearing_entry(), squeeze_entry(), reynolds_entry()]
    end function wet_models
 
    !> Their names, space-separated (the choices of &water wet_model). A

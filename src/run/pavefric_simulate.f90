@@ -955,8 +955,10 @@ contains
       if (friction_film) c%bytes = c%bytes + n_ext * 16.0_wp * real(min(ns, 64), wp)
       ! per speed (one per thread at most, counted for all): element arrays,
       ! the rubber's state and its coefficients per element (a Maxwell
-      ! rubber: 1 + 4 arms for 1 + arms state values)
-      c%bytes = c%bytes + n_el * 8.0_wp * real(10 + 5 * n_state, wp) * real(ns, wp)
+      ! rubber of n arms: 1 + n state values and 2 + 6 n coefficients, here
+      ! 5 + 7 n with room to spare; Kelvin-Voigt: 5)
+      c%bytes = c%bytes + n_el * 8.0_wp * real(10 + 5 * n_state + 2 * (n_state - 1), wp) * &
+         & real(ns, wp)
       ! series: the arrays, and again the output file built from them
       if (want_series) c%bytes = c%bytes + 2.0_wp * n_avg * real(ns, wp) * 8.0_wp * 6.0_wp
       if (n_avg > 0.0_wp .and. n_el > 0.0_wp .and. (n_avg + n_spin) * n_el < 9.0e18_wp) then

@@ -452,7 +452,7 @@ def _targets_now(results: dict) -> list[str]:
             f"{_met(r['ratio'] <= 10 and r['met'])} |")
     if acc:
         rows.append("| issue 23: the Reynolds film ≤ 3x `kane2017` per element-step | not "
-                    "built yet (issue 21) | — | — | |")
+                    "measured yet (its first version, docs/model.md) | — | — | |")
     api = results.get("api_threads")
     if api:
         rows.append(

@@ -1,0 +1,340 @@
+!> A mixed-lubrication film from the water's own flow (`&water wet_model =
+!> 'reynolds'`; MODEL.md section 11, docs/model.md "The Reynolds film").
+!>
+!> Along the pad, 1-D in the sliding direction, the average Reynolds
+!> equation of Patir & Cheng (1978, 1979) for the road moving at V under the
+!> pad, in the pad's frame, quasi-steady in the road's frame (the pad's face
+!> out of contact is taken as flat; its own recovery and its vertical motion
+!> are not squeeze sources here):
+!>     d/ds(k dp/ds) - 12 k p / b**2 = (V/2) d(theta c)/ds,
+!>     k = phi_x(h/sigma) h_T**3 / (12 eta),   c = h_T + sigma phi_s(h/sigma),
+!> s from the leading edge, h the nominal gap under an element (0 in
+!> contact), h_T the mean gap over the microtexture's Gaussian heights (RMS
+!> sigma), phi_x and phi_s the pressure and shear flow factors (isotropic
+!> roughness, gamma = 1), and the side leakage from a parabolic pressure
+!> across a drainage length b: the run of open (or closed) elements holding
+!> the place, capped at the pad width l (the texture drains sideways through
+!> its own channels).
+!> Discretisation: vertex-centred finite volumes, the gap per element, the
+!> pressure p and fill theta at the nodes between elements (a step from a
+!> valley onto a contact land has its node at the step, drained back through
+!> the valley; a cell-centred scheme put the land's pressure inside the land
+!> and locked it), the transport upwind.
+!> Cavitation: the mass-conserving Jakobsson-Floberg-Olsson condition in
+!> Elrod-Adams form: at each node either the film is full (theta = 1,
+!> p >= 0) or partial (p = 0, 0 <= theta <= 1), solved as a complementarity
+!> problem by a primal-dual active-set iteration, one tridiagonal solve
+!> (LAPACK dgtsv) per iteration.
+!> Inlet: the water on the road (depth H_in, moving at V) brings V H_in per
+!> unit width; the gap under the leading element takes (V/2) c_1. A starved
+!> inlet (2 H_in < c_1) lets it all in at ambient pressure; a flooded one
+!> stops the share f = 1 - c_1 / (2 H_in) of the water at the leading edge,
+!> whose dynamic pressure f rho V**2 / 2 is the inlet node's pressure (the
+!> inertia that lets a smooth surface hydroplane). Outlet: ambient pressure.
+!> The film's load, l ds (p_in / 2 + sum of the interior nodes' p), takes
+!> part in the pad's load balance; the elements in contact carry the rest
+!> with the full mu_loc (the microtexture pierces the film where the rubber
+!> touches: the Greenwood-Williamson share erfc(h / (sqrt(2) sigma)) is 1
+!> at h = 0).
+module pavefric_reynolds
+   use pavefric_kinds, only: wp
+   use pavefric_film, only: film_model, film_step_type, film_context_type, film_entry_type
+   use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
+   use pavefric_lapack, only: dgtsv
+   implicit none
+   private
+
+   public :: reynolds_film, reynolds_entry, reynolds_n_parameters
+   public :: reynolds_solve, reynolds_cell_terms, sigma_floor
+
+   !> Variables the Reynolds film declares (reynolds_entry); it takes the
+   !> water, the pad and &surface microtexture_rms from the scene.
+   integer, parameter :: reynolds_n_parameters = 1
+
+   !> The microtexture height below which a contact land would seal (m): the
+   !> film uses max(microtexture_rms, this), so that water always drains
+   !> through a contact (docs/model.md).
+   real(wp), parameter :: sigma_floor = 1.0e-6_wp
+
+   !> Active-set iterations before giving up (the set of full cells changes
+   !> at each; it has never needed more than a few).
+   integer, parameter :: max_active_set = 200
+
+   !> The Reynolds film.
+   type, extends(film_model) :: reynolds_film
+      !> Water depth H_in (m), viscosity eta (Pa s), microtexture RMS height
+      !> sigma (m, floored at sigma_floor), pad width l and length L (m),
+      !> water density rho (kg m-3).
+      real(wp) :: depth = 0.0_wp, eta = 0.0_wp, sigma = sigma_floor, width = 0.0_wp
+      real(wp) :: length = 0.0_wp, density = 0.0_wp
+   contains
+      procedure :: prepare => reynolds_prepare
+      procedure :: carries_load => reynolds_carries_load
+      procedure :: changes_friction => reynolds_changes_friction
+      procedure :: effect => reynolds_effect
+      procedure :: engages => reynolds_engages
+      procedure :: load => reynolds_load
+      procedure :: lower_bound => reynolds_lower_bound
+   end type reynolds_film
+
+contains
+
+   !> &water wet_model = 'reynolds'.
+   pure function reynolds_entry() result(e)
+      type(film_entry_type) :: e
+      e%name = "reynolds"
+      allocate(e%outputs(0))
+      allocate(e%parameters(reynolds_n_parameters))
+      e%parameters(1) = real_param("water", "density", "998.2", "kg m-3", "model", &
+         & "density of the water, for the dynamic pressure rho V**2 / 2 that the water " // &
+         & "stopped at the pad's leading edge exerts with wet_model = 'reynolds' (the " // &
+         & "default: water at 20 C)", lower=0.0_wp, upper=1.0e5_wp, &
+         & plausible_lower=900.0_wp, plausible_upper=1100.0_wp, &
+         & plausible_note="water is about 1000 kg m-3")
+      e%build => reynolds_build
+   end function reynolds_entry
+
+   subroutine reynolds_build(context, specs, values, film)
+      type(film_context_type), intent(in) :: context
+      type(param_spec_type), intent(in) :: specs(:)
+      type(param_value_type), intent(in) :: values(:)
+      class(film_model), allocatable, intent(out) :: film
+      allocate(film, source=reynolds_film(depth=context%depth, eta=context%eta, &
+         & sigma=max(context%microtexture_rms, sigma_floor), width=context%width, &
+         & length=context%length, density=real_value(specs, values, "water", "density")))
+   end subroutine reynolds_build
+
+   !> Active with water and motion; coef(1) = V (m/s).
+   pure subroutine reynolds_prepare(self, speed, advance, step)
+      class(reynolds_film), intent(in) :: self
+      real(wp), intent(in) :: speed, advance
+      type(film_step_type), intent(out) :: step
+      allocate(step%coef(1))
+      step%coef(1) = speed
+      step%active = self%depth > 0.0_wp .and. speed > 0.0_wp .and. self%eta > 0.0_wp
+      if (speed > 0.0_wp) step%dt = advance / speed
+   end subroutine reynolds_prepare
+
+   pure logical function reynolds_carries_load(self)
+      class(reynolds_film), intent(in) :: self
+      reynolds_carries_load = .true.
+   end function reynolds_carries_load
+
+   pure logical function reynolds_changes_friction(self)
+      class(reynolds_film), intent(in) :: self
+      reynolds_changes_friction = .false.
+   end function reynolds_changes_friction
+
+   pure subroutine reynolds_effect(self, name)
+      class(reynolds_film), intent(in) :: self
+      character(len=:), allocatable, intent(out) :: name
+      name = "reynolds_film"
+   end subroutine reynolds_effect
+
+   !> A film is full somewhere only where the water brought, V H_in, fills
+   !> the gap's Couette flux (V/2) c: where c <= 2 H_in. c grows with the gap,
+   !> so the narrowest gap decides. Otherwise every cell is partial at
+   !> ambient pressure and the film carries nothing.
+   pure logical function reynolds_engages(self, step, gap)
+      class(reynolds_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      real(wp) :: h_t, c, k
+      reynolds_engages = .false.
+      if (.not. step%active .or. size(gap) == 0) return
+      call reynolds_cell_terms(minval(gap), self%sigma, self%eta, h_t, c, k)
+      reynolds_engages = c <= 2.0_wp * self%depth
+   end function reynolds_engages
+
+   !> Below x = -2 H_in every gap is at least 2 H_in (min d = 0): no cell is
+   !> full, no load, and no element touches.
+   pure real(wp) function reynolds_lower_bound(self, step, d)
+      class(reynolds_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: d(:)
+      reynolds_lower_bound = -2.0_wp * self%depth
+   end function reynolds_lower_bound
+
+   !> The film's load (N) on the gap field, and its derivative with respect
+   !> to the penetration by a difference at the same full and partial cells
+   !> (one more tridiagonal solve).
+   pure subroutine reynolds_load(self, step, gap, wh, dwh_dx)
+      class(reynolds_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      real(wp), intent(out) :: wh, dwh_dx
+      real(wp) :: p(size(gap)), theta(size(gap)), wh2, dx, shift
+      logical :: full(size(gap))
+      integer :: iterations
+      logical :: converged
+      wh = 0.0_wp
+      dwh_dx = 0.0_wp
+      if (.not. step%active .or. size(gap) == 0) return
+      call reynolds_solve(self%depth, self%eta, self%sigma, self%width, self%length, &
+         & self%density, step%coef(1), gap, p, theta, full, wh, iterations, converged)
+      dx = self%length / real(size(gap), wp)
+      ! the gaps at x + shift: open ones narrow by shift (contacts stay shut)
+      shift = 1.0e-6_wp * self%sigma
+      call reynolds_fixed_set(self%depth, self%eta, self%sigma, self%width, self%length, &
+         & self%density, step%coef(1), max(0.0_wp, gap - shift), full, wh2)
+      dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
+   end subroutine reynolds_load
+
+   !> Per cell: the mean gap h_T over Gaussian heights of RMS sigma at nominal
+   !> gap h (E[max(0, h - z)] = h Phi(h/sigma) + sigma phi(h/sigma)), the
+   !> transport c = h_T + sigma phi_s, and the flow coefficient
+   !> k = phi_x h_T**3 / (12 eta). Flow factors of Patir & Cheng (1978, 1979)
+   !> for isotropic roughness (gamma = 1): phi_x = 1 - 0.90 exp(-0.56 H),
+   !> phi_s = 1.899 H**0.98 exp(-0.92 H + 0.05 H**2) (H <= 5),
+   !> 1.126 exp(-0.25 H) (H > 5), H = h / sigma.
+   pure subroutine reynolds_cell_terms(h, sigma, eta, h_t, c, k)
+      real(wp), intent(in) :: h, sigma, eta
+      real(wp), intent(out) :: h_t, c, k
+      real(wp), parameter :: inv_sqrt2 = 0.70710678118654752_wp
+      real(wp), parameter :: inv_sqrt2pi = 0.39894228040143268_wp
+      real(wp) :: hs, phi_x, phi_s
+      hs = h / sigma
+      h_t = h * 0.5_wp * erfc(-hs * inv_sqrt2) + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
+      phi_x = 1.0_wp - 0.90_wp * exp(-0.56_wp * hs)
+      if (hs <= 5.0_wp) then
+         phi_s = 1.899_wp * hs**0.98_wp * exp(-0.92_wp * hs + 0.05_wp * hs * hs)
+      else
+         phi_s = 1.126_wp * exp(-0.25_wp * hs)
+      end if
+      c = h_t + sigma * phi_s
+      k = phi_x * h_t**3 / (12.0_wp * eta)
+   end subroutine reynolds_cell_terms
+
+   !> The film on a gap field (element order, the leading element last):
+   !> pressure p (Pa, width-averaged) and fill theta per element, which cells
+   !> are full, the load (N), the active-set iterations and whether they
+   !> settled (if not, the last iterate with p clipped at 0).
+   pure subroutine reynolds_solve(depth, eta, sigma, width, length, density, speed, gap, p, &
+         & theta, full, load, iterations, converged)
+      real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
+      real(wp), intent(out) :: p(size(gap)), theta(size(gap)), load
+      logical, intent(out) :: full(size(gap))
+      integer, intent(out) :: iterations
+      logical, intent(out) :: converged
+      real(wp) :: y(size(gap)), p0
+      logical :: changed
+      integer :: j, n, info
+      ! nodes 1 .. n-1 between the elements (node j behind element j from the
+      ! leading edge); p(j), theta(j), full(j) are node j's; p(n) = 0 (outlet)
+      n = size(gap)
+      full = .true.
+      converged = .false.
+      p = 0.0_wp
+      theta = 1.0_wp
+      load = 0.0_wp
+      info = 0
+      p0 = 0.0_wp
+      do iterations = 1, max_active_set
+         call assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, full, &
+            & y, p0, info)
+         if (info /= 0) exit
+         changed = .false.
+         do j = 1, n - 1
+            if (y(j) < 0.0_wp) then
+               full(j) = .not. full(j)
+               changed = .true.
+            end if
+         end do
+         if (.not. changed) then
+            converged = .true.
+            exit
+         end if
+      end do
+      iterations = min(iterations, max_active_set)
+      if (info /= 0) return
+      do j = 1, n - 1
+         if (full(j)) then
+            p(j) = max(0.0_wp, y(j))
+            theta(j) = 1.0_wp
+         else
+            p(j) = 0.0_wp
+            theta(j) = min(1.0_wp, max(0.0_wp, 1.0_wp - y(j)))
+         end if
+      end do
+      load = width * (length / real(n, wp)) * (sum(p(1:n - 1)) + 0.5_wp * p0)
+   end subroutine reynolds_solve
+
+   pure subroutine reynolds_fixed_set(depth, eta, sigma, width, length, density, speed, gap, &
+         & full, load)
+      real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
+      logical, intent(in) :: full(size(gap))
+      real(wp), intent(out) :: load
+      real(wp) :: y(size(gap)), p0
+      integer :: info, n
+      n = size(gap)
+      call assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, full, y, &
+         & p0, info)
+      load = 0.0_wp
+      if (info /= 0) return
+      load = width * (length / real(n, wp)) * (sum(max(0.0_wp, merge(y(1:n - 1), 0.0_wp, &
+         & full(1:n - 1)))) + 0.5_wp * p0)
+   end subroutine reynolds_fixed_set
+
+   !> Vertex-centred: the gap per element, the pressure and fill at the nodes
+   !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
+   !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
+   pure subroutine assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, &
+         & full, y, p0, info)
+      real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
+      logical, intent(in) :: full(size(gap))
+      real(wp), intent(out) :: y(size(gap)), p0
+      integer, intent(out) :: info
+      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
+      real(wp) :: dl(max(1, size(gap))), dd(size(gap)), du(max(1, size(gap)))
+      real(wp) :: ds, half_v, tc0, lam
+      integer :: j, n, m, i0, i1
+      n = size(gap)
+      ds = length / real(n, wp)
+      half_v = 0.5_wp * speed
+      do j = 1, n
+         call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
+      end do
+      do j = 1, n
+         i0 = j
+         do while (i0 > 1)
+            if ((gap(n + 2 - i0) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) exit
+            i0 = i0 - 1
+         end do
+         if ((gap(n + 1 - i0) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) i0 = i0 + 1
+         i1 = j
+         do while (i1 < n)
+            if ((gap(n - i1) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) exit
+            i1 = i1 + 1
+         end do
+         run(j) = min(width, real(i1 - i0 + 1, wp) * ds)
+      end do
+      if (2.0_wp * depth >= c(1)) then
+         tc0 = c(1)
+         p0 = (1.0_wp - c(1) / (2.0_wp * depth)) * 0.5_wp * density * speed * speed
+      else
+         tc0 = 2.0_wp * depth
+         p0 = 0.0_wp
+      end if
+      info = 0
+      y = 0.0_wp
+      if (n < 2) return
+      do m = 1, n - 1
+         lam = 6.0_wp * (k(m) / run(m)**2 + k(m + 1) / run(m + 1)**2) * ds
+         if (full(m)) then
+            dd(m) = (k(m) + k(m + 1)) / ds + lam
+         else
+            dd(m) = -half_v * c(m + 1)
+         end if
+         y(m) = -half_v * c(m + 1)
+         if (m == 1) then
+            y(m) = y(m) + half_v * tc0 + k(1) * p0 / ds
+         else
+            y(m) = y(m) + half_v * c(m)
+            dl(m - 1) = merge(-k(m) / ds, half_v * c(m), full(m - 1))
+         end if
+         if (m < n - 1) du(m) = merge(-k(m + 1) / ds, 0.0_wp, full(m + 1))
+      end do
+      call dgtsv(n - 1, 1, dl, dd, du, y, n, info)
+   end subroutine assemble_and_solve
+
+end module pavefric_reynolds
