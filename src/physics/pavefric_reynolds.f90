@@ -56,8 +56,8 @@ module pavefric_reynolds
    !> through a contact (docs/model.md).
    real(wp), parameter :: sigma_floor = 1.0e-6_wp
 
-   !> Active-set iterations before giving up (the set of full cells changes
-   !> at each; it has never needed more than a few).
+   !> Active-set iterations before giving up (the set of full nodes changes
+   !> at each; tests/test_reynolds.py sees at most 11 on random gap fields).
    integer, parameter :: max_active_set = 200
 
    !> The Reynolds film.
@@ -156,14 +156,14 @@ contains
    end function reynolds_lower_bound
 
    !> The film's load (N) on the gap field, and its derivative with respect
-   !> to the penetration by a difference at the same full and partial cells
+   !> to the penetration by a difference at the same full and partial nodes
    !> (one more tridiagonal solve).
    pure subroutine reynolds_load(self, step, gap, wh, dwh_dx)
       class(reynolds_film), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
       real(wp), intent(out) :: wh, dwh_dx
-      real(wp) :: p(size(gap)), theta(size(gap)), wh2, dx, shift
+      real(wp) :: p(size(gap)), theta(size(gap)), wh2, shift
       logical :: full(size(gap))
       integer :: iterations
       logical :: converged
@@ -172,7 +172,6 @@ contains
       if (.not. step%active .or. size(gap) == 0) return
       call reynolds_solve(self%depth, self%eta, self%sigma, self%width, self%length, &
          & self%density, step%coef(1), gap, p, theta, full, wh, iterations, converged)
-      dx = self%length / real(size(gap), wp)
       ! the gaps at x + shift: open ones narrow by shift (contacts stay shut)
       shift = 1.0e-6_wp * self%sigma
       call reynolds_fixed_set(self%depth, self%eta, self%sigma, self%width, self%length, &
@@ -205,10 +204,12 @@ contains
       k = phi_x * h_t**3 / (12.0_wp * eta)
    end subroutine reynolds_cell_terms
 
-   !> The film on a gap field (element order, the leading element last):
-   !> pressure p (Pa, width-averaged) and fill theta per element, which cells
-   !> are full, the load (N), the active-set iterations and whether they
-   !> settled (if not, the last iterate with p clipped at 0).
+   !> The film on a gap field (element order, the leading element last): at
+   !> the nodes between elements, numbered from the leading edge (node j
+   !> behind the j-th element from it; entry n unused), the pressure p (Pa,
+   !> width-averaged), the fill theta and which are full; the load (N), the
+   !> active-set iterations and whether they settled (if not, the last
+   !> iterate with p clipped at 0).
    pure subroutine reynolds_solve(depth, eta, sigma, width, length, density, speed, gap, p, &
          & theta, full, load, iterations, converged)
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
