@@ -257,7 +257,7 @@ contains
             theta(j) = min(1.0_wp, max(0.0_wp, 1.0_wp - y(j)))
          end if
       end do
-      load = width * (length / real(n, wp)) * (sum(p(1:n - 1)) + 0.5_wp * p0)
+      load = nodes_load(width, length, p, p0)
    end subroutine reynolds_solve
 
    pure subroutine reynolds_fixed_set(depth, eta, sigma, width, length, density, speed, gap, &
@@ -266,15 +266,22 @@ contains
       logical, intent(in) :: full(size(gap))
       real(wp), intent(out) :: load
       real(wp) :: y(size(gap)), p0
-      integer :: info, n
-      n = size(gap)
+      integer :: info
       call assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, full, y, &
          & p0, info)
       load = 0.0_wp
       if (info /= 0) return
-      load = width * (length / real(n, wp)) * (sum(max(0.0_wp, merge(y(1:n - 1), 0.0_wp, &
-         & full(1:n - 1)))) + 0.5_wp * p0)
+      load = nodes_load(width, length, max(0.0_wp, merge(y, 0.0_wp, full)), p0)
    end subroutine reynolds_fixed_set
+
+   !> The film's load (N) from the nodes' pressures p(1:n-1) (p(n) is not a
+   !> node) and the inlet's p0 (half an element's area: the leading edge).
+   pure real(wp) function nodes_load(width, length, p, p0) result(load)
+      real(wp), intent(in) :: width, length, p(:), p0
+      integer :: n
+      n = size(p)
+      load = width * (length / real(n, wp)) * (sum(p(1:n - 1)) + 0.5_wp * p0)
+   end function nodes_load
 
    !> Vertex-centred: the gap per element, the pressure and fill at the nodes
    !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
@@ -288,26 +295,24 @@ contains
       real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
       real(wp) :: dl(max(1, size(gap))), dd(size(gap)), du(max(1, size(gap)))
       real(wp) :: ds, half_v, tc0, lam
-      integer :: j, n, m, i0, i1
+      integer :: j, n, m, i1
       n = size(gap)
       ds = length / real(n, wp)
       half_v = 0.5_wp * speed
       do j = 1, n
          call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
       end do
-      do j = 1, n
-         i0 = j
-         do while (i0 > 1)
-            if ((gap(n + 2 - i0) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) exit
-            i0 = i0 - 1
-         end do
-         if ((gap(n + 1 - i0) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) i0 = i0 + 1
+      ! each run of open (or of touching) elements in one pass: its length,
+      ! capped at the pad width, is the drainage length of its elements
+      j = 1
+      do while (j <= n)
          i1 = j
          do while (i1 < n)
             if ((gap(n - i1) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) exit
             i1 = i1 + 1
          end do
-         run(j) = min(width, real(i1 - i0 + 1, wp) * ds)
+         run(j:i1) = min(width, real(i1 - j + 1, wp) * ds)
+         j = i1 + 1
       end do
       if (2.0_wp * depth >= c(1)) then
          tc0 = c(1)
