@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # pavefric set-up: system packages, a Python virtual environment, the build.
 #
-#   bash setup.sh demo   set up, run the default scene dry and with both wet models,
+#   bash setup.sh demo   set up, run the default scene dry and with the three wet models,
 #                        write outputs/ctm_dry.nc, outputs/ctm_wet.nc (the paper's
-#                        bearing), outputs/ctm_squeeze.nc (drainage) and
+#                        bearing), outputs/ctm_squeeze.nc (drainage),
+#                        outputs/ctm_reynolds.nc (the Reynolds film) and
 #                        outputs/ctm_mu_speed.png
 #   bash setup.sh test   set up and run the whole test suite
 #   bash setup.sh        set up only
@@ -103,8 +104,9 @@ case "${1:-}" in
     "$VENV/bin/pavefric" inputs/ctm_dry.nml -o outputs/ctm_dry.nc
     "$VENV/bin/pavefric" inputs/ctm_wet.nml -o outputs/ctm_wet.nc
     "$VENV/bin/pavefric" inputs/ctm_squeeze.nml -o outputs/ctm_squeeze.nc
+    "$VENV/bin/pavefric" inputs/ctm_reynolds.nml -o outputs/ctm_reynolds.nc
     "$VENV/bin/python" -m pavefric plot outputs/ctm_dry.nc outputs/ctm_wet.nc \
-      outputs/ctm_squeeze.nc -o outputs/ctm_mu_speed.png \
+      outputs/ctm_squeeze.nc outputs/ctm_reynolds.nc -o outputs/ctm_mu_speed.png \
       --title "CTM-like medium texture (MPD 0.74 mm), mu_loc = 0.6, 1 mm water"
     ;;
   test)

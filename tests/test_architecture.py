@@ -206,7 +206,8 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
         shutil.copy(ROOT / name, tree / name)
     for name in ("src", "python"):
         shutil.copytree(ROOT / name, tree / name, ignore=shutil.ignore_patterns("__pycache__"))
-    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt"):
+    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "ctm_reynolds.nml",
+                 "profiles/ctm_medium.txt"):
         (tree / "inputs" / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / "inputs" / name, tree / "inputs" / name)
     doc = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")

@@ -20,7 +20,8 @@ def test_example_runs_from_any_directory(tmp_path):
     r = cli("example", "my-run", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     run_dir = tmp_path / "my-run"
-    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt"):
+    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "ctm_reynolds.nml",
+                 "profiles/ctm_medium.txt"):
         assert (run_dir / name).is_file(), name
         assert f"wrote my-run/{name}" in r.stdout
     # the commands to run next, with this environment's program
@@ -44,7 +45,8 @@ def test_example_files_are_the_checkouts(tmp_path):
     """What the wheel ships is inputs/ as committed; only the header's Run:
     line names the scene where it now lies."""
     assert cli("example", tmp_path / "ex", cwd=tmp_path).returncode == 0
-    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt"):
+    for name in ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "ctm_reynolds.nml",
+                 "profiles/ctm_medium.txt"):
         original = (ROOT / "inputs" / name).read_text(encoding="utf-8")
         if name.endswith(".nml"):
             assert f"Run:  pavefric inputs/{name}" in original
@@ -116,3 +118,30 @@ def test_bench_refuses_a_missing_reference_in_one_line(tmp_path):
     assert len(lines) == 1 and "Traceback" not in r.stderr
     assert "bench --reference" in lines[0] and "nope.py: no such file" in lines[0]
     assert not report.exists()
+
+
+def test_default_scenes_run_each_wet_model_beside_dry(tmp_path):
+    """Issue 21, must-show 3: the default scene comes dry and with each of the
+    three wet models (what `bash setup.sh demo` runs and plots), each output
+    says which ran, the plot labels each curve by it, and on the same
+    surface at 1 mm of water every wet model loses friction against dry at
+    80 km/h."""
+    from pavefric.plot import plot_mu_speed, water_label
+
+    expected = {"ctm_dry": "dry", "ctm_wet": "wet: paper's bearing",
+                "ctm_squeeze": "wet: drainage model", "ctm_reynolds": "wet: Reynolds film"}
+    mu80 = {}
+    outs = []
+    for scene, label in expected.items():
+        out = tmp_path / f"{scene}.nc"
+        r = run_program(ROOT / "inputs" / f"{scene}.nml", "-q", "-o", out)
+        assert r.returncode == 0, r.stderr
+        with pavefric.open_dataset(out) as ds:
+            assert water_label(ds) == label
+            speeds = list(ds["speed_kmh"].values)
+            mu80[scene] = float(ds["mu"].values[speeds.index(80.0)])
+        outs.append(out)
+    for scene in ("ctm_wet", "ctm_squeeze", "ctm_reynolds"):
+        assert mu80[scene] < mu80["ctm_dry"], (scene, mu80)
+    png = plot_mu_speed(outs, tmp_path / "mu.png")
+    assert (tmp_path / "mu.png").stat().st_size > 10_000 and png.endswith("mu.png")

@@ -1,7 +1,8 @@
 """The default scenes, shipped in the package: ``python -m pavefric example DIR``.
 
 The wheel carries a copy of the checkout's ``inputs/ctm_dry.nml``,
-``inputs/ctm_wet.nml``, ``inputs/ctm_squeeze.nml`` and the profile they read
+``inputs/ctm_wet.nml``, ``inputs/ctm_squeeze.nml``, ``inputs/ctm_reynolds.nml`` and
+the profile they read
 (``inputs/profiles/ctm_medium.txt``) in ``pavefric/example/`` (installed by
 python/meson.build), so that an installed pavefric runs its default scene from
 any directory::
@@ -22,7 +23,8 @@ from pathlib import Path
 
 #: What ``example`` writes, relative to its directory (and to ``inputs/`` of
 #: a checkout, where the originals are).
-FILES = ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "profiles/ctm_medium.txt")
+FILES = ("ctm_dry.nml", "ctm_wet.nml", "ctm_squeeze.nml", "ctm_reynolds.nml",
+         "profiles/ctm_medium.txt")
 
 #: The directory written when none is given.
 DEFAULT_DIRECTORY = "pavefric-example"
@@ -83,8 +85,9 @@ def next_steps(directory: str | os.PathLike) -> str:
         f"  {program} ctm_dry.nml        # dry -> outputs/ctm_dry.nc",
         f"  {program} ctm_wet.nml        # 1 mm of water, the paper's wet model",
         f"  {program} ctm_squeeze.nml    # 1 mm of water, the drainage model",
+        f"  {program} ctm_reynolds.nml   # 1 mm of water, the Reynolds film",
         f"  {python} -m pavefric plot outputs/ctm_dry.nc outputs/ctm_wet.nc "
-        "outputs/ctm_squeeze.nc -o mu_speed.png",
+        "outputs/ctm_squeeze.nc outputs/ctm_reynolds.nc -o mu_speed.png",
     ])
 
 

@@ -10,6 +10,17 @@ def is_batch(ds) -> bool:
     return "profile" in ds.dims
 
 
+def water_label(ds) -> str:
+    """What water a single-scene output ran with, from its ``effects``
+    attribute: "dry", or "wet: " and the wet model that ran."""
+    effects = ds.attrs.get("effects", "").split(",")
+    for effect, name in (("hydrodynamic_bearing", "paper's bearing"),
+                         ("squeeze_film", "drainage model"), ("reynolds_film", "Reynolds film")):
+        if effect in effects:
+            return f"wet: {name}"
+    return "dry"
+
+
 def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
                   labels: Sequence[str] | None = None, title: str | None = None) -> str:
     """Friction coefficient against sliding speed, one curve per dataset.
@@ -53,13 +64,7 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
     fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=120)
     for i, (label_default, ds) in enumerate(opened):
         label = labels[i] if labels else label_default
-        effects = ds.attrs.get("effects", "")
-        if "hydrodynamic_bearing" in effects:
-            label += " (wet: paper's bearing)"
-        elif "squeeze_film" in effects:
-            label += " (wet: drainage model)"
-        else:
-            label += " (dry)"
+        label += f" ({water_label(ds)})"
         ax.plot(ds["speed_kmh"].values, ds["mu"].values, marker="o", ms=3, label=label)
     ax.set_xlabel("sliding speed (km/h)")
     ax.set_ylabel("friction coefficient $\\mu$")

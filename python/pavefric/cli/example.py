@@ -6,7 +6,7 @@ import sys
 
 NAME = "example"
 HELP = "write the default scenes and their profile into a directory"
-DESCRIPTION = ("Write the default scenes (ctm_dry.nml, ctm_wet.nml, ctm_squeeze.nml) and the "
+DESCRIPTION = ("Write the default scenes (ctm_dry.nml, ctm_wet.nml, ctm_squeeze.nml, ctm_reynolds.nml) and the "
                "profile they read (profiles/ctm_medium.txt), shipped in the package, into DIR, "
                "and print the commands to run next. Existing files are left alone unless "
                "--force.")
