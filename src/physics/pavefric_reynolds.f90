@@ -217,22 +217,23 @@ contains
       logical, intent(out) :: full(size(gap))
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
-      real(wp) :: y(size(gap)), p0
+      real(wp) :: y(size(gap)), p0, tc0
+      real(wp) :: c(size(gap)), k(size(gap)), run(size(gap))
       logical :: changed
       integer :: j, n, info
       ! nodes 1 .. n-1 between the elements (node j behind element j from the
       ! leading edge); p(j), theta(j), full(j) are node j's; p(n) = 0 (outlet)
       n = size(gap)
+      ! the gap's terms do not depend on the active set: once per solve
+      call film_terms(depth, eta, sigma, width, length, density, speed, gap, c, k, run, tc0, p0)
       full = .true.
       converged = .false.
       p = 0.0_wp
       theta = 1.0_wp
       load = 0.0_wp
       info = 0
-      p0 = 0.0_wp
       do iterations = 1, max_active_set
-         call assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, full, &
-            & y, p0, info)
+         call assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
          if (info /= 0) exit
          changed = .false.
          do j = 1, n - 1
@@ -265,10 +266,11 @@ contains
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
       logical, intent(in) :: full(size(gap))
       real(wp), intent(out) :: load
-      real(wp) :: y(size(gap)), p0
+      real(wp) :: y(size(gap)), p0, tc0
+      real(wp) :: c(size(gap)), k(size(gap)), run(size(gap))
       integer :: info
-      call assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, full, y, &
-         & p0, info)
+      call film_terms(depth, eta, sigma, width, length, density, speed, gap, c, k, run, tc0, p0)
+      call assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
       load = 0.0_wp
       if (info /= 0) return
       load = nodes_load(width, length, max(0.0_wp, merge(y, 0.0_wp, full)), p0)
@@ -283,24 +285,22 @@ contains
       load = width * (length / real(n, wp)) * (sum(p(1:n - 1)) + 0.5_wp * p0)
    end function nodes_load
 
-   !> Vertex-centred: the gap per element, the pressure and fill at the nodes
-   !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
-   !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
-   pure subroutine assemble_and_solve(depth, eta, sigma, width, length, density, speed, gap, &
-         & full, y, p0, info)
+   !> The gap's terms, in order from the leading edge (element n first): the
+   !> transport c and flow coefficient k per element, its drainage length
+   !> (the run of open, or of touching, elements holding it, capped at the
+   !> pad width), and the inlet: the flux coefficient tc0 (the leading gap's
+   !> c, or 2 H_in if starved) and the dynamic pressure p0 (Pa) of the water
+   !> the leading edge stops. They do not depend on the active set.
+   pure subroutine film_terms(depth, eta, sigma, width, length, density, speed, gap, c, k, &
+         & run, tc0, p0)
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
-      logical, intent(in) :: full(size(gap))
-      real(wp), intent(out) :: y(size(gap)), p0
-      integer, intent(out) :: info
-      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
-      real(wp) :: dl(max(1, size(gap))), dd(size(gap)), du(max(1, size(gap)))
-      real(wp) :: ds, half_v, tc0, lam
-      integer :: j, n, m, i1
+      real(wp), intent(out) :: c(size(gap)), k(size(gap)), run(size(gap)), tc0, p0
+      real(wp) :: h_t, ds
+      integer :: j, n, i1
       n = size(gap)
       ds = length / real(n, wp)
-      half_v = 0.5_wp * speed
       do j = 1, n
-         call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
+         call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t, c(j), k(j))
       end do
       ! each run of open (or of touching) elements in one pass: its length,
       ! capped at the pad width, is the drainage length of its elements
@@ -314,13 +314,32 @@ contains
          run(j:i1) = min(width, real(i1 - j + 1, wp) * ds)
          j = i1 + 1
       end do
+      tc0 = 0.0_wp
+      p0 = 0.0_wp
+      if (n == 0) return
       if (2.0_wp * depth >= c(1)) then
          tc0 = c(1)
          p0 = (1.0_wp - c(1) / (2.0_wp * depth)) * 0.5_wp * density * speed * speed
       else
          tc0 = 2.0_wp * depth
-         p0 = 0.0_wp
       end if
+   end subroutine film_terms
+
+   !> Vertex-centred: the gap per element, the pressure and fill at the nodes
+   !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
+   !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
+   !> y: the full nodes' pressure, the partial nodes' 1 - theta.
+   pure subroutine assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
+      real(wp), intent(in) :: length, speed, c(:), k(:), run(:), tc0, p0
+      logical, intent(in) :: full(size(c))
+      real(wp), intent(out) :: y(size(c))
+      integer, intent(out) :: info
+      real(wp) :: dl(max(1, size(c))), dd(size(c)), du(max(1, size(c)))
+      real(wp) :: ds, half_v, lam
+      integer :: n, m
+      n = size(c)
+      ds = length / real(n, wp)
+      half_v = 0.5_wp * speed
       info = 0
       y = 0.0_wp
       if (n < 2) return
