@@ -90,3 +90,26 @@ def test_mpi_equals_serial_on_a_netcdf_survey(survey):
     assert r.returncode == 0, r.stderr
     with xr.open_dataset(tmp / "serial.nc") as a, xr.open_dataset(tmp / "mpi.nc") as b:
         np.testing.assert_array_equal(a["mu"].values, b["mu"].values)
+
+
+@pytest.mark.parametrize("wet_model, effect", [("kane2017", "hydrodynamic_bearing"),
+                                               ("squeeze", "squeeze_film"),
+                                               ("reynolds", "reynolds_film")])
+def test_batch_effects_name_the_film_that_ran(survey, wet_model, effect):
+    """The batch file's `effects` names the scene's own film where it ran, as
+    a single scene's output does (it had said hydrodynamic_bearing for any
+    load-carrying film and nothing for the drainage model); a dry batch names
+    none."""
+    tmp, _ = survey
+    common = ("&surface height_unit = 'm', dx = 0.87e-3, closed = .false., mu_loc = 0.6 /\n"
+              "&operation speeds_kmh = 20, 60 /\n")
+    (tmp / "w.nml").write_text("&batch profiles = 'survey.nc', depths = 0, 1e-3 /\n"
+                               f"&water wet_model = '{wet_model}' /\n" + common)
+    (tmp / "d.nml").write_text("&batch profiles = 'survey.nc', depths = 0 /\n"
+                               f"&water wet_model = '{wet_model}' /\n" + common)
+    assert run_program(tmp / "w.nml", "-q", "-o", tmp / "w.nc").returncode == 0
+    assert run_program(tmp / "d.nml", "-q", "-o", tmp / "d.nc").returncode == 0
+    with xr.open_dataset(tmp / "w.nc") as w, xr.open_dataset(tmp / "d.nc") as d:
+        films = {"hydrodynamic_bearing", "squeeze_film", "reynolds_film"}
+        assert set(w.attrs["effects"].split(",")) & films == {effect}
+        assert not set(d.attrs["effects"].split(",")) & films

@@ -15,15 +15,16 @@ module pavefric_batch_netcdf
 contains
 
    !> Write a batch's results (profile x water_depth x speed_kmh) to `path`, via a
-   !> temporary file and a rename. `history` goes into the history attribute.
-   subroutine write_batch_results(path, batch, blocks, history, error)
-      character(len=*), intent(in) :: path, history
+   !> temporary file and a rename. `history` goes into the history attribute;
+   !> `film_effect` names the scene's film in `effects` where one ran.
+   subroutine write_batch_results(path, batch, blocks, history, film_effect, error)
+      character(len=*), intent(in) :: path, history, film_effect
       type(batch_type), intent(in) :: batch
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
       call temporary_name(path, tmp)
-      call write_batch_file(tmp, batch, blocks, history, error)
+      call write_batch_file(tmp, batch, blocks, history, film_effect, error)
       call commit_temporary(tmp, path, error)
    end subroutine write_batch_results
 
@@ -36,8 +37,8 @@ contains
    !> which a water film's thickness is not. Integer variables carry a
    !> _FillValue only when a profile failed (only then can a value be
    !> missing), so that readers keep them integers otherwise.
-   subroutine write_batch_file(path, batch, blocks, history, error)
-      character(len=*), intent(in) :: path, history
+   subroutine write_batch_file(path, batch, blocks, history, film_effect, error)
+      character(len=*), intent(in) :: path, history, film_effect
       type(batch_type), intent(in) :: batch
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
@@ -125,7 +126,8 @@ contains
          ok = [(blocks(i)%status == status_computed, i = 1, np)]
          effects = "elastic_contact,facet_friction"
          if (any([(blocks(i)%viscous, i = 1, np)])) effects = effects // ",viscous_memory"
-         if (any([(blocks(i)%bearing, i = 1, np)])) effects = effects // ",hydrodynamic_bearing"
+         if (any([(blocks(i)%bearing, i = 1, np)]) .and. len(film_effect) > 0) &
+            & effects = effects // "," // film_effect
          any_failed = .not. all(ok)
          profile_coords = "profile_name"
          if (batch%has_chainage) profile_coords = "profile_name chainage"

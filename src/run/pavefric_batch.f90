@@ -928,7 +928,8 @@ contains
             blk%residual(:, d) = res%max_balance_residual
             blk%n_clamped(:, d) = real(res%n_clamped, wp)
             blk%viscous = blk%viscous .or. any(res%viscous_memory_ran)
-            blk%bearing = blk%bearing .or. any(res%bearing_ran)
+            ! a film ran: one that carried load or one that changed the friction
+            blk%bearing = blk%bearing .or. any(res%bearing_ran) .or. any(res%friction_film_ran)
             if (len(res%warnings) > 0) call add_warning(warnings, res%warnings)
             call result_warnings(scene, res, has_texture, tex%mpd, " and water depth " // &
                & to_str(batch%depths(d)) // " m", warnings)

@@ -9,6 +9,10 @@ module pavefric_batch_run
    use pavefric_batch, only: batch_type, block_type, string_type, batch_prepare, batch_compute, &
       & journal_append, journal_close, status_failed
    use pavefric_batch_netcdf, only: write_batch_results
+   use pavefric_model, only: model_type
+   use pavefric_rubber, only: rubber_model
+   use pavefric_film, only: film_model
+   use pavefric_components, only: make_components
    use pavefric_run, only: timestamp
    use pavefric_fsys, only: remove_file
    implicit none
@@ -174,6 +178,10 @@ contains
       type(error_type), allocatable, intent(out) :: error
       logical :: ok
       integer :: i
+      type(model_type) :: m
+      class(rubber_model), allocatable :: rubber
+      class(film_model), allocatable :: film
+      character(len=:), allocatable :: film_effect
       do i = 1, size(blocks)
          if (blocks(i)%status == 0) then
             call fatal_error(error, "batch: profile " // to_str(i) // " ('" // &
@@ -183,8 +191,15 @@ contains
       end do
       call journal_close(batch, error)
       if (allocated(error)) return
+      ! the name of the scene's film (the same wet model at every depth), for
+      ! the file's effects where a film ran
+      m = batch%scene%model
+      m%depth = maxval([0.0_wp, batch%depths])
+      call make_components(m, rubber, film)
+      film_effect = ""
+      if (allocated(film)) call film%effect(film_effect)
       call write_batch_results(batch%output, batch, blocks, timestamp() // " pavefric " // &
-         & pavefric_version // ": " // command, error)
+         & pavefric_version // ": " // command, film_effect, error)
       if (allocated(error)) return
       ok = remove_file(batch%journal)
    end subroutine batch_finish
