@@ -472,7 +472,7 @@ def test_validate_reduced(tmp_path, paper):
     progress = [line for line in r.stderr.splitlines() if line.startswith("validate: ")
                 and " elapsed, about " in line]
     assert 1 <= len(progress) <= 10, r.stderr
-    assert progress[-1].startswith("validate: 11/11 sections (100 %), ")
+    assert progress[-1].startswith("validate: 14/14 sections (100 %), ")
     assert progress[-1].endswith("about 0:00 left: figures and report")
     assert " elapsed, about " not in r.stdout
     text = report.read_text()
@@ -498,6 +498,15 @@ def test_validate_reduced(tmp_path, paper):
     assert 0 < plo < res["alpha"] < phi
     assert "±" not in text.split("## Statistics")[0]
     assert pavefric.defaults()["alpha"] == CALIBRATED_ALPHA
+    # issue 21: validate reports every wet model, each fitted at 20 km/h alone
+    assert set(res["wet_models"]) == {"kane2017", "squeeze", "reynolds"}
+    section = text.split("## Every wet model")[1].split("\n## ")[0]
+    for model in ("kane2017", "squeeze", "reynolds"):
+        t = res["wet_models"][model]
+        assert f"| {model} | {t['parameter']} = " in section
+        assert len(t["ratios"]) == 6 and np.isfinite(t["predicted"]["R2"])
+    # the paper's bearing fitted the same way gives validate's own alpha
+    assert res["wet_models"]["kane2017"]["value"] == pytest.approx(res["alpha"], rel=1e-3)
 
 
 DOC = ROOT / "docs" / "calibration.md"

@@ -2,8 +2,9 @@
 (issues 12 and 21, and the rule that every fitted constant is fitted on a
 training set and judged on a test set it never saw): each wet model's one
 constant is fitted on the training profiles only; the report gives the RMS
-of ln(Sp/Sp_PIARC) in and out of sample, and says whether the drainage
-model's target (RMS <= 0.3 out of sample) is met."""
+of ln(Sp/Sp_PIARC) in and out of sample for the three wet models, and says
+whether the drainage model's and the Reynolds film's targets (RMS <= 0.3
+out of sample) are met."""
 import re
 import json
 import os
@@ -47,6 +48,27 @@ def test_the_split_is_declared_and_the_fit_sees_only_training(study):
     assert a == b
 
 
+def test_every_wet_model_is_in_the_study(study):
+    """kane2017, squeeze and reynolds each fitted on training and judged on
+    test, at their fitted constant and at the defaults shipped; the test
+    figures are predictions, so they are not better than training's by
+    construction, and every Sp is finite and positive or infinite (no NaN)."""
+    data, tmp = study
+    assert set(data["models"]) == {"kane2017", "squeeze", "reynolds"}
+    assert set(data["defaults"]) == set(data["models"]) == set(data["table2"])
+    n = len(data["profiles"])
+    for model, res in data["models"].items():
+        sp = np.array(res["sp"])
+        assert sp.size == n and not np.isnan(sp).any() and (sp > 0).all(), model
+        for key in ("rms_training", "rms_test", "rms_test_synthetic"):
+            assert np.isfinite(res[key]) and res[key] >= 0, (model, key)
+        assert data["defaults"][model]["rms_test"] >= 0
+    # the Reynolds film's constant is the flow factors' roughness, in range
+    assert 2e-6 <= data["models"]["reynolds"]["constant"] <= 5e-4
+    text = (tmp / "speed_gradient.md").read_text()
+    assert "| reynolds (film) |" in text and "## By kind of texture" in text
+
+
 def test_the_drainage_model_beats_the_papers_bearing_out_of_sample(study):
     data, _ = study
     sq, k17 = data["models"]["squeeze"], data["models"]["kane2017"]
@@ -76,8 +98,8 @@ def test_the_report_states_its_figures_and_command(study):
     saved = json.loads((tmp / "speed_gradient.json").read_text())
     assert saved["models"]["squeeze"]["rms_test"] == pytest.approx(
         data["models"]["squeeze"]["rms_test"])
-    # the Table 2 part: both models fitted at 20 km/h, ratios per surface
-    for model in ("kane2017", "squeeze"):
+    # the Table 2 part: each model fitted at 20 km/h, ratios per surface
+    for model in ("kane2017", "squeeze", "reynolds"):
         t2 = data["table2"][model]
         assert len(t2["ratios"]) == 6 and np.isfinite(t2["all"]["R2"])
 
@@ -90,3 +112,7 @@ def test_the_committed_report_judges_the_target_out_of_sample():
     verdict, test_rms = m.group(1), float(m.group(2))
     assert (verdict == "met") == (test_rms <= 0.3)
     assert "within a factor 1.5 of PIARC — met" in text
+    m = re.search(r"Reynolds film, issue 21\), judged on the test set at its defaults: RMS ≤ 0.3 "
+                  r"— (met|NOT met) \(([0-9.]+) out of sample", text)
+    assert m, "the report must judge the Reynolds film's target on the test set"
+    assert (m.group(1) == "met") == (float(m.group(2)) <= 0.3)

@@ -220,7 +220,8 @@ def outputs_markdown() -> str:
         "| `history` | time stamp and the command that wrote the file |",
         "| `effects` | comma-separated effects that ran at any speed: `elastic_contact`, "
         "`facet_friction`, then `viscous_memory` (or the Maxwell rubber's), "
-        "`hydrodynamic_bearing` or `squeeze_film` when they ran |",
+        "and the film of the scene's wet model where it ran: `hydrodynamic_bearing`, "
+        "`squeeze_film` or `reynolds_film` (a batch file: where it ran for any profile) |",
         "| `warnings` | every warning of the run, one a line (empty: none): implausible "
         "values by group and variable, texture checks, a tolerance not met |",
         "| `input_namelist` | the scene file, verbatim |",
