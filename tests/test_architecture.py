@@ -431,7 +431,9 @@ def test_each_output_is_declared_by_its_component():
         "viscous_memory_ran", "bearing_ran", "squeeze_film_ran", "mean_local_friction",
         "mean_film_thickness", "mu_inst", "hydro_load", "penetration", "contact_elements",
         "film_thickness", "local_friction", "mu_error_estimate", "substeps_used",
-        "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran"]
+        "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran",
+        # issue 21's, appended (the indices before them unchanged)
+        "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled"]
     modules = {"pad": "model/pavefric_outputs.f90", "numerics": "model/pavefric_outputs.f90",
                "facets": "physics/pavefric_facet.f90", "rubber": "physics/pavefric_rubber.f90",
                "film": "physics/pavefric_film.f90", "squeeze": "physics/pavefric_squeeze.f90"}

@@ -118,3 +118,28 @@ def test_chunking_of_the_speeds_changes_no_bit(tmp_path, profile_m, speeds):
         last = results[0].isel(speed_kmh=-1)
         assert last["mu"].values == alone["mu"].values[0]
         assert np.array_equal(last["mu_inst"].values, alone["mu_inst"].isel(speed_kmh=0).values)
+
+
+@pytest.mark.parametrize("scheme", ["euler", "exact"])
+def test_contact_fraction_is_the_share_of_elements_touching(scheme):
+    """Issue 21: contact_fraction, every run's, is the mean over positions of
+    the share of the pad's elements touching: all of them on a flat road
+    (the pad sinks into it evenly), fewer on a texture, the same figure
+    from both time schemes on a dry road to within the schemes' difference,
+    and exactly the series' contact_elements over the pad's elements."""
+    from pavefric.surfaces import spectral_profile
+
+    flat = pavefric.simulate(np.zeros(256), 0.87e-3, [20.0, 60.0], time_scheme=scheme,
+                             error_estimate=False)
+    assert np.all(flat["contact_fraction"].values == 1.0)
+    z = spectral_profile(512, 0.87e-3, rms=0.5e-3, seed=5)
+    r = pavefric.simulate(z, 0.87e-3, [20.0, 60.0], time_scheme=scheme, series=True,
+                          error_estimate=False)
+    frac = r["contact_fraction"].values
+    assert np.all((0.2 < frac) & (frac < 0.95)), frac
+    ce = r["contact_elements"]
+    per_speed = ce.mean(dim=[d for d in ce.dims if d not in r["mu"].dims]).values
+    np.testing.assert_allclose(frac, per_speed / r.attrs["pad_elements"], rtol=1e-12)
+    other = pavefric.simulate(z, 0.87e-3, [20.0, 60.0], error_estimate=False,
+                              time_scheme="exact" if scheme == "euler" else "euler")
+    assert np.all(np.abs(other["contact_fraction"].values - frac) < 0.05)

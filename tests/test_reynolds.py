@@ -126,6 +126,54 @@ def test_hard_cases_stay_finite(kw):
     mu = r["mu"].values
     assert np.all(np.isfinite(mu)) and np.all(mu >= 0.0)
     assert np.all(r["max_balance_residual"].values < 1e-6)
+    for name in ("contact_fraction", "film_load_share", "mean_water_thickness"):
+        v = r[name].values
+        assert np.all(np.isfinite(v)) and np.all(v >= 0.0), name
+    assert np.all(r["contact_fraction"].values <= 1.0)
+    assert np.all(r["film_load_share"].values <= 1.0 + 1e-6)
+    assert np.all(r["film_unsettled"].values == 0)
+
+
+def test_the_outputs_mean_what_they_say():
+    """Issue 21's outputs per speed: the film's share of the load is its mean
+    load over the pad's load; the contact fraction is the mean share of
+    elements touching (the series' contact_elements over the pad's
+    elements); a smooth road in deep water at speed has the film carry the
+    pad (share near 1, no contact, hydroplaning) over water thicker than
+    the microtexture; a textured road's contact shrinks and the film's share
+    grows with speed; a nanometre of water holds at most twice itself."""
+    z = profile("rough")
+    r = wet(z, SPEEDS, 1e-3, series=True)
+    share = r["film_load_share"].values
+    np.testing.assert_allclose(share, r["mean_hydro_load"].values / 11.8, rtol=1e-14)
+    n_el = r.attrs["pad_elements"]
+    ce = r["contact_elements"]
+    per_speed = ce.mean(dim=[d for d in ce.dims if d not in r["mu"].dims]).values
+    np.testing.assert_allclose(r["contact_fraction"].values, per_speed / n_el, rtol=1e-12)
+    assert np.all(np.diff(r["contact_fraction"].values) <= 1e-12)
+    assert np.all(np.diff(share) >= -1e-12) and share[-1] > share[0]
+    assert np.all(r["film_unsettled"].values == 0)
+    water = r["mean_water_thickness"].values
+    assert np.all(water > 0.0) and np.all(water < 2e-3)
+
+    smooth = wet(profile("smooth"), [20.0, 300.0], 2e-3)
+    assert smooth["film_load_share"].values[1] > 0.99
+    assert smooth["contact_fraction"].values[1] < 0.01
+    assert smooth["hydroplaning_fraction"].values[1] > 0.99
+    assert smooth["contact_fraction"].values[0] > smooth["contact_fraction"].values[1]
+    assert smooth["mean_water_thickness"].values[1] > 40e-6     # > the microtexture
+
+    nano = wet(z, SPEEDS, 1e-9)
+    assert np.all(nano["mean_water_thickness"].values <= 2e-9)
+
+
+@pytest.mark.parametrize("model", ["kane2017", "squeeze"])
+def test_other_wet_models_resolve_no_water_and_always_settle(model):
+    r = run(profile("fine"), [20.0, 80.0], wet_model=model, depth=1e-3)
+    assert np.all(r["mean_water_thickness"].values == 0.0)
+    assert np.all(r["film_unsettled"].values == 0)
+    np.testing.assert_allclose(r["film_load_share"].values,
+                               r["mean_hydro_load"].values / 11.8, rtol=1e-14)
 
 
 SOLVER_CHECK = """

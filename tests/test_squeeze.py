@@ -207,3 +207,20 @@ def test_an_inlet_fraction_given_to_the_bearing_is_warned_of():
                       match=r"&water squeeze_inlet_fraction = 0.5 is not used with &water "
                             r"wet_model = 'kane2017' \(a variable of wet_model = 'squeeze'"):
         pavefric.simulate(z, dx, [20.0], depth=1e-3, squeeze_inlet_fraction=0.5)
+
+
+def test_the_film_thickness_is_the_contacts(profile):
+    """Issue 21: mean_film_thickness is the film left between the rubber and
+    the road where they touch, not an average with the elements out of
+    contact (the water on the road under them): the mean over positions of
+    the series' film_thickness, which is at most the water depth, positive
+    on average, and 0 at a position where nothing touches."""
+    r = squeeze(profile, [20.0, 80.0], series=True, error_estimate=False)
+    ft = r["film_thickness"]
+    per_speed = ft.mean(dim=[d for d in ft.dims if d not in r["mu"].dims]).values
+    np.testing.assert_allclose(r["mean_film_thickness"].values, per_speed, rtol=1e-12)
+    assert np.all(r["mean_film_thickness"].values > 0.0)
+    assert np.all(ft.values <= 1e-3 * (1 + 1e-12)) and np.all(ft.values >= 0.0)
+    # where no element touches, the series says 0 (no film between them)
+    ce = r["contact_elements"].values
+    assert np.all(ft.values[ce == 0] == 0.0)

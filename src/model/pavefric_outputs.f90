@@ -32,7 +32,7 @@ module pavefric_outputs
    public :: output_condition
 
    !> The variables the pad, its balance and the numerics declare (below).
-   integer, parameter :: n_pad_outputs = 6, n_numerics_outputs = 4
+   integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 4
    !> Only the squeeze film's own (its registry entry).
    integer, parameter :: n_wet_model_outputs = 5
    integer, parameter :: n_outputs = n_pad_outputs + n_facet_outputs + n_rubber_outputs + &
@@ -45,7 +45,8 @@ module pavefric_outputs
       & "viscous_memory_ran", "bearing_ran", "squeeze_film_ran", "mean_local_friction", &
       & "mean_film_thickness", "mu_inst", "hydro_load", "penetration", "contact_elements", &
       & "film_thickness", "local_friction", "mu_error_estimate", "substeps_used", &
-      & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran"]
+      & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran", &
+      & "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled"]
 
    !> What the output says besides the result variables: where the results
    !> came from, the profile, its texture, the parameters used, warnings.
@@ -115,6 +116,8 @@ contains
          & "(Eq. 4)", dims=dim_position_speed, when=when_series)
       t(6) = output_var("pad", "contact_elements", "1", "pad elements in contact with the " // &
          & "profile", out_int, dim_position_speed, when=when_series)
+      t(7) = output_var("pad", "contact_fraction", "1", "share of the pad's elements in " // &
+         & "contact with the profile, averaged over positions")
    end function pad_outputs
 
    !> What the numerics report of their accuracy.
@@ -298,6 +301,14 @@ contains
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%extrapolated)
       case ("exact_integrator_ran")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%exact_integrator_ran)
+      case ("contact_fraction")
+         values(1:ns) = res%contact_fraction
+      case ("film_load_share")
+         values(1:ns) = res%film_load_share
+      case ("mean_water_thickness")
+         values(1:ns) = res%mean_water_thickness
+      case ("film_unsettled")
+         values(1:ns) = real(res%film_unsettled, wp)
       end select
    end subroutine output_values
 

@@ -56,8 +56,15 @@ module pavefric_results
       real(wp), allocatable :: wet_fraction(:)
       !> Largest |sum F + Wh - W| / W over the averaged positions.
       real(wp), allocatable :: max_balance_residual(:)
-      !> Mean load carried by the film (N).
-      real(wp), allocatable :: mean_hydro_load(:)
+      !> Mean load carried by the film (N), and as a share of the pad's load.
+      real(wp), allocatable :: mean_hydro_load(:), film_load_share(:)
+      !> Share of the pad's elements in contact, averaged over positions.
+      real(wp), allocatable :: contact_fraction(:)
+      !> The film's water between the pad and the road per unit of pad area
+      !> (m), averaged over positions (0 for films that do not resolve it).
+      real(wp), allocatable :: mean_water_thickness(:)
+      !> Averaged positions where the film's solution did not settle.
+      integer(i8), allocatable :: film_unsettled(:)
       !> Largest compression of an element (m), to compare with the thickness.
       real(wp), allocatable :: max_compression(:)
       !> Contacts on facets steeper than theta_max, summed over positions.

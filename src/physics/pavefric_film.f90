@@ -21,7 +21,7 @@ module pavefric_film
    public :: film_outputs, n_film_outputs
 
    !> The result variables of a film that carries load (film_outputs).
-   integer, parameter :: n_film_outputs = 5
+   integer, parameter :: n_film_outputs = 8
 
    !> What every film is built with, from the scene: the water depth H_in
    !> (m) and viscosity eta (Pa s), the pad's width and length (m) and the
@@ -89,6 +89,13 @@ module pavefric_film
       procedure :: friction => film_friction_unchanged
       !> The film thickness (m) on a road sample, from its state.
       procedure :: thickness => film_no_thickness
+      !> What the film's solution at a gap field is, for the outputs (load
+      !> films, once per averaged position at the balance's root): whether
+      !> it settled, and its water between the pad and the road per unit of
+      !> pad area (m). The default: settled, no water resolved.
+      procedure :: report => film_no_report
+      !> Whether `report` has anything to say (else the driver skips it).
+      procedure :: reports => film_flag_false
    end type film_model
 
    !> A wet model as the registry (pavefric_wet_models) holds it: its name
@@ -179,6 +186,16 @@ contains
          & "part in the load balance", out_flag)
       t(5) = output_var("film", "hydro_load", "N", "load carried by the water film (Eq. 15)", &
          & dims=dim_position_speed, when=when_series)
+      t(6) = output_var("film", "film_load_share", "1", "share of the pad's load carried " // &
+         & "by the water film, averaged over positions (mean_hydro_load / &pad load)")
+      t(7) = output_var("film", "mean_water_thickness", "m", "water between the pad and " // &
+         & "the road per unit of pad area, averaged over positions: with wet_model = " // &
+         & "'reynolds' each element's mean gap h_T times its fill theta, over the pad; 0 for " // &
+         & "the models that do not resolve the water under the pad (kane2017; squeeze's " // &
+         & "film on the contacts is mean_film_thickness)")
+      t(8) = output_var("film", "film_unsettled", "1", "averaged positions where the " // &
+         & "film's solution at the balance did not settle (wet_model = 'reynolds': its " // &
+         & "active set; the last iterate is used, and a warning says so)", out_int64)
    end function film_outputs
 
    pure function pseudo_bearing_entry() result(e)
@@ -223,6 +240,21 @@ contains
       real(wp), intent(in) :: state(:)
       film_no_thickness = 0.0_wp
    end function film_no_thickness
+
+   pure logical function film_flag_false(self)
+      class(film_model), intent(in) :: self
+      film_flag_false = .false.
+   end function film_flag_false
+
+   pure subroutine film_no_report(self, step, gap, settled, water)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      logical, intent(out) :: settled
+      real(wp), intent(out) :: water
+      settled = .true.
+      water = 0.0_wp
+   end subroutine film_no_report
 
    pure logical function film_never(self, step, gap)
       class(film_model), intent(in) :: self

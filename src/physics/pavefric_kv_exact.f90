@@ -40,6 +40,8 @@ module pavefric_kv_exact
       !> Averaged positions with no element in contact (the pad is carried
       !> by the elements at every instant: 0 in practice).
       integer :: n_nocontact = 0
+      !> The share of the elements in contact, summed over averaged positions.
+      real(wp) :: contact_share_sum = 0.0_wp
       !> 0, or 1 when a step had more events than max_events (its position
       !> in bad_position), 2 when the work arrays could not be allocated.
       integer :: status = 0, bad_position = 0
@@ -367,6 +369,7 @@ contains
          end do
          res%max_balance_residual = max(res%max_balance_residual, abs(total - load) / load)
          if (ncount == 0) res%n_nocontact = res%n_nocontact + 1
+         res%contact_share_sum = res%contact_share_sum + real(ncount, wp) / real(n, wp)
          if (first) then
             ! (the open profile's first position: no segment before it)
             if (series) mu_inst(1) = ad / load

@@ -75,6 +75,8 @@ module pavefric_reynolds
       procedure :: engages => reynolds_engages
       procedure :: load => reynolds_load
       procedure :: lower_bound => reynolds_lower_bound
+      procedure :: report => reynolds_report
+      procedure :: reports => reynolds_carries_load
    end type reynolds_film
 
 contains
@@ -178,6 +180,40 @@ contains
          & self%density, step%coef(1), max(0.0_wp, gap - shift), full, wh2)
       dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
    end subroutine reynolds_load
+
+   !> The film's solution at a gap field, for the outputs: whether its active
+   !> set settled, and its water per unit of pad area (m): each element's
+   !> mean gap h_T filled to the share the transport upwind gives it (the
+   !> fill theta of the node ahead of it; the leading element's, the inlet's
+   !> tc0 / c_1), averaged over the elements.
+   pure subroutine reynolds_report(self, step, gap, settled, water)
+      class(reynolds_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      real(wp), intent(in) :: gap(:)
+      logical, intent(out) :: settled
+      real(wp), intent(out) :: water
+      real(wp) :: p(size(gap)), theta(size(gap)), load, h_t, c(size(gap)), k(size(gap))
+      real(wp) :: run(size(gap)), tc0, p0, c1
+      logical :: full(size(gap))
+      integer :: iterations, j, n
+      settled = .true.
+      water = 0.0_wp
+      n = size(gap)
+      if (.not. step%active .or. n == 0) return
+      call reynolds_solve(self%depth, self%eta, self%sigma, self%width, self%length, &
+         & self%density, step%coef(1), gap, p, theta, full, load, iterations, settled)
+      call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+         & self%density, step%coef(1), gap, c, k, run, tc0, p0)
+      do j = 1, n
+         call reynolds_cell_terms(gap(n + 1 - j), self%sigma, self%eta, h_t, c1, k(j))
+         if (j == 1) then
+            water = water + min(1.0_wp, tc0 / c(1)) * h_t
+         else
+            water = water + theta(j - 1) * h_t
+         end if
+      end do
+      water = water / real(n, wp)
+   end subroutine reynolds_report
 
    !> Per cell: the mean gap h_T over Gaussian heights of RMS sigma at nominal
    !> gap h (E[max(0, h - z)] = h Phi(h/sigma) + sigma phi(h/sigma)), the

@@ -78,10 +78,12 @@ contains
          & "mu_loc times the share of microtexture piercing the film, force-weighted over " // &
          & "contacts and positions", when=when_friction_film)
       e%outputs(3) = output_var("squeeze", "mean_film_thickness", "m", "water film left " // &
-         & "under the pad, averaged over elements and positions", when=when_friction_film)
-      e%outputs(4) = output_var("squeeze", "film_thickness", "m", "water film under the " // &
-         & "pad, mean over its elements", dims=dim_position_speed, &
-         & when=when_friction_film_series)
+         & "between the rubber and the road where they touch: mean over the elements in " // &
+         & "contact, averaged over positions (a position without contact counts 0)", &
+         & when=when_friction_film)
+      e%outputs(4) = output_var("squeeze", "film_thickness", "m", "water film left between " // &
+         & "the rubber and the road, mean over the elements in contact (0 without contact)", &
+         & dims=dim_position_speed, when=when_friction_film_series)
       e%outputs(5) = output_var("squeeze", "local_friction", "1", "local friction of the " // &
          & "contacts, force-weighted (mu_loc times the share of microtexture piercing the " // &
          & "film)", dims=dim_position_speed, when=when_friction_film_series)

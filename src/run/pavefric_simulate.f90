@@ -89,7 +89,9 @@ module pavefric_simulate
       real(wp) :: mu = 0, mu_hysteresis = 0, mu_adhesion = 0, hydroplaning_fraction = 0, wet_fraction = 0
       real(wp) :: max_balance_residual = 0, mean_hydro_load = 0, max_compression = 0
       real(wp) :: mean_local_friction = 0, mean_film_thickness = 0
+      real(wp) :: contact_fraction = 0, mean_water_thickness = 0
       integer(i8) :: n_clamped = 0, bearing_evaluations = 0, memory_updates = 0
+      integer(i8) :: film_unsettled = 0
       !> Spin-up positions this speed ran, and whether its memory outlasted them.
       integer :: spinup = 0
       logical :: spin_short = .false.
@@ -322,6 +324,10 @@ contains
       call mean_in(acc%mean_hydro_load, r%mean_hydro_load)
       call mean_in(acc%mean_local_friction, r%mean_local_friction)
       call mean_in(acc%mean_film_thickness, r%mean_film_thickness)
+      call mean_in(acc%contact_fraction, r%contact_fraction)
+      call mean_in(acc%film_load_share, r%film_load_share)
+      call mean_in(acc%mean_water_thickness, r%mean_water_thickness)
+      acc%film_unsettled = acc%film_unsettled + r%film_unsettled
       acc%max_balance_residual = max(acc%max_balance_residual, r%max_balance_residual)
       acc%max_compression = max(acc%max_compression, r%max_compression)
       acc%n_clamped = acc%n_clamped + r%n_clamped
@@ -679,6 +685,10 @@ contains
       to%friction_film_ran(j) = from%friction_film_ran(k)
       to%mean_local_friction(j) = from%mean_local_friction(k)
       to%mean_film_thickness(j) = from%mean_film_thickness(k)
+      to%contact_fraction(j) = from%contact_fraction(k)
+      to%film_load_share(j) = from%film_load_share(k)
+      to%mean_water_thickness(j) = from%mean_water_thickness(k)
+      to%film_unsettled(j) = from%film_unsettled(k)
    end subroutine copy_speed
 
    !> The series of the last level (every speed refined together).
@@ -744,7 +754,8 @@ contains
          & res%viscous_memory_ran(ns), res%bearing_ran(ns), res%friction_film_ran(ns), &
          & res%exact_integrator_ran(ns), &
          & res%mean_local_friction(ns), res%mean_film_thickness(ns), spinups(ns), shorts(ns), &
-         & exact_bad(ns), stat=stat)
+         & exact_bad(ns), res%contact_fraction(ns), res%film_load_share(ns), &
+         & res%mean_water_thickness(ns), res%film_unsettled(ns), stat=stat)
       if (stat == 0) then
          exact_bad = 0
       end if
@@ -817,6 +828,10 @@ contains
                res%friction_film_ran(j) = summary%friction_film_ran
                res%mean_local_friction(j) = summary%mean_local_friction
                res%mean_film_thickness(j) = summary%mean_film_thickness
+               res%contact_fraction(j) = summary%contact_fraction
+               res%film_load_share(j) = summary%mean_hydro_load / m%load
+               res%mean_water_thickness(j) = summary%mean_water_thickness
+               res%film_unsettled(j) = summary%film_unsettled
                res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), &
                   & summary%failed == stat_memory .or. summary%failed == 1)
                if (summary%failed == stat_internal) exact_bad(j) = summary%exact_bad_position
@@ -858,6 +873,13 @@ contains
          & "(a retardation time far beyond the time of a lap: is &rubber viscosity or " // &
          & "stiffness what you meant?)")
 
+      if (any(res%film_unsettled > 0)) then
+         j = findloc(res%film_unsettled > 0, .true., dim=1)
+         call add_warning(res%warnings, "the water film's solution did not settle at " // &
+            & to_str(int(res%film_unsettled(j))) // " of " // to_str(geo%n_avg) // &
+            & " positions at " // to_str(speeds_kmh(j)) // " km/h (film_unsettled): its " // &
+            & "last iterate was used there, and mu may be off by its share of the load")
+      end if
       res%effects = "elastic_contact,facet_friction"
       if (any(res%viscous_memory_ran)) then
          call rubber%memory_effect(effect)
@@ -1241,12 +1263,16 @@ contains
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
       real(wp), dimension(lanes) :: sum_fa, hyst, hyst_sum, adh_sum, delta_last
       real(wp), dimension(lanes) :: film_work, push_total_prev, mean_total, hyst_abs_sum
-      integer(i8), dimension(lanes) :: n_clamped, n_eval
+      !> Sums over averaged positions: the share of elements in contact, and
+      !> the film's water per unit area (films that report it)
+      real(wp), dimension(lanes) :: contact_share_sum, water_sum
+      integer(i8), dimension(lanes) :: n_clamped, n_eval, n_unsettled
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
-      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j
-      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state
-      logical :: series, clamped, any_memory, any_load, any_friction, energy
+      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j, water
+      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, film_count
+      logical :: series, clamped, any_memory, any_load, any_friction, energy, settled
+      logical :: film_reports
       !> Spin-up steps of each lane (closed profiles), and whether a lane has
       !> had a step since it started.
       integer, dimension(lanes) :: spin
@@ -1286,6 +1312,9 @@ contains
       local_sum = 0.0_wp
       force_sum = 0.0_wp
       film_mean_sum = 0.0_wp
+      contact_share_sum = 0.0_wp
+      water_sum = 0.0_wp
+      n_unsettled = 0
       n_clamped = 0
       n_eval = 0
       n_nocontact = 0
@@ -1331,6 +1360,17 @@ contains
             end do
             call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
                & guess, x, wh, n_eval, gaps)
+            ! what the film's solution at the root is (films that report it)
+            if (film_reports .and. t >= 0) then
+               do j = 1, nl
+                  if (.not. load_film(j)) cycle
+                  dl = d(j, :)
+                  call gap_field(dl, x(j), gap)
+                  call film%report(fstep(j), gap, settled, water)
+                  water_sum(j) = water_sum(j) + water
+                  if (.not. settled) n_unsettled(j) = n_unsettled(j) + 1
+               end do
+            end if
          end if
 
          sum_f = 0.0_wp
@@ -1395,6 +1435,8 @@ contains
          end if
          any_load = any(load_film)
          any_friction = any(friction_film)
+         film_reports = .false.
+         if (allocated(film)) film_reports = any_load .and. film%reports()
          if (nl == 1 .and. exact_scheme(m) .and. .not. any_load .and. .not. any_friction .and. &
             & rstep%memory(1)) then
             select type (rubber)
@@ -1482,6 +1524,7 @@ contains
                   call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
                      & geo%dx_el, share)
                   film_sum = 0.0_wp
+                  film_count = 0
                   sum_ft(j) = 0.0_wp
                   sum_fa(j) = 0.0_wp
                   n_clamp_j(j) = 0
@@ -1504,14 +1547,19 @@ contains
                      end if
                      n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, pl(i) > 0.0_wp .and. clamped)
                      if (t >= 0) local_sum(j) = local_sum(j) + pl(i) * mu_eff
-                     film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * geo%spacing &
-                        & + 1), j))
+                     ! the film where the rubber touches: the one between them
+                     if (pl(i) > 0.0_wp) then
+                        film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * &
+                           & geo%spacing + 1), j))
+                        film_count = film_count + 1
+                     end if
                   end do
+                  if (film_count > 0) film_sum = film_sum / real(film_count, wp)
                   if (t >= 0) then
                      force_sum(j) = force_sum(j) + sum_f(j)
-                     film_mean_sum(j) = film_mean_sum(j) + film_sum / real(n, wp)
+                     film_mean_sum(j) = film_mean_sum(j) + film_sum
                      if (series .and. present(film_thickness)) then
-                        film_thickness(t+1, j) = film_sum / real(n, wp)
+                        film_thickness(t+1, j) = film_sum
                         local_friction(t+1, j) = 0.0_wp
                         if (sum_f(j) > 0.0_wp) local_friction(t+1, j) = &
                            & local_partial(pl, share, m%mu_loc) / sum_f(j)
@@ -1614,6 +1662,7 @@ contains
             resid_max(j) = max(resid_max(j), resid)
             n_clamped(j) = n_clamped(j) + n_clamp_j(j)
             if (n_contact(j) == 0) n_nocontact(j) = n_nocontact(j) + 1
+            contact_share_sum(j) = contact_share_sum(j) + real(n_contact(j), wp) / real(n, wp)
             if (wh(j) > 0.0_wp) n_wet(j) = n_wet(j) + 1
             if (series) then
                mu_inst(t+1, j) = mu_j
@@ -1663,6 +1712,9 @@ contains
             out(j)%wet_fraction = real(n_wet(j), wp) / real(geo%n_avg, wp)
             out(j)%max_balance_residual = resid_max(j)
             out(j)%mean_hydro_load = wh_sum(j) / real(geo%n_avg, wp)
+            out(j)%contact_fraction = contact_share_sum(j) / real(geo%n_avg, wp)
+            out(j)%mean_water_thickness = water_sum(j) / real(geo%n_avg, wp)
+            out(j)%film_unsettled = n_unsettled(j)
             out(j)%max_compression = u_max(j)
             out(j)%n_clamped = n_clamped(j)
             out(j)%bearing_evaluations = n_eval(j)
@@ -2101,6 +2153,7 @@ contains
       out%mu_adhesion = r%mu_adhesion
       out%mu = r%mu_hysteresis + r%mu_adhesion
       out%hydroplaning_fraction = real(r%n_nocontact, wp) / real(max(geo%n_avg, 1), wp)
+      out%contact_fraction = r%contact_share_sum / real(max(geo%n_avg, 1), wp)
       out%wet_fraction = 0.0_wp
       out%max_balance_residual = r%max_balance_residual
       out%mean_hydro_load = 0.0_wp
