@@ -433,10 +433,12 @@ def test_each_output_is_declared_by_its_component():
         "film_thickness", "local_friction", "mu_error_estimate", "substeps_used",
         "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran",
         # issue 21's, appended (the indices before them unchanged)
-        "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled"]
+        "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled",
+        "film_pressure_max", "water_thickness"]
     modules = {"pad": "model/pavefric_outputs.f90", "numerics": "model/pavefric_outputs.f90",
                "facets": "physics/pavefric_facet.f90", "rubber": "physics/pavefric_rubber.f90",
-               "film": "physics/pavefric_film.f90", "squeeze": "physics/pavefric_squeeze.f90"}
+               "film": "physics/pavefric_film.f90", "squeeze": "physics/pavefric_squeeze.f90",
+               "reynolds": "physics/pavefric_reynolds.f90"}
     owners = {o[0]: o[6] for o in outs}
     assert set(owners.values()) == set(modules)
     for name, owner in owners.items():

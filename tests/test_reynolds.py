@@ -167,6 +167,37 @@ def test_the_outputs_mean_what_they_say():
     assert np.all(nano["mean_water_thickness"].values <= 2e-9)
 
 
+def test_the_series_hold_the_films_pressure_and_water_per_position():
+    """Issue 21: with series, the Reynolds film's largest pressure and its
+    water per unit area at every position; the film's load never exceeds
+    its largest pressure over the pad's area, the water's mean over the
+    positions is mean_water_thickness, a speed without motion has neither,
+    and where the inlet is flooded its dynamic pressure
+    (1 - c_1 / (2 H_in)) rho V^2 / 2 is among the nodes': the largest pressure
+    reaches a good share of rho V^2 / 2 somewhere. Only the Reynolds film
+    writes them."""
+    z = profile("rough")
+    speeds = [0.0, 20.0, 80.0]
+    r = wet(z, speeds, 1e-3, series=True)
+    pmax = r["film_pressure_max"].transpose("speed_kmh", ...).values
+    water = r["water_thickness"].transpose("speed_kmh", ...).values
+    load = r["hydro_load"].transpose("speed_kmh", ...).values
+    assert np.all(np.isfinite(pmax)) and np.all(pmax >= 0.0)
+    assert np.all(pmax[0] == 0.0) and np.all(water[0] == 0.0)
+    area = 0.016 * 0.020
+    assert np.all(load <= pmax * area * (1 + 1e-12))
+    np.testing.assert_allclose(water.mean(axis=1), r["mean_water_thickness"].values,
+                               rtol=1e-12)
+    for j, v in enumerate(speeds[1:], start=1):
+        dynamic = 0.5 * 998.2 * (v / 3.6) ** 2
+        # (the wedges at the contact lands' edges can build far more, locally)
+        assert pmax[j].max() > 0.5 * dynamic, (v, pmax[j].max(), dynamic)
+    for model in ("kane2017", "squeeze"):
+        other = run(z, [20.0], wet_model=model, depth=1e-3, series=True)
+        assert "film_pressure_max" not in other and "water_thickness" not in other
+    assert "film_pressure_max" not in run(z, [20.0], series=True)
+
+
 @pytest.mark.parametrize("model", ["kane2017", "squeeze"])
 def test_other_wet_models_resolve_no_water_and_always_settle(model):
     r = run(profile("fine"), [20.0, 80.0], wet_model=model, depth=1e-3)

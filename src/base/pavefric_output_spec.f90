@@ -10,7 +10,7 @@ module pavefric_output_spec
    public :: output_var_type, output_var
    public :: out_double, out_int64, out_int, out_flag, dim_speed, dim_position_speed
    public :: when_always, when_series, when_friction_film, when_friction_film_series, &
-      & when_error_estimate
+      & when_error_estimate, when_film_report_series
 
    !> Storage types (NetCDF: double, int64, int, byte 0/1 with flag meanings).
    integer, parameter :: out_double = 1, out_int64 = 2, out_int = 3, out_flag = 4
@@ -20,7 +20,7 @@ module pavefric_output_spec
    !> that changes the local friction ran at any speed; both; when the run
    !> estimated mu's error (&numerics tolerance or error_estimate).
    integer, parameter :: when_always = 0, when_series = 1, when_friction_film = 2, &
-      & when_friction_film_series = 3, when_error_estimate = 4
+      & when_friction_film_series = 3, when_error_estimate = 4, when_film_report_series = 5
 
    !> One result variable.
    type :: output_var_type

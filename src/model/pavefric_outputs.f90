@@ -22,7 +22,7 @@ module pavefric_outputs
    use pavefric_wet_models, only: wet_models
    use pavefric_output_spec, only: output_var_type, output_var, out_double, out_int64, out_int, &
       & out_flag, dim_speed, dim_position_speed, when_always, when_series, when_friction_film, &
-      & when_friction_film_series, when_error_estimate
+      & when_friction_film_series, when_error_estimate, when_film_report_series
    implicit none
    private
 
@@ -33,8 +33,9 @@ module pavefric_outputs
 
    !> The variables the pad, its balance and the numerics declare (below).
    integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 4
-   !> Only the squeeze film's own (its registry entry).
-   integer, parameter :: n_wet_model_outputs = 5
+   !> The wet models' own (their registry entries): the squeeze film's 5,
+   !> the Reynolds film's 2.
+   integer, parameter :: n_wet_model_outputs = 7
    integer, parameter :: n_outputs = n_pad_outputs + n_facet_outputs + n_rubber_outputs + &
       & n_film_outputs + n_wet_model_outputs + n_numerics_outputs
 
@@ -46,7 +47,8 @@ module pavefric_outputs
       & "mean_film_thickness", "mu_inst", "hydro_load", "penetration", "contact_elements", &
       & "film_thickness", "local_friction", "mu_error_estimate", "substeps_used", &
       & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran", &
-      & "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled"]
+      & "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled", &
+      & "film_pressure_max", "water_thickness"]
 
    !> What the output says besides the result variables: where the results
    !> came from, the profile, its texture, the parameters used, warnings.
@@ -187,6 +189,9 @@ contains
          text = "with &output series = .true."
       case (when_friction_film_series)
          text = "with &output series = .true. and the drainage film"
+      case (when_film_report_series)
+         text = "with &output series = .true. and the Reynolds film (&water wet_model = " // &
+            & "'reynolds', depth > 0)"
       case (when_error_estimate)
          text = "when mu's error was estimated (&numerics tolerance > 0, or error_estimate " // &
             & "at tolerance = 0)"
@@ -213,6 +218,8 @@ contains
          output_present = allocated(res%mu_inst)
       case (when_friction_film_series)
          output_present = allocated(res%film_thickness)
+      case (when_film_report_series)
+         output_present = allocated(res%film_pressure_max)
       case (when_error_estimate)
          output_present = allocated(res%mu_error)
       case default
@@ -230,7 +237,8 @@ contains
       call make_components(m, rubber, film)
       n = 4
       if (allocated(film)) then
-         if (film%changes_friction()) n = 6
+         if (film%changes_friction()) n = n + 2
+         if (film%carries_load() .and. film%reports()) n = n + 2
       end if
    end function series_count
 
@@ -309,6 +317,10 @@ contains
          values(1:ns) = res%mean_water_thickness
       case ("film_unsettled")
          values(1:ns) = real(res%film_unsettled, wp)
+      case ("film_pressure_max")
+         values(1:np*ns) = reshape(res%film_pressure_max, [np*ns])
+      case ("water_thickness")
+         values(1:np*ns) = reshape(res%water_thickness, [np*ns])
       end select
    end subroutine output_values
 

@@ -99,6 +99,10 @@ module pavefric_results
       real(wp), allocatable :: mu_inst(:,:), hydro_load(:,:), penetration(:,:)
       integer, allocatable :: contact_elements(:,:)
       real(wp), allocatable :: film_thickness(:,:), local_friction(:,:)
+      !> Per position and speed, with series and a film that reports its
+      !> solution (the Reynolds film): its largest pressure (Pa) and its
+      !> water per unit of pad area (m) at the balance's root.
+      real(wp), allocatable :: film_pressure_max(:,:), water_thickness(:,:)
       !> The effects that ran, comma-separated (the output's `effects`).
       character(len=:), allocatable :: effects
       !> Warnings about suspicious results, one a line ('' = none).

@@ -91,8 +91,9 @@ module pavefric_film
       procedure :: thickness => film_no_thickness
       !> What the film's solution at a gap field is, for the outputs (load
       !> films, once per averaged position at the balance's root): whether
-      !> it settled, and its water between the pad and the road per unit of
-      !> pad area (m). The default: settled, no water resolved.
+      !> it settled, its water between the pad and the road per unit of pad
+      !> area (m) and its largest pressure (Pa). The default: settled, no
+      !> water or pressure resolved.
       procedure :: report => film_no_report
       !> Whether `report` has anything to say (else the driver skips it).
       procedure :: reports => film_flag_false
@@ -246,14 +247,15 @@ contains
       film_flag_false = .false.
    end function film_flag_false
 
-   pure subroutine film_no_report(self, step, gap, settled, water)
+   pure subroutine film_no_report(self, step, gap, settled, water, pressure_max)
       class(film_model), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
       logical, intent(out) :: settled
-      real(wp), intent(out) :: water
+      real(wp), intent(out) :: water, pressure_max
       settled = .true.
       water = 0.0_wp
+      pressure_max = 0.0_wp
    end subroutine film_no_report
 
    pure logical function film_never(self, step, gap)

@@ -41,6 +41,7 @@ module pavefric_reynolds
    use pavefric_film, only: film_model, film_step_type, film_context_type, film_entry_type
    use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
    use pavefric_lapack, only: dgtsv
+   use pavefric_output_spec, only: output_var, dim_position_speed, when_film_report_series
    implicit none
    private
 
@@ -85,7 +86,14 @@ contains
    pure function reynolds_entry() result(e)
       type(film_entry_type) :: e
       e%name = "reynolds"
-      allocate(e%outputs(0))
+      allocate(e%outputs(2))
+      e%outputs(1) = output_var("reynolds", "film_pressure_max", "Pa", "largest pressure " // &
+         & "of the Reynolds film under the pad (the inlet's dynamic pressure included) at " // &
+         & "the balance's root", dims=dim_position_speed, when=when_film_report_series)
+      e%outputs(2) = output_var("reynolds", "water_thickness", "m", "water between the " // &
+         & "pad and the road per unit of pad area (each element's mean gap h_T times its " // &
+         & "fill theta) at the balance's root", dims=dim_position_speed, &
+         & when=when_film_report_series)
       allocate(e%parameters(reynolds_n_parameters))
       e%parameters(1) = real_param("water", "density", "998.2", "kg m-3", "model", &
          & "density of the water, for the dynamic pressure rho V**2 / 2 that the water " // &
@@ -182,22 +190,24 @@ contains
    end subroutine reynolds_load
 
    !> The film's solution at a gap field, for the outputs: whether its active
-   !> set settled, and its water per unit of pad area (m): each element's
+   !> set settled, its largest pressure (Pa, the inlet's included), and its
+   !> water per unit of pad area (m): each element's
    !> mean gap h_T filled to the share the transport upwind gives it (the
    !> fill theta of the node ahead of it; the leading element's, the inlet's
    !> tc0 / c_1), averaged over the elements.
-   pure subroutine reynolds_report(self, step, gap, settled, water)
+   pure subroutine reynolds_report(self, step, gap, settled, water, pressure_max)
       class(reynolds_film), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
       logical, intent(out) :: settled
-      real(wp), intent(out) :: water
+      real(wp), intent(out) :: water, pressure_max
       real(wp) :: p(size(gap)), theta(size(gap)), load, h_t, c(size(gap)), k(size(gap))
       real(wp) :: run(size(gap)), tc0, p0, c1
       logical :: full(size(gap))
       integer :: iterations, j, n
       settled = .true.
       water = 0.0_wp
+      pressure_max = 0.0_wp
       n = size(gap)
       if (.not. step%active .or. n == 0) return
       call reynolds_solve(self%depth, self%eta, self%sigma, self%width, self%length, &
@@ -213,6 +223,9 @@ contains
          end if
       end do
       water = water / real(n, wp)
+      ! the nodes' pressures and the inlet's (p0 where the film is flooded)
+      pressure_max = max(maxval(p(1:max(n - 1, 1))), p0)
+      if (n == 1) pressure_max = p0
    end subroutine reynolds_report
 
    !> Per cell: the mean gap h_T over Gaussian heights of RMS sigma at nominal

@@ -414,6 +414,13 @@ contains
             call move_alloc(d2, acc%film_thickness)
             call move_alloc(e2, acc%local_friction)
          end if
+         if (allocated(acc%film_pressure_max) .and. allocated(r%film_pressure_max)) then
+            call merge_series(acc%film_pressure_max, r%film_pressure_max, d2, stat)
+            if (stat == 0) call merge_series(acc%water_thickness, r%water_thickness, e2, stat)
+            if (stat /= 0) return
+            call move_alloc(d2, acc%film_pressure_max)
+            call move_alloc(e2, acc%water_thickness)
+         end if
          call move_alloc(pos, acc%position)
       end if
       acc%n_positions = acc%n_positions + r%n_positions
@@ -703,6 +710,10 @@ contains
          call move_alloc(from%film_thickness, to%film_thickness)
          call move_alloc(from%local_friction, to%local_friction)
       end if
+      if (allocated(from%film_pressure_max)) then
+         call move_alloc(from%film_pressure_max, to%film_pressure_max)
+         call move_alloc(from%water_thickness, to%water_thickness)
+      end if
       to%n_positions = from%n_positions
    end subroutine move_series
 
@@ -720,7 +731,7 @@ contains
       integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
       integer, allocatable :: spinups(:), exact_bad(:)
       logical, allocatable :: shorts(:)
-      logical :: friction_film
+      logical :: friction_film, reporting_film
       character(len=:), allocatable :: effect
 
       res%warnings = ""
@@ -731,7 +742,11 @@ contains
       if (allocated(error)) return
       call make_components(m, rubber, film)
       friction_film = .false.
-      if (allocated(film)) friction_film = film%changes_friction()
+      reporting_film = .false.
+      if (allocated(film)) then
+         friction_film = film%changes_friction()
+         reporting_film = film%carries_load() .and. film%reports()
+      end if
       res%estimate = estimate_cost(m, size(z), dx, closed, size(speeds_kmh), want_series, &
          & friction_film, rubber%state_size())
       call add_spinup_cost(m, size(z), dx, closed, speeds_kmh, res%estimate)
@@ -765,6 +780,13 @@ contains
             & res%position(geo%n_avg), stat=stat)
          if (stat == 0 .and. friction_film) allocate(res%film_thickness(geo%n_avg, ns), &
             & res%local_friction(geo%n_avg, ns), stat=stat)
+         if (stat == 0 .and. reporting_film) then
+            allocate(res%film_pressure_max(geo%n_avg, ns), res%water_thickness(geo%n_avg, ns), &
+               & stat=stat)
+            ! 0 where the film is off (no motion): slide writes where it reports
+            if (stat == 0) res%film_pressure_max = 0.0_wp
+            if (stat == 0) res%water_thickness = 0.0_wp
+         end if
          if (stat == 0) res%position = [(real(j, wp) * geo%advance, j = 0, geo%n_avg - 1)]
       end if
       if (stat /= 0) then
@@ -802,6 +824,12 @@ contains
                   & res%mu_inst(:, j0:j1), res%hydro_load(:, j0:j1), res%penetration(:, j0:j1), &
                   & res%contact_elements(:, j0:j1), res%film_thickness(:, j0:j1), &
                   & res%local_friction(:, j0:j1))
+            else if (reporting_film) then
+               call slide(geo, m, rubber, film, res%speed(j0:j1), summaries, &
+                  & res%mu_inst(:, j0:j1), res%hydro_load(:, j0:j1), res%penetration(:, j0:j1), &
+                  & res%contact_elements(:, j0:j1), &
+                  & film_pressure_max=res%film_pressure_max(:, j0:j1), &
+                  & water_thickness=res%water_thickness(:, j0:j1))
             else
                call slide(geo, m, rubber, film, res%speed(j0:j1), summaries, &
                   & res%mu_inst(:, j0:j1), res%hydro_load(:, j0:j1), res%penetration(:, j0:j1), &
@@ -1234,7 +1262,7 @@ contains
    !> scalar algorithm's exactly (sums over elements in element order); the
    !> wet balance and the friction films run lane by lane.
    subroutine slide(geo, m, rubber, film, speeds, out, mu_inst, hydro_load, penetration, &
-         & contact, film_thickness, local_friction)
+         & contact, film_thickness, local_friction, film_pressure_max, water_thickness)
       type(geometry_type), intent(in) :: geo
       type(model_type), intent(in) :: m
       class(rubber_model), intent(in) :: rubber
@@ -1246,6 +1274,10 @@ contains
       real(wp), intent(out), optional :: mu_inst(:,:), hydro_load(:,:), penetration(:,:)
       integer, intent(out), optional :: contact(:,:)
       real(wp), intent(out), optional :: film_thickness(:,:), local_friction(:,:)
+      !> With a film that reports its solution: its largest pressure (Pa) and
+      !> water per unit of pad area (m) at each position (left as they are
+      !> at the speeds where the film is off: the caller's zeros).
+      real(wp), intent(inout), optional :: film_pressure_max(:,:), water_thickness(:,:)
 
       type(rubber_step_type) :: rstep
       type(film_step_type), allocatable :: fstep(:)
@@ -1269,7 +1301,7 @@ contains
       integer(i8), dimension(lanes) :: n_clamped, n_eval, n_unsettled
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
-      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j, water
+      real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j, water, pmax
       integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, film_count
       logical :: series, clamped, any_memory, any_load, any_friction, energy, settled
       logical :: film_reports
@@ -1366,9 +1398,11 @@ contains
                   if (.not. load_film(j)) cycle
                   dl = d(j, :)
                   call gap_field(dl, x(j), gap)
-                  call film%report(fstep(j), gap, settled, water)
+                  call film%report(fstep(j), gap, settled, water, pmax)
                   water_sum(j) = water_sum(j) + water
                   if (.not. settled) n_unsettled(j) = n_unsettled(j) + 1
+                  if (present(film_pressure_max)) film_pressure_max(t+1, j) = pmax
+                  if (present(water_thickness)) water_thickness(t+1, j) = water
                end do
             end if
          end if
