@@ -241,6 +241,15 @@ contains
       real(wp), parameter :: inv_sqrt2 = 0.70710678118654752_wp
       real(wp), parameter :: inv_sqrt2pi = 0.39894228040143268_wp
       real(wp) :: hs, phi_x, phi_s
+      if (h <= 0.0_wp) then
+         ! an element in contact (most of them, often): the same numbers as
+         ! below at hs = 0, without the transcendental functions (erfc(0)
+         ! and exp(0) are 1, hs**0.98 is 0)
+         h_t = sigma * inv_sqrt2pi
+         c = h_t
+         k = (1.0_wp - 0.90_wp) * h_t**3 / (12.0_wp * eta)
+         return
+      end if
       hs = h / sigma
       h_t = h * 0.5_wp * erfc(-hs * inv_sqrt2) + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
       phi_x = 1.0_wp - 0.90_wp * exp(-0.56_wp * hs)
