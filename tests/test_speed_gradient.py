@@ -65,6 +65,10 @@ def test_every_wet_model_is_in_the_study(study):
         assert data["defaults"][model]["rms_test"] >= 0
     # the Reynolds film's constant is the flow factors' roughness, in range
     assert 2e-6 <= data["models"]["reynolds"]["constant"] <= 5e-4
+    # convergence on every validation profile (issue 21): counted and reported
+    assert data["unsettled"].get("reynolds", 0) == 0
+    assert "Convergence: the Reynolds film's solution settled at every position" in (
+        tmp / "speed_gradient.md").read_text()
     text = (tmp / "speed_gradient.md").read_text()
     assert "| reynolds (film) |" in text and "## By kind of texture" in text
 

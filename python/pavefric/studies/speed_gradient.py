@@ -156,6 +156,9 @@ class Runner:
     def __init__(self, profiles):
         self.profiles = profiles
         self.runs = 0
+        #: per wet model: positions where the film's solution did not settle
+        #: (film_unsettled), summed over every run and speed
+        self.unsettled: dict = {}
 
     def mu(self, p: StudyProfile, model: str, constant: float | None) -> np.ndarray:
         from ..core import PavefricWarning, simulate
@@ -167,6 +170,7 @@ class Runner:
             warnings.simplefilter("ignore", PavefricWarning)
             ds = simulate(p.heights, p.dx, list(SPEEDS), closed=p.closed, **kw)
         self.runs += 1
+        self.unsettled[model] = self.unsettled.get(model, 0) + int(ds["film_unsettled"].sum())
         return ds["mu"].values
 
     def sp(self, model: str, constant: float) -> np.ndarray:
@@ -201,6 +205,8 @@ def best_constant(runner: Runner, model: str, log=print, points: int = 19
     res = minimize_scalar(rms, bounds=(a, b), method="bounded", options={"xatol": 1e-3})
     best = 10.0 ** res.x
     runner.runs += sub.runs
+    for name, count in sub.unsettled.items():
+        runner.unsettled[name] = runner.unsettled.get(name, 0) + count
     log(f"speed-gradient: {model}: best {MODELS[model]} = {best:.4g}, RMS ln(Sp/Sp_PIARC) "
         f"= {res.fun:.3f} ({sub.runs} core runs)")
     return best, float(res.fun)
@@ -291,6 +297,7 @@ def run_study(report: str | Path = "docs/speed_gradient.md", quick: bool = False
                           "sp_piarc": p.sp_piarc, "real": p.real, "split": p.split}
                          for p in profiles],
             "models": results, "defaults": defaults, "table2": t2, "core_runs": runner.runs,
+            "unsettled": runner.unsettled,
             "seconds": seconds, "quick": quick}
     report = Path(report)
     fig = _figure(report.parent / "figures" / "speed_gradient.png", profiles, results)
@@ -426,6 +433,13 @@ def _write_report(path: Path, profiles, data, fig: Path) -> None:
         f"{data['defaults']['kane2017']['rms_test']:.2f} (kane2017), "
         f"{data['defaults']['squeeze']['rms_test']:.2f} (squeeze) and "
         f"{rey_default['rms_test']:.2f} (reynolds).",
+        "",
+        "Convergence: the Reynolds film's solution "
+        + ("settled at every position of every run of the study"
+           if data["unsettled"].get("reynolds", 0) == 0 else
+           f"did not settle at {data['unsettled']['reynolds']} positions over the study's runs")
+        + " (`film_unsettled`, summed over the runs of the fits and of the report; the "
+        "paper's bearing and the drainage film always settle).",
         "",
         f"![Sp against MPD]({fig.relative_to(path.parent).as_posix()})",
         "",
