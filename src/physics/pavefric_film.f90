@@ -70,7 +70,7 @@ module pavefric_film
       !> the number of open gaps (gap_i > 0). The balance then sums both in
       !> its own pass over the elements and calls `loads_of_sums` (one pass
       !> over the pad fewer per evaluation, no gap field stored).
-      procedure :: sums_suffice => film_needs_the_field
+      procedure :: sums_suffice => film_flag_false
       !> `loads` from each lane's gap sum (in element order) and count of
       !> open gaps, for films whose `sums_suffice`: each lane's numbers are
       !> `loads`'s to the bit. (Not called for the others; the default
@@ -294,11 +294,6 @@ contains
          call self%load(steps(j), row, wh(j), dwh_dx(j))
       end do
    end subroutine film_loads_by_lane
-
-   pure logical function film_needs_the_field(self)
-      class(film_model), intent(in) :: self
-      film_needs_the_field = .false.
-   end function film_needs_the_field
 
    pure subroutine film_no_loads_of_sums(self, nl, n, steps, total, n_open, active, wh, &
       & dwh_dx)

@@ -201,8 +201,8 @@ contains
       real(wp), intent(in) :: gap(:)
       logical, intent(out) :: settled
       real(wp), intent(out) :: water, pressure_max
-      real(wp) :: p(size(gap)), theta(size(gap)), load, h_t, c(size(gap)), k(size(gap))
-      real(wp) :: run(size(gap)), tc0, p0, c1
+      real(wp) :: p(size(gap)), theta(size(gap)), load, h_t(size(gap)), c(size(gap))
+      real(wp) :: k(size(gap)), run(size(gap)), tc0, p0
       logical :: full(size(gap))
       integer :: iterations, j, n
       settled = .true.
@@ -210,17 +210,13 @@ contains
       pressure_max = 0.0_wp
       n = size(gap)
       if (.not. step%active .or. n == 0) return
-      call reynolds_solve(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, step%coef(1), gap, p, theta, full, load, iterations, settled)
       call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, step%coef(1), gap, c, k, run, tc0, p0)
-      do j = 1, n
-         call reynolds_cell_terms(gap(n + 1 - j), self%sigma, self%eta, h_t, c1, k(j))
-         if (j == 1) then
-            water = water + min(1.0_wp, tc0 / c(1)) * h_t
-         else
-            water = water + theta(j - 1) * h_t
-         end if
+         & self%density, step%coef(1), gap, h_t, c, k, run, tc0, p0)
+      call solve_terms(self%width, self%length, step%coef(1), c, k, run, tc0, p0, p, theta, &
+         & full, load, iterations, settled)
+      water = min(1.0_wp, tc0 / c(1)) * h_t(1)
+      do j = 2, n
+         water = water + theta(j - 1) * h_t(j)
       end do
       water = water / real(n, wp)
       ! the nodes' pressures and the inlet's (p0 where the film is flooded)
@@ -275,15 +271,30 @@ contains
       logical, intent(out) :: full(size(gap))
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
-      real(wp) :: y(size(gap)), p0, tc0
-      real(wp) :: c(size(gap)), k(size(gap)), run(size(gap))
+      real(wp) :: p0, tc0
+      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
+      ! the gap's terms do not depend on the active set: once per solve
+      call film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, k, run, &
+         & tc0, p0)
+      call solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, full, load, &
+         & iterations, converged)
+   end subroutine reynolds_solve
+
+   !> reynolds_solve on the gap's terms (film_terms): the active-set
+   !> iteration, the nodes' pressure and fill, the load.
+   pure subroutine solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, full, load, &
+         & iterations, converged)
+      real(wp), intent(in) :: width, length, speed, c(:), k(:), run(:), tc0, p0
+      real(wp), intent(out) :: p(size(c)), theta(size(c)), load
+      logical, intent(out) :: full(size(c))
+      integer, intent(out) :: iterations
+      logical, intent(out) :: converged
+      real(wp) :: y(size(c))
       logical :: changed
       integer :: j, n, info
       ! nodes 1 .. n-1 between the elements (node j behind element j from the
       ! leading edge); p(j), theta(j), full(j) are node j's; p(n) = 0 (outlet)
-      n = size(gap)
-      ! the gap's terms do not depend on the active set: once per solve
-      call film_terms(depth, eta, sigma, width, length, density, speed, gap, c, k, run, tc0, p0)
+      n = size(c)
       full = .true.
       converged = .false.
       p = 0.0_wp
@@ -317,7 +328,7 @@ contains
          end if
       end do
       load = nodes_load(width, length, p, p0)
-   end subroutine reynolds_solve
+   end subroutine solve_terms
 
    pure subroutine reynolds_fixed_set(depth, eta, sigma, width, length, density, speed, gap, &
          & full, load)
@@ -325,9 +336,10 @@ contains
       logical, intent(in) :: full(size(gap))
       real(wp), intent(out) :: load
       real(wp) :: y(size(gap)), p0, tc0
-      real(wp) :: c(size(gap)), k(size(gap)), run(size(gap))
+      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
       integer :: info
-      call film_terms(depth, eta, sigma, width, length, density, speed, gap, c, k, run, tc0, p0)
+      call film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, k, run, &
+         & tc0, p0)
       call assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
       load = 0.0_wp
       if (info /= 0) return
@@ -344,21 +356,22 @@ contains
    end function nodes_load
 
    !> The gap's terms, in order from the leading edge (element n first): the
-   !> transport c and flow coefficient k per element, its drainage length
+   !> mean gap h_T, transport c and flow coefficient k per element, its drainage length
    !> (the run of open, or of touching, elements holding it, capped at the
    !> pad width), and the inlet: the flux coefficient tc0 (the leading gap's
    !> c, or 2 H_in if starved) and the dynamic pressure p0 (Pa) of the water
    !> the leading edge stops. They do not depend on the active set.
-   pure subroutine film_terms(depth, eta, sigma, width, length, density, speed, gap, c, k, &
-         & run, tc0, p0)
+   pure subroutine film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, &
+         & k, run, tc0, p0)
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
-      real(wp), intent(out) :: c(size(gap)), k(size(gap)), run(size(gap)), tc0, p0
-      real(wp) :: h_t, ds
+      real(wp), intent(out) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
+      real(wp), intent(out) :: tc0, p0
+      real(wp) :: ds
       integer :: j, n, i1
       n = size(gap)
       ds = length / real(n, wp)
       do j = 1, n
-         call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t, c(j), k(j))
+         call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
       end do
       ! each run of open (or of touching) elements in one pass: its length,
       ! capped at the pad width, is the drainage length of its elements

@@ -403,7 +403,7 @@ def _write_report(path: Path, profiles, data, fig: Path) -> None:
         "|---|---|---|---|---|---|---|",
     ]
     for model, r in res.items():
-        lines.append(f"| {LABELS[model]} | {_constant(MODELS[model], r['constant'])} | "
+        lines.append(f"| {LABELS[model]} | {constant_text(MODELS[model], r['constant'])} | "
                      f"{r['rms_training']:.2f} | {r['rms_test']:.2f} | "
                      f"{r['rms_test_synthetic']:.2f} | {r['real_ratio'][0]:.2f} | "
                      f"{r['real_ratio'][1]:.2f} |")
@@ -472,7 +472,7 @@ def _write_report(path: Path, profiles, data, fig: Path) -> None:
               "points | R² predicted 40/60 | RMSE all |",
               "|---|---|---|---|---|---|"]
     for model, t in data["table2"].items():
-        lines.append(f"| {model} | {_constant(t['parameter'], t['value'])} | "
+        lines.append(f"| {model} | {constant_text(t['parameter'], t['value'])} | "
                      f"{interval_text(t['parameter'], t['interval'])} | "
                      f"{t['all']['R2']:.3f} | {t['predicted']['R2']:.3f} | "
                      f"{t['all']['rmse']:.3f} |")
@@ -541,7 +541,9 @@ def interval_text(name: str, interval) -> str:
     return f"[{lo * scale:.3g}, {hi * scale:.3g}]{unit}"
 
 
-def _constant(name: str, value: float) -> str:
+def constant_text(name: str, value: float) -> str:
+    """A fitted constant as the reports show it: "name = value" (µm for
+    microtexture_rms)."""
     shown = f"{value * 1e6:.3g} µm" if name == "microtexture_rms" else f"{value:.3g}"
     return f"{name} = {shown}"
 

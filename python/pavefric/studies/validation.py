@@ -364,7 +364,7 @@ def _write_report(report: Path, res, rows, pred, figs, description, mpd_mm, tabl
             "a Reynolds solution over the real gap as the next step).",
             "",
         ]
-    from .speed_gradient import interval_text
+    from .speed_gradient import constant_text, interval_text
 
     wm = res["wet_models"]
     lines += [
@@ -380,9 +380,7 @@ def _write_report(report: Path, res, rows, pred, figs, description, mpd_mm, tabl
         "|---|---|---|---|---|---|---|",
     ]
     for name, t in wm.items():
-        shown = (f"{t['value'] * 1e6:.3g} µm" if t["parameter"] == "microtexture_rms"
-                 else f"{t['value']:.3g}")
-        lines.append(f"| {name} | {t['parameter']} = {shown} | "
+        lines.append(f"| {name} | {constant_text(t['parameter'], t['value'])} | "
                      f"{interval_text(t['parameter'], t['interval'])} | {t['all']['R2']:.3f} | "
                      f"{t['predicted']['R2']:.3f} | {t['all']['rmse']:.3f} | "
                      f"{t['predicted']['rmse']:.3f} |")
