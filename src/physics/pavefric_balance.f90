@@ -181,7 +181,7 @@ contains
    !> position's shifted coordinates), else at x_dry. The guess changes only
    !> where the iteration starts: the root is the same to wet_tol.
    pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
-      & evaluations, gaps)
+      & evaluations, gaps, fwork)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol
       !> Per lane, the starting guess (anything outside the bracket: none).
@@ -195,6 +195,9 @@ contains
       !> Workspace (nl, n): the gap fields of the last evaluation (for films
       !> that need the field; see film_model%sums_suffice).
       real(wp), intent(inout) :: gaps(nl, n)
+      !> The film's workspace per lane (film%work_size(n), nl), kept by the
+      !> caller over a speed's run.
+      real(wp), intent(inout) :: fwork(:, :)
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old
       real(wp) :: x_new
@@ -211,7 +214,7 @@ contains
          if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
       end do
       call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
-         & gaps)
+         & gaps, fwork)
       f_old = huge(1.0_wp)
       do it = 1, max_iter_wet
          do j = 1, nl
@@ -241,7 +244,7 @@ contains
          end do
          if (.not. any(running)) exit
          call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
-         & gaps)
+         & gaps, fwork)
       end do
       do j = 1, nl
          if (.not. wet(j)) cycle
@@ -257,7 +260,7 @@ contains
             if (f(j) < 0.0_wp) then
                x(j) = hi(j)
                call evaluate_wet(nl, n, d, kel, load, film, fsteps, lane_mask(j), x, f, df, &
-                  & wh, evaluations, gaps)
+                  & wh, evaluations, gaps, fwork)
             end if
             wh(j) = max(0.0_wp, load - kel(j) * pushed_at(d(j, :), x(j)))
          end if
@@ -285,7 +288,7 @@ contains
    !> f, df and the film's load of the lanes in `mask` at their x (the other
    !> lanes' values are left as they are); one more evaluation each.
    pure subroutine evaluate_wet(nl, n, d, kel, load, film, fsteps, mask, x, f, df, wh, &
-      & evaluations, gaps)
+      & evaluations, gaps, fwork)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, x(nl)
       class(film_model), intent(in) :: film
@@ -293,7 +296,7 @@ contains
       logical, intent(in) :: mask(nl)
       real(wp), intent(inout) :: f(nl), df(nl), wh(nl)
       integer(i8), intent(inout) :: evaluations(nl)
-      real(wp), intent(inout) :: gaps(nl, n)
+      real(wp), intent(inout) :: gaps(nl, n), fwork(:, :)
       real(wp), dimension(lanes) :: xe, pushed, contacts, dwh, gap_total, n_open
       integer :: j
       ! the lanes not evaluated sit at a harmless penetration
@@ -305,7 +308,7 @@ contains
          call film%loads_of_sums(nl, n, fsteps, gap_total, n_open, mask, wh, dwh)
       else
          call contact_sums(nl, n, d, xe, pushed, contacts, gaps)
-         call film%loads(nl, n, fsteps, gaps, mask, wh, dwh)
+         call film%loads(nl, n, fsteps, gaps, mask, wh, dwh, fwork)
       end if
       do j = 1, nl
          if (.not. mask(j)) cycle

@@ -64,8 +64,14 @@ module pavefric_film
       !> lanes where `active`; each lane's numbers are `load`'s to the bit.
       !> The default: for a film whose `sums_suffice`, the lanes' sums in
       !> one pass (interleaved, each in element order) and `loads_of_sums`;
-      !> otherwise `load` lane by lane.
+      !> otherwise `load` lane by lane. `work(:, lane)` is the lane's
+      !> workspace (work_size values), kept by the caller between calls.
       procedure :: loads => film_loads_by_lane
+      !> Values of workspace per lane for `loads` and `report` on a pad of n
+      !> elements (0: none). The caller keeps it between the calls of one
+      !> speed's run and zeroes it when the run (re)starts; a film may keep
+      !> a warm start there, provided its numbers do not depend on it.
+      procedure :: work_size => film_no_work
       !> Whether the load depends on the gap field only through its sum and
       !> the number of open gaps (gap_i > 0). The balance then sums both in
       !> its own pass over the elements and calls `loads_of_sums` (one pass
@@ -93,7 +99,8 @@ module pavefric_film
       !> films, once per averaged position at the balance's root): whether
       !> it settled, its water between the pad and the road per unit of pad
       !> area (m) and its largest pressure (Pa). The default: settled, no
-      !> water or pressure resolved.
+      !> water or pressure resolved. `work` is the lane's workspace, as
+      !> `loads` left it.
       procedure :: report => film_no_report
       !> Whether `report` has anything to say (else the driver skips it).
       procedure :: reports => film_flag_false
@@ -242,15 +249,23 @@ contains
       film_no_thickness = 0.0_wp
    end function film_no_thickness
 
+   pure integer function film_no_work(self, n)
+      class(film_model), intent(in) :: self
+      integer, intent(in) :: n
+      film_no_work = 0
+   end function film_no_work
+
    pure logical function film_flag_false(self)
       class(film_model), intent(in) :: self
       film_flag_false = .false.
    end function film_flag_false
 
-   pure subroutine film_no_report(self, step, gap, settled, water, pressure_max)
+   pure subroutine film_no_report(self, step, gap, settled, water, pressure_max, work)
       class(film_model), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
+      !> The lane's workspace (work_size values).
+      real(wp), intent(inout) :: work(:)
       logical, intent(out) :: settled
       real(wp), intent(out) :: water, pressure_max
       settled = .true.
@@ -274,13 +289,15 @@ contains
       dwh_dx = 0.0_wp
    end subroutine film_no_load
 
-   pure subroutine film_loads_by_lane(self, nl, n, steps, gap, active, wh, dwh_dx)
+   pure subroutine film_loads_by_lane(self, nl, n, steps, gap, active, wh, dwh_dx, work)
       class(film_model), intent(in) :: self
       integer, intent(in) :: nl, n
       type(film_step_type), intent(in) :: steps(nl)
       real(wp), intent(in) :: gap(nl, n)
       logical, intent(in) :: active(nl)
       real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
+      !> The lanes' workspaces (work_size, nl); not used here.
+      real(wp), intent(inout) :: work(:, :)
       real(wp) :: row(n), total(lanes), n_open(lanes)
       integer :: j
       if (self%sums_suffice()) then

@@ -24,7 +24,9 @@
 !> Elrod-Adams form: at each node either the film is full (theta = 1,
 !> p >= 0) or partial (p = 0, 0 <= theta <= 1), solved as a complementarity
 !> problem by a primal-dual active-set iteration, one tridiagonal solve
-!> (LAPACK dgtsv) per iteration.
+!> (LAPACK dgtsv) per iteration, started from the set of the lane's last
+!> solve (its workspace; the complementarity solution does not depend on
+!> where the iteration starts, so neither do the numbers).
 !> Inlet: the water on the road (depth H_in, moving at V) brings V H_in per
 !> unit width; the gap under the leading element takes (V/2) c_1. A starved
 !> inlet (2 H_in < c_1) lets it all in at ambient pressure; a flooded one
@@ -61,6 +63,12 @@ module pavefric_reynolds
    !> at each; tests/test_reynolds.py allows 40 on random gap fields).
    integer, parameter :: max_active_set = 200
 
+   !> Active-set iterations from a warm start before it starts again cold.
+   integer, parameter :: max_warm = 20
+
+   !> Arrays of n values in a lane's workspace (reynolds_work_size).
+   integer, parameter :: n_work_arrays = 16
+
    !> The Reynolds film.
    type, extends(film_model) :: reynolds_film
       !> Water depth H_in (m), viscosity eta (Pa s), microtexture RMS height
@@ -75,6 +83,8 @@ module pavefric_reynolds
       procedure :: effect => reynolds_effect
       procedure :: engages => reynolds_engages
       procedure :: load => reynolds_load
+      procedure :: loads => reynolds_loads
+      procedure :: work_size => reynolds_work_size
       procedure :: lower_bound => reynolds_lower_bound
       procedure :: report => reynolds_report
       procedure :: reports => reynolds_carries_load
@@ -165,63 +175,135 @@ contains
       reynolds_lower_bound = -2.0_wp * self%depth
    end function reynolds_lower_bound
 
+   !> Per lane: the warm-start flag (1: the set below is the last solve's,
+   !> settled), the set of full nodes (1 full, 0 partial), and scratch: the
+   !> gap's terms (h_T, c, k, run) and the shifted gap's, the nodes'
+   !> pressure and fill, the solver's right side and three diagonals, the
+   !> shifted gap field.
+   pure integer function reynolds_work_size(self, n)
+      class(reynolds_film), intent(in) :: self
+      integer, intent(in) :: n
+      reynolds_work_size = 1 + n_work_arrays * max(n, 1)
+   end function reynolds_work_size
+
    !> The film's load (N) on the gap field, and its derivative with respect
    !> to the penetration by a difference at the same full and partial nodes
-   !> (one more tridiagonal solve).
+   !> (one more tridiagonal solve). One lane, cold (the compiled tests').
    pure subroutine reynolds_load(self, step, gap, wh, dwh_dx)
       class(reynolds_film), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
       real(wp), intent(out) :: wh, dwh_dx
-      real(wp) :: p(size(gap)), theta(size(gap)), wh2, shift
-      logical :: full(size(gap))
-      integer :: iterations
-      logical :: converged
+      real(wp) :: work(1 + n_work_arrays * max(size(gap), 1))
       wh = 0.0_wp
       dwh_dx = 0.0_wp
       if (.not. step%active .or. size(gap) == 0) return
-      call reynolds_solve(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, step%coef(1), gap, p, theta, full, wh, iterations, converged)
+      work = 0.0_wp
+      call load_in_work(self, step%coef(1), gap, work, wh, dwh_dx)
+   end subroutine reynolds_load
+
+   !> reynolds_load for the lanes where `active`, each in its own workspace
+   !> (work(:, lane), warm from its last solve): no allocation.
+   pure subroutine reynolds_loads(self, nl, n, steps, gap, active, wh, dwh_dx, work)
+      class(reynolds_film), intent(in) :: self
+      integer, intent(in) :: nl, n
+      type(film_step_type), intent(in) :: steps(nl)
+      real(wp), intent(in) :: gap(nl, n)
+      logical, intent(in) :: active(nl)
+      real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
+      real(wp), intent(inout) :: work(:, :)
+      integer :: j
+      do j = 1, nl
+         if (.not. active(j)) cycle
+         wh(j) = 0.0_wp
+         dwh_dx(j) = 0.0_wp
+         if (.not. steps(j)%active .or. n == 0) cycle
+         call load_in_work(self, steps(j)%coef(1), gap(j, :), work(:, j), wh(j), dwh_dx(j))
+      end do
+   end subroutine reynolds_loads
+
+   !> The load and its derivative in a lane's workspace w (reynolds_work_size).
+   pure subroutine load_in_work(self, speed, gap, w, wh, dwh_dx)
+      class(reynolds_film), intent(in) :: self
+      real(wp), intent(in) :: speed, gap(:)
+      real(wp), intent(inout) :: w(:)
+      real(wp), intent(out) :: wh, dwh_dx
+      real(wp) :: wh2, shift, tc0, p0
+      integer :: iterations, n, info
+      logical :: converged
+      n = size(gap)
+      call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+         & self%density, speed, gap, w(at(1, n) : at(2, n) - 1), w(at(2, n) : at(3, n) - 1), &
+         & w(at(3, n) : at(4, n) - 1), w(at(4, n) : at(5, n) - 1), tc0, p0)
+      call solve_terms(self%width, self%length, speed, w(at(2, n) : at(3, n) - 1), &
+         & w(at(3, n) : at(4, n) - 1), w(at(4, n) : at(5, n) - 1), tc0, p0, &
+         & w(at(9, n) : at(10, n) - 1), w(at(10, n) : at(11, n) - 1), w(2 : n + 1), w(1), wh, &
+         & iterations, converged, w(at(11, n) : at(12, n) - 1), w(at(12, n) : at(13, n) - 1), &
+         & w(at(13, n) : at(14, n) - 1), w(at(14, n) : at(15, n) - 1))
       ! the gaps at x + shift: open ones narrow by shift (contacts stay shut)
       shift = 1.0e-6_wp * self%sigma
-      call reynolds_fixed_set(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, step%coef(1), max(0.0_wp, gap - shift), full, wh2)
+      w(at(15, n) : at(16, n) - 1) = max(0.0_wp, gap - shift)
+      call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+         & self%density, speed, w(at(15, n) : at(16, n) - 1), w(at(5, n) : at(6, n) - 1), &
+         & w(at(6, n) : at(7, n) - 1), w(at(7, n) : at(8, n) - 1), w(at(8, n) : at(9, n) - 1), &
+         & tc0, p0)
+      call assemble_and_solve(self%length, speed, w(at(6, n) : at(7, n) - 1), &
+         & w(at(7, n) : at(8, n) - 1), w(at(8, n) : at(9, n) - 1), tc0, p0, w(2 : n + 1), &
+         & w(at(11, n) : at(12, n) - 1), w(at(12, n) : at(13, n) - 1), &
+         & w(at(13, n) : at(14, n) - 1), w(at(14, n) : at(15, n) - 1), info)
+      dwh_dx = 0.0_wp
+      if (info /= 0) return
+      wh2 = set_load(self%width, self%length, w(at(11, n) : at(12, n) - 1), w(2 : n + 1), p0)
       dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
-   end subroutine reynolds_load
+   end subroutine load_in_work
+
+   !> Where the workspace's array number i (1 ..) of a pad of n elements
+   !> starts: after the warm-start flag and the set.
+   pure integer function at(i, n)
+      integer, intent(in) :: i, n
+      at = 2 + i * max(n, 1)
+   end function at
 
    !> The film's solution at a gap field, for the outputs: whether its active
    !> set settled, its largest pressure (Pa, the inlet's included), and its
    !> water per unit of pad area (m): each element's
    !> mean gap h_T filled to the share the transport upwind gives it (the
    !> fill theta of the node ahead of it; the leading element's, the inlet's
-   !> tc0 / c_1), averaged over the elements.
-   pure subroutine reynolds_report(self, step, gap, settled, water, pressure_max)
+   !> tc0 / c_1), averaged over the elements. In the lane's workspace, warm
+   !> from the balance's last solve.
+   pure subroutine reynolds_report(self, step, gap, settled, water, pressure_max, work)
       class(reynolds_film), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
+      real(wp), intent(inout) :: work(:)
       logical, intent(out) :: settled
       real(wp), intent(out) :: water, pressure_max
-      real(wp) :: p(size(gap)), theta(size(gap)), load, h_t(size(gap)), c(size(gap))
-      real(wp) :: k(size(gap)), run(size(gap)), tc0, p0
-      logical :: full(size(gap))
+      real(wp) :: load, tc0, p0
       integer :: iterations, j, n
       settled = .true.
       water = 0.0_wp
       pressure_max = 0.0_wp
       n = size(gap)
       if (.not. step%active .or. n == 0) return
-      call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, step%coef(1), gap, h_t, c, k, run, tc0, p0)
-      call solve_terms(self%width, self%length, step%coef(1), c, k, run, tc0, p0, p, theta, &
-         & full, load, iterations, settled)
-      water = min(1.0_wp, tc0 / c(1)) * h_t(1)
-      do j = 2, n
-         water = water + theta(j - 1) * h_t(j)
-      end do
-      water = water / real(n, wp)
-      ! the nodes' pressures and the inlet's (p0 where the film is flooded)
-      pressure_max = max(maxval(p(1:max(n - 1, 1))), p0)
-      if (n == 1) pressure_max = p0
+      associate (h_t => work(at(1, n) : at(2, n) - 1), c => work(at(2, n) : at(3, n) - 1), &
+         & p => work(at(9, n) : at(10, n) - 1), theta => work(at(10, n) : at(11, n) - 1))
+         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+            & self%density, step%coef(1), gap, h_t, c, work(at(3, n) : at(4, n) - 1), &
+            & work(at(4, n) : at(5, n) - 1), tc0, p0)
+         call solve_terms(self%width, self%length, step%coef(1), c, &
+            & work(at(3, n) : at(4, n) - 1), work(at(4, n) : at(5, n) - 1), tc0, p0, p, theta, &
+            & work(2 : n + 1), work(1), load, iterations, settled, &
+            & work(at(11, n) : at(12, n) - 1), work(at(12, n) : at(13, n) - 1), &
+            & work(at(13, n) : at(14, n) - 1), work(at(14, n) : at(15, n) - 1))
+         water = min(1.0_wp, tc0 / c(1)) * h_t(1)
+         do j = 2, n
+            water = water + theta(j - 1) * h_t(j)
+         end do
+         water = water / real(n, wp)
+         ! the nodes' pressures and the inlet's (p0 where the film is flooded)
+         pressure_max = p0
+         if (n > 1) pressure_max = max(maxval(p(1:n - 1)), p0)
+      end associate
    end subroutine reynolds_report
 
    !> Per cell: the mean gap h_T over Gaussian heights of RMS sigma at nominal
@@ -263,7 +345,7 @@ contains
    !> behind the j-th element from it; entry n unused), the pressure p (Pa,
    !> width-averaged), the fill theta and which are full; the load (N), the
    !> active-set iterations and whether they settled (if not, the last
-   !> iterate with p clipped at 0).
+   !> iterate with p clipped at 0). Cold: every node full at the start.
    pure subroutine reynolds_solve(depth, eta, sigma, width, length, density, speed, gap, p, &
          & theta, full, load, iterations, converged)
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
@@ -271,55 +353,67 @@ contains
       logical, intent(out) :: full(size(gap))
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
-      real(wp) :: p0, tc0
-      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
-      ! the gap's terms do not depend on the active set: once per solve
+      real(wp) :: p0, tc0, warm
+      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap)), set(size(gap))
+      real(wp), dimension(max(1, size(gap))) :: y, dl, dd, du
       call film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, k, run, &
          & tc0, p0)
-      call solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, full, load, &
-         & iterations, converged)
+      warm = 0.0_wp
+      call solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, set, warm, load, &
+         & iterations, converged, y, dl, dd, du)
+      full = set > 0.5_wp
    end subroutine reynolds_solve
 
-   !> reynolds_solve on the gap's terms (film_terms): the active-set
-   !> iteration, the nodes' pressure and fill, the load.
-   pure subroutine solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, full, load, &
-         & iterations, converged)
+   !> The active-set iteration on the gap's terms (film_terms): the nodes'
+   !> pressure and fill, the load. `set` (1 full, 0 partial per node) is
+   !> where it starts when warm > 0 (else every node full) and the settled
+   !> set on return; warm is 1 on return when it settled (else 0). A warm
+   !> start that does not settle in max_warm iterations starts again cold.
+   !> y, dl, dd, du: scratch of at least size(c).
+   pure subroutine solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, set, warm, &
+         & load, iterations, converged, y, dl, dd, du)
       real(wp), intent(in) :: width, length, speed, c(:), k(:), run(:), tc0, p0
-      real(wp), intent(out) :: p(size(c)), theta(size(c)), load
-      logical, intent(out) :: full(size(c))
+      real(wp), intent(out) :: p(:), theta(:), load
+      real(wp), intent(inout) :: set(:), warm
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
-      real(wp) :: y(size(c))
+      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
       logical :: changed
-      integer :: j, n, info
+      integer :: j, n, info, attempt, budget, it
       ! nodes 1 .. n-1 between the elements (node j behind element j from the
-      ! leading edge); p(j), theta(j), full(j) are node j's; p(n) = 0 (outlet)
+      ! leading edge); p(j), theta(j), set(j) are node j's; p(n) = 0 (outlet)
       n = size(c)
-      full = .true.
       converged = .false.
-      p = 0.0_wp
-      theta = 1.0_wp
+      p(1:n) = 0.0_wp
+      theta(1:n) = 1.0_wp
       load = 0.0_wp
       info = 0
-      do iterations = 1, max_active_set
-         call assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
-         if (info /= 0) exit
-         changed = .false.
-         do j = 1, n - 1
-            if (y(j) < 0.0_wp) then
-               full(j) = .not. full(j)
-               changed = .true.
+      iterations = 0
+      do attempt = merge(1, 2, warm > 0.5_wp), 2
+         if (attempt == 2) set(1:n) = 1.0_wp
+         budget = merge(max_warm, max_active_set, attempt == 1)
+         do it = 1, budget
+            iterations = iterations + 1
+            call assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, info)
+            if (info /= 0) exit
+            changed = .false.
+            do j = 1, n - 1
+               if (y(j) < 0.0_wp) then
+                  set(j) = 1.0_wp - set(j)
+                  changed = .true.
+               end if
+            end do
+            if (.not. changed) then
+               converged = .true.
+               exit
             end if
          end do
-         if (.not. changed) then
-            converged = .true.
-            exit
-         end if
+         if (converged .or. info /= 0) exit
       end do
-      iterations = min(iterations, max_active_set)
+      warm = merge(1.0_wp, 0.0_wp, converged)
       if (info /= 0) return
       do j = 1, n - 1
-         if (full(j)) then
+         if (set(j) > 0.5_wp) then
             p(j) = max(0.0_wp, y(j))
             theta(j) = 1.0_wp
          else
@@ -327,24 +421,8 @@ contains
             theta(j) = min(1.0_wp, max(0.0_wp, 1.0_wp - y(j)))
          end if
       end do
-      load = nodes_load(width, length, p, p0)
+      load = nodes_load(width, length, p(1:n), p0)
    end subroutine solve_terms
-
-   pure subroutine reynolds_fixed_set(depth, eta, sigma, width, length, density, speed, gap, &
-         & full, load)
-      real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
-      logical, intent(in) :: full(size(gap))
-      real(wp), intent(out) :: load
-      real(wp) :: y(size(gap)), p0, tc0
-      real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
-      integer :: info
-      call film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, k, run, &
-         & tc0, p0)
-      call assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
-      load = 0.0_wp
-      if (info /= 0) return
-      load = nodes_load(width, length, max(0.0_wp, merge(y, 0.0_wp, full)), p0)
-   end subroutine reynolds_fixed_set
 
    !> The film's load (N) from the nodes' pressures p(1:n-1) (p(n) is not a
    !> node) and the inlet's p0 (half an element's area: the leading edge).
@@ -354,6 +432,21 @@ contains
       n = size(p)
       load = width * (length / real(n, wp)) * (sum(p(1:n - 1)) + 0.5_wp * p0)
    end function nodes_load
+
+   !> nodes_load of a solve at a fixed set: the full nodes' y clipped at 0,
+   !> the partial nodes' 0 (the same sum in the same order, without a
+   !> temporary array).
+   pure real(wp) function set_load(width, length, y, set, p0) result(load)
+      real(wp), intent(in) :: width, length, y(:), set(:), p0
+      real(wp) :: total
+      integer :: j, n
+      n = size(y)
+      total = 0.0_wp
+      do j = 1, n - 1
+         total = total + merge(max(0.0_wp, y(j)), 0.0_wp, set(j) > 0.5_wp)
+      end do
+      load = width * (length / real(n, wp)) * (total + 0.5_wp * p0)
+   end function set_load
 
    !> The gap's terms, in order from the leading edge (element n first): the
    !> mean gap h_T, transport c and flow coefficient k per element, its drainage length
@@ -399,24 +492,24 @@ contains
    !> Vertex-centred: the gap per element, the pressure and fill at the nodes
    !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
    !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
-   !> y: the full nodes' pressure, the partial nodes' 1 - theta.
-   pure subroutine assemble_and_solve(length, speed, c, k, run, tc0, p0, full, y, info)
-      real(wp), intent(in) :: length, speed, c(:), k(:), run(:), tc0, p0
-      logical, intent(in) :: full(size(c))
-      real(wp), intent(out) :: y(size(c))
+   !> y: the full nodes' pressure, the partial nodes' 1 - theta (set: 1
+   !> full, 0 partial). dl, dd, du: scratch of at least size(c).
+   pure subroutine assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
+         & info)
+      real(wp), intent(in) :: length, speed, c(:), k(:), run(:), tc0, p0, set(:)
+      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
       integer, intent(out) :: info
-      real(wp) :: dl(max(1, size(c))), dd(size(c)), du(max(1, size(c)))
       real(wp) :: ds, half_v, lam
       integer :: n, m
       n = size(c)
       ds = length / real(n, wp)
       half_v = 0.5_wp * speed
       info = 0
-      y = 0.0_wp
+      y(1:n) = 0.0_wp
       if (n < 2) return
       do m = 1, n - 1
          lam = 6.0_wp * (k(m) / run(m)**2 + k(m + 1) / run(m + 1)**2) * ds
-         if (full(m)) then
+         if (set(m) > 0.5_wp) then
             dd(m) = (k(m) + k(m + 1)) / ds + lam
          else
             dd(m) = -half_v * c(m + 1)
@@ -426,9 +519,9 @@ contains
             y(m) = y(m) + half_v * tc0 + k(1) * p0 / ds
          else
             y(m) = y(m) + half_v * c(m)
-            dl(m - 1) = merge(-k(m) / ds, half_v * c(m), full(m - 1))
+            dl(m - 1) = merge(-k(m) / ds, half_v * c(m), set(m - 1) > 0.5_wp)
          end if
-         if (m < n - 1) du(m) = merge(-k(m + 1) / ds, 0.0_wp, full(m + 1))
+         if (m < n - 1) du(m) = merge(-k(m + 1) / ds, 0.0_wp, set(m + 1) > 0.5_wp)
       end do
       call dgtsv(n - 1, 1, dl, dd, du, y, n, info)
    end subroutine assemble_and_solve

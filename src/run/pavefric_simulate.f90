@@ -1285,6 +1285,9 @@ contains
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
       real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:), u_prev(:,:), push_prev(:,:)
       real(wp), allocatable :: pmean(:,:)
+      !> The film's workspace per lane (film%work_size(n), nl): zeroed when a
+      !> lane's run (re)starts.
+      real(wp), allocatable :: fwork(:,:)
       integer, allocatable :: samples(:)
       !> The penetration two positions back and the film's load at the
       !> previous position: the wet balance's warm start.
@@ -1391,14 +1394,14 @@ contains
                guess(j) = guess(j) - cmin(j)
             end do
             call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
-               & guess, x, wh, n_eval, gaps)
+               & guess, x, wh, n_eval, gaps, fwork)
             ! what the film's solution at the root is (films that report it)
             if (film_reports .and. t >= 0) then
                do j = 1, nl
                   if (.not. load_film(j)) cycle
                   dl = d(j, :)
                   call gap_field(dl, x(j), gap)
-                  call film%report(fstep(j), gap, settled, water, pmax)
+                  call film%report(fstep(j), gap, settled, water, pmax, fwork(:, j))
                   water_sum(j) = water_sum(j) + water
                   if (.not. settled) n_unsettled(j) = n_unsettled(j) + 1
                   if (present(film_pressure_max)) film_pressure_max(t+1, j) = pmax
@@ -1493,7 +1496,8 @@ contains
          if (stat == 0 .and. energy .and. any_memory .and. .not. allocated(rstep%mean_weights)) &
             & allocate(pmean(nl, n), stat=stat)
          if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
-         if (stat == 0 .and. any_load) allocate(gaps(nl, n), stat=stat)
+         if (stat == 0 .and. any_load) allocate(gaps(nl, n), &
+            & fwork(film%work_size(n), nl), source=0.0_wp, stat=stat)
          if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
             & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
          if (stat /= 0) then
@@ -1525,6 +1529,7 @@ contains
                delta_prev(j) = -huge(1.0_wp)
                delta_prev2(j) = -huge(1.0_wp)
                wh_prev(j) = 0.0_wp
+               if (allocated(fwork)) fwork(:, j) = 0.0_wp
                have_prev(j) = .false.
                u_max(j) = 0.0_wp
                n_eval(j) = 0
