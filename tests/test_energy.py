@@ -241,3 +241,26 @@ def test_a_memory_longer_than_the_spin_up_is_warned_of(short_profile_m):
     assert ds.attrs["spinup_positions"] == 4 * short_profile_m.size
     quick = run(short_profile_m, [120.0])
     assert quick.attrs["spinup_positions"] == quick.attrs["pad_elements"]
+
+
+@pytest.mark.parametrize("model", ["reynolds", "kane2017"])
+def test_the_negative_hysteresis_of_a_pad_that_never_repeats_is_named(model):
+    """A very soft rubber under a water film (K = 1e-3 N m-3, the pad sinks
+    metres and creeps through the whole run) gave mu = -5.1 with the Reynolds
+    film and -0.23 with the paper's bearing, silently: the rubber cannot
+    dissipate less than nothing. The run says so, naming mu_hysteresis, and
+    stays finite; a plausible rubber on the same scene does not warn."""
+    from pavefric.surfaces import spectral_profile
+
+    z = spectral_profile(256, DX, rms=0.5e-3, seed=3)
+    with pytest.warns(pavefric.PavefricWarning, match=r"mu_hysteresis = .* < 0 at 20"):
+        ds = pavefric.simulate(z, DX, [20.0, 60.0], wet_model=model, depth=1e-3,
+                               stiffness=1e-3)
+    assert np.all(np.isfinite(ds["mu"].values))
+    assert float(ds["mu_hysteresis"][0]) < -1e-6
+    assert "mu_hysteresis" in ds.attrs["warnings"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ok = pavefric.simulate(z, DX, [20.0, 60.0], wet_model=model, depth=1e-3)
+    assert np.all(ok["mu_hysteresis"].values >= 0)
+    assert not any("mu_hysteresis" in str(w.message) for w in caught)

@@ -44,6 +44,10 @@ module pavefric_simulate
    !> (lap_spinup).
    integer, parameter :: max_spin_laps = 4
 
+   !> mu_hysteresis below -this is not rounding (an elastic pad's is within
+   !> 1e-9 of 0): the warning that the pad's state did not repeat.
+   real(wp), parameter :: negative_hysteresis = 1.0e-6_wp
+
    interface
       function c_physical_memory() bind(C, name="pavefric_physical_memory") result(bytes)
          import :: c_long_long
@@ -907,6 +911,20 @@ contains
             & to_str(int(res%film_unsettled(j))) // " of " // to_str(geo%n_avg) // &
             & " positions at " // to_str(speeds_kmh(j)) // " km/h (film_unsettled): its " // &
             & "last iterate was used there, and mu may be off by its share of the load")
+      end if
+      ! The rubber's dissipation is never negative: a negative mu_hysteresis
+      ! is a pad that has not reached a state that repeats round the profile
+      ! (a very soft or very slow rubber creeping through the run), whose
+      ! drift the energy balance counts. Finite, but not a friction: say so.
+      if (any(res%mu_hysteresis < -negative_hysteresis)) then
+         j = findloc(res%mu_hysteresis < -negative_hysteresis, .true., dim=1)
+         call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
+            & " < 0 at " // to_str(speeds_kmh(j)) // " km/h: the rubber cannot dissipate " // &
+            & "less than nothing, so the pad did not reach a state that repeats round the " // &
+            & "profile (largest compression " // to_str(res%max_compression(j)) // " m; " // &
+            & "its drift is in the energy balance) and mu = " // to_str(res%mu(j)) // &
+            & " there is not a friction: check &rubber stiffness and viscosity " // &
+            & "(docs/model.md, 'Known limits')")
       end if
       res%effects = "elastic_contact,facet_friction"
       if (any(res%viscous_memory_ran)) then
