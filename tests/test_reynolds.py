@@ -358,3 +358,20 @@ def test_the_solver_settles_and_meets_its_closed_form(tmp_path):
     h_t = g * 0.5 * erfc(-hs / np.sqrt(2)) + sigma * np.exp(-0.5 * hs * hs) / np.sqrt(2 * np.pi)
     c = h_t + sigma * 1.126 * np.exp(-0.25 * hs)
     assert p_in == pytest.approx((1 - c / (2 * 1e-2)) * 0.5 * 1000.0 * 20.0**2, rel=1e-9)
+
+
+def test_the_film_load_share_is_a_share_on_a_hydroplaning_pad():
+    """Where the film carries the whole pad, the share of the load is 1, not
+    1 + 4e-15 (the mean of loads that each balance to W rounds past it; an
+    attack found 1 + 3.6e-15 on a 100 m wide pad and 1 + 3.1e-15 on a flat
+    road at 1e4 km/h)."""
+    from pavefric.surfaces import spectral_profile
+
+    z = spectral_profile(256, DX, rms=0.5e-3, seed=3)
+    wide = pavefric.simulate(z, DX, [20.0, 60.0], wet_model="reynolds", depth=1e-3,
+                             width=100.0, mu_loc=0.6)["film_load_share"].values
+    flat = pavefric.simulate(np.zeros(256), DX, [0.0, 1e4], wet_model="reynolds",
+                             depth=1e-3, mu_loc=0.6)["film_load_share"].values
+    for share in (wide, flat):
+        assert np.all((share >= 0.0) & (share <= 1.0)), share - 1
+    assert np.all(wide == 1.0) and flat[1] == 1.0 and flat[0] == 0.0
