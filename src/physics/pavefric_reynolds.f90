@@ -66,7 +66,15 @@ module pavefric_reynolds
    !> Active-set iterations from a warm start before it starts again cold.
    integer, parameter :: max_warm = 20
 
-   !> Arrays of n values in a lane's workspace (reynolds_work_size).
+   !> A lane's workspace (reynolds_work_size): the warm-start flag, the set
+   !> (n values), then arrays of n values: the gap's terms h_T, c, k, run,
+   !> the same at the gap narrowed by the derivative's shift, the nodes'
+   !> pressure and fill, the solver's right side and three diagonals, and
+   !> the narrowed gap field.
+   integer, parameter :: w_ht = 1, w_c = 2, w_k = 3, w_run = 4, w_ht2 = 5, w_c2 = 6, &
+      & w_k2 = 7, w_run2 = 8, w_p = 9, w_theta = 10, w_y = 11, w_dl = 12, w_dd = 13, &
+      & w_du = 14, w_gap2 = 15
+   !> Arrays of n values in a lane's workspace, the set's included.
    integer, parameter :: n_work_arrays = 16
 
    !> The Reynolds film.
@@ -176,10 +184,8 @@ contains
    end function reynolds_lower_bound
 
    !> Per lane: the warm-start flag (1: the set below is the last solve's,
-   !> settled), the set of full nodes (1 full, 0 partial), and scratch: the
-   !> gap's terms (h_T, c, k, run) and the shifted gap's, the nodes'
-   !> pressure and fill, the solver's right side and three diagonals, the
-   !> shifted gap field.
+   !> settled), the set of full nodes (1 full, 0 partial), and the scratch
+   !> arrays w_ht .. w_gap2.
    pure integer function reynolds_work_size(self, n)
       class(reynolds_film), intent(in) :: self
       integer, intent(in) :: n
@@ -232,32 +238,42 @@ contains
       integer :: iterations, n, info
       logical :: converged
       n = size(gap)
-      call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, speed, gap, w(at(1, n) : at(2, n) - 1), w(at(2, n) : at(3, n) - 1), &
-         & w(at(3, n) : at(4, n) - 1), w(at(4, n) : at(5, n) - 1), tc0, p0)
-      call solve_terms(self%width, self%length, speed, w(at(2, n) : at(3, n) - 1), &
-         & w(at(3, n) : at(4, n) - 1), w(at(4, n) : at(5, n) - 1), tc0, p0, &
-         & w(at(9, n) : at(10, n) - 1), w(at(10, n) : at(11, n) - 1), w(2 : n + 1), w(1), wh, &
-         & iterations, converged, w(at(11, n) : at(12, n) - 1), w(at(12, n) : at(13, n) - 1), &
-         & w(at(13, n) : at(14, n) - 1), w(at(14, n) : at(15, n) - 1))
-      ! the gaps at x + shift: open ones narrow by shift (contacts stay shut)
       shift = 1.0e-6_wp * self%sigma
-      w(at(15, n) : at(16, n) - 1) = max(0.0_wp, gap - shift)
-      call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-         & self%density, speed, w(at(15, n) : at(16, n) - 1), w(at(5, n) : at(6, n) - 1), &
-         & w(at(6, n) : at(7, n) - 1), w(at(7, n) : at(8, n) - 1), w(at(8, n) : at(9, n) - 1), &
-         & tc0, p0)
-      call assemble_and_solve(self%length, speed, w(at(6, n) : at(7, n) - 1), &
-         & w(at(7, n) : at(8, n) - 1), w(at(8, n) : at(9, n) - 1), tc0, p0, w(2 : n + 1), &
-         & w(at(11, n) : at(12, n) - 1), w(at(12, n) : at(13, n) - 1), &
-         & w(at(13, n) : at(14, n) - 1), w(at(14, n) : at(15, n) - 1), info)
-      dwh_dx = 0.0_wp
-      if (info /= 0) return
-      wh2 = set_load(self%width, self%length, w(at(11, n) : at(12, n) - 1), w(2 : n + 1), p0)
-      dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
+      associate (set => w(2 : n + 1), &
+         & h_t => w(at(w_ht, n) : at(w_ht, n) + n - 1), &
+         & c => w(at(w_c, n) : at(w_c, n) + n - 1), &
+         & k => w(at(w_k, n) : at(w_k, n) + n - 1), &
+         & run => w(at(w_run, n) : at(w_run, n) + n - 1), &
+         & h_t2 => w(at(w_ht2, n) : at(w_ht2, n) + n - 1), &
+         & c2 => w(at(w_c2, n) : at(w_c2, n) + n - 1), &
+         & k2 => w(at(w_k2, n) : at(w_k2, n) + n - 1), &
+         & run2 => w(at(w_run2, n) : at(w_run2, n) + n - 1), &
+         & p => w(at(w_p, n) : at(w_p, n) + n - 1), &
+         & theta => w(at(w_theta, n) : at(w_theta, n) + n - 1), &
+         & y => w(at(w_y, n) : at(w_y, n) + n - 1), &
+         & dl => w(at(w_dl, n) : at(w_dl, n) + n - 1), &
+         & dd => w(at(w_dd, n) : at(w_dd, n) + n - 1), &
+         & du => w(at(w_du, n) : at(w_du, n) + n - 1), &
+         & gap2 => w(at(w_gap2, n) : at(w_gap2, n) + n - 1))
+         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+            & self%density, speed, gap, h_t, c, k, run, tc0, p0)
+         call solve_terms(self%width, self%length, speed, c, k, run, tc0, p0, p, theta, set, &
+            & w(1), wh, iterations, converged, y, dl, dd, du)
+         ! the gaps at x + shift: open ones narrow by shift (contacts stay
+         ! shut), solved at the same full and partial nodes
+         gap2 = max(0.0_wp, gap - shift)
+         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+            & self%density, speed, gap2, h_t2, c2, k2, run2, tc0, p0)
+         call assemble_and_solve(self%length, speed, c2, k2, run2, tc0, p0, set, y, dl, dd, du, &
+            & info)
+         dwh_dx = 0.0_wp
+         if (info /= 0) return
+         wh2 = set_load(self%width, self%length, y, set, p0)
+         dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
+      end associate
    end subroutine load_in_work
 
-   !> Where the workspace's array number i (1 ..) of a pad of n elements
+   !> Where the workspace's array i (w_ht .. w_gap2) of a pad of n elements
    !> starts: after the warm-start flag and the set.
    pure integer function at(i, n)
       integer, intent(in) :: i, n
@@ -285,16 +301,18 @@ contains
       pressure_max = 0.0_wp
       n = size(gap)
       if (.not. step%active .or. n == 0) return
-      associate (h_t => work(at(1, n) : at(2, n) - 1), c => work(at(2, n) : at(3, n) - 1), &
-         & p => work(at(9, n) : at(10, n) - 1), theta => work(at(10, n) : at(11, n) - 1))
+      associate (h_t => work(at(w_ht, n) : at(w_ht, n) + n - 1), &
+         & c => work(at(w_c, n) : at(w_c, n) + n - 1), &
+         & k => work(at(w_k, n) : at(w_k, n) + n - 1), &
+         & run => work(at(w_run, n) : at(w_run, n) + n - 1), &
+         & p => work(at(w_p, n) : at(w_p, n) + n - 1), &
+         & theta => work(at(w_theta, n) : at(w_theta, n) + n - 1))
          call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-            & self%density, step%coef(1), gap, h_t, c, work(at(3, n) : at(4, n) - 1), &
-            & work(at(4, n) : at(5, n) - 1), tc0, p0)
-         call solve_terms(self%width, self%length, step%coef(1), c, &
-            & work(at(3, n) : at(4, n) - 1), work(at(4, n) : at(5, n) - 1), tc0, p0, p, theta, &
+            & self%density, step%coef(1), gap, h_t, c, k, run, tc0, p0)
+         call solve_terms(self%width, self%length, step%coef(1), c, k, run, tc0, p0, p, theta, &
             & work(2 : n + 1), work(1), load, iterations, settled, &
-            & work(at(11, n) : at(12, n) - 1), work(at(12, n) : at(13, n) - 1), &
-            & work(at(13, n) : at(14, n) - 1), work(at(14, n) : at(15, n) - 1))
+            & work(at(w_y, n) : at(w_y, n) + n - 1), work(at(w_dl, n) : at(w_dl, n) + n - 1), &
+            & work(at(w_dd, n) : at(w_dd, n) + n - 1), work(at(w_du, n) : at(w_du, n) + n - 1))
          water = min(1.0_wp, tc0 / c(1)) * h_t(1)
          do j = 2, n
             water = water + theta(j - 1) * h_t(j)
