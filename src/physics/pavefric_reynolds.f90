@@ -235,30 +235,21 @@ contains
       real(wp), intent(inout) :: w(:)
       real(wp), intent(out) :: wh, dwh_dx
       real(wp) :: wh2, shift, tc0, p0
-      integer :: iterations, n, info
+      integer :: n, info
       logical :: converged
       n = size(gap)
       shift = 1.0e-6_wp * self%sigma
+      call solve_in_work(self, speed, gap, w, wh, converged, tc0, p0)
       associate (set => w(2 : n + 1), &
-         & h_t => w(at(w_ht, n) : at(w_ht, n) + n - 1), &
-         & c => w(at(w_c, n) : at(w_c, n) + n - 1), &
-         & k => w(at(w_k, n) : at(w_k, n) + n - 1), &
-         & run => w(at(w_run, n) : at(w_run, n) + n - 1), &
          & h_t2 => w(at(w_ht2, n) : at(w_ht2, n) + n - 1), &
          & c2 => w(at(w_c2, n) : at(w_c2, n) + n - 1), &
          & k2 => w(at(w_k2, n) : at(w_k2, n) + n - 1), &
          & run2 => w(at(w_run2, n) : at(w_run2, n) + n - 1), &
-         & p => w(at(w_p, n) : at(w_p, n) + n - 1), &
-         & theta => w(at(w_theta, n) : at(w_theta, n) + n - 1), &
          & y => w(at(w_y, n) : at(w_y, n) + n - 1), &
          & dl => w(at(w_dl, n) : at(w_dl, n) + n - 1), &
          & dd => w(at(w_dd, n) : at(w_dd, n) + n - 1), &
          & du => w(at(w_du, n) : at(w_du, n) + n - 1), &
          & gap2 => w(at(w_gap2, n) : at(w_gap2, n) + n - 1))
-         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-            & self%density, speed, gap, h_t, c, k, run, tc0, p0)
-         call solve_terms(self%width, self%length, speed, c, k, run, tc0, p0, p, theta, set, &
-            & w(1), wh, iterations, converged, y, dl, dd, du)
          ! the gaps at x + shift: open ones narrow by shift (contacts stay
          ! shut), solved at the same full and partial nodes
          gap2 = max(0.0_wp, gap - shift)
@@ -272,6 +263,32 @@ contains
          dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
       end associate
    end subroutine load_in_work
+
+   !> The film on a gap field in a lane's workspace w, warm from its set:
+   !> the gap's terms (w_ht .. w_run), the nodes' pressure and fill (w_p,
+   !> w_theta), the load (N), whether the set settled, and the inlet's flux
+   !> coefficient tc0 and pressure p0.
+   pure subroutine solve_in_work(self, speed, gap, w, load, settled, tc0, p0)
+      class(reynolds_film), intent(in) :: self
+      real(wp), intent(in) :: speed, gap(:)
+      real(wp), intent(inout) :: w(:)
+      real(wp), intent(out) :: load, tc0, p0
+      logical, intent(out) :: settled
+      integer :: iterations, n
+      n = size(gap)
+      associate (c => w(at(w_c, n) : at(w_c, n) + n - 1), &
+         & k => w(at(w_k, n) : at(w_k, n) + n - 1), &
+         & run => w(at(w_run, n) : at(w_run, n) + n - 1))
+         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+            & self%density, speed, gap, w(at(w_ht, n) : at(w_ht, n) + n - 1), c, k, run, &
+            & tc0, p0)
+         call solve_terms(self%width, self%length, speed, c, k, run, tc0, p0, &
+            & w(at(w_p, n) : at(w_p, n) + n - 1), w(at(w_theta, n) : at(w_theta, n) + n - 1), &
+            & w(2 : n + 1), w(1), load, iterations, settled, &
+            & w(at(w_y, n) : at(w_y, n) + n - 1), w(at(w_dl, n) : at(w_dl, n) + n - 1), &
+            & w(at(w_dd, n) : at(w_dd, n) + n - 1), w(at(w_du, n) : at(w_du, n) + n - 1))
+      end associate
+   end subroutine solve_in_work
 
    !> Where the workspace's array i (w_ht .. w_gap2) of a pad of n elements
    !> starts: after the warm-start flag and the set.
@@ -295,24 +312,17 @@ contains
       logical, intent(out) :: settled
       real(wp), intent(out) :: water, pressure_max
       real(wp) :: load, tc0, p0
-      integer :: iterations, j, n
+      integer :: j, n
       settled = .true.
       water = 0.0_wp
       pressure_max = 0.0_wp
       n = size(gap)
       if (.not. step%active .or. n == 0) return
+      call solve_in_work(self, step%coef(1), gap, work, load, settled, tc0, p0)
       associate (h_t => work(at(w_ht, n) : at(w_ht, n) + n - 1), &
          & c => work(at(w_c, n) : at(w_c, n) + n - 1), &
-         & k => work(at(w_k, n) : at(w_k, n) + n - 1), &
-         & run => work(at(w_run, n) : at(w_run, n) + n - 1), &
          & p => work(at(w_p, n) : at(w_p, n) + n - 1), &
          & theta => work(at(w_theta, n) : at(w_theta, n) + n - 1))
-         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-            & self%density, step%coef(1), gap, h_t, c, k, run, tc0, p0)
-         call solve_terms(self%width, self%length, step%coef(1), c, k, run, tc0, p0, p, theta, &
-            & work(2 : n + 1), work(1), load, iterations, settled, &
-            & work(at(w_y, n) : at(w_y, n) + n - 1), work(at(w_dl, n) : at(w_dl, n) + n - 1), &
-            & work(at(w_dd, n) : at(w_dd, n) + n - 1), work(at(w_du, n) : at(w_du, n) + n - 1))
          water = min(1.0_wp, tc0 / c(1)) * h_t(1)
          do j = 2, n
             water = water + theta(j - 1) * h_t(j)
