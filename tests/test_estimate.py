@@ -2,7 +2,8 @@
 steps exactly, memory checked before allocating, seconds at calibrated rates
 (compared with measured times in the benchmark, not here: timings are for
 the benchmark). Recorded in every output; printed by the program before a
-run estimated at a second or more."""
+run estimated at a second or more, and by Python (PavefricCostWarning) before
+one estimated at ANNOUNCE_SECONDS or more."""
 import os
 import subprocess
 import sys
@@ -79,6 +80,54 @@ def test_the_program_announces_a_long_run_and_records_every_estimate(tmp_path, p
     assert r.returncode == 0 and "estimate" not in r.stderr        # short runs stay quiet
     with xr.open_dataset(tmp_path / "s.nc") as ds:
         assert ds.attrs["estimated_element_steps"] > 0
+
+
+def _cost_warnings(record):
+    return [str(w.message) for w in record if issubclass(w.category, pavefric.PavefricCostWarning)]
+
+
+def test_python_warns_before_a_long_run(monkeypatch, profile_m, tmp_path):
+    """The attack of 2026-11-27: Python ran for as long as a run takes without
+    a word (the program announces from 1 s). simulate() and run() now warn,
+    before the run, when the estimate reaches ANNOUNCE_SECONDS, with the
+    numbers the output records; a shorter run stays quiet."""
+    import warnings
+
+    import pavefric.core
+
+    assert pavefric.ANNOUNCE_SECONDS == pavefric.core.ANNOUNCE_SECONDS == 10.0
+    kw = dict(depth=1e-3, substeps=8)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        ds = pavefric.simulate(profile_m, DX, [20.0, 60.0], **kw)
+    assert ds.attrs["estimated_seconds"] < pavefric.ANNOUNCE_SECONDS
+    assert _cost_warnings(record) == []                    # short: quiet
+    monkeypatch.setattr(pavefric.core, "ANNOUNCE_SECONDS", 0.5 * ds.attrs["estimated_seconds"])
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        ds2 = pavefric.simulate(profile_m, DX, [20.0, 60.0], **kw)
+    said = _cost_warnings(record)
+    steps = int(ds2.attrs["estimated_element_steps"])
+    assert len(said) == 1 and f"estimate: {steps} element-steps" in said[0], said
+    assert "MiB" in said[0] and "s on one thread" in said[0]
+    # warned first: before the run's own warnings (none here but the cost's)
+    assert issubclass(record[0].category, pavefric.PavefricCostWarning)
+    assert not issubclass(pavefric.PavefricCostWarning, pavefric.PavefricWarning)
+    # a scene file, as run() does it: the same estimate as its output records
+    scene = write_scene(tmp_path / "s", profile=profile_m,
+                        groups={"water": "depth = 1e-3", "numerics": "substeps = 8"})
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        out = pavefric.run(scene, output=tmp_path / "s.nc")
+    with xr.open_dataset(out) as ds3:
+        steps = int(ds3.attrs["estimated_element_steps"])
+    said = _cost_warnings(record)
+    assert len(said) == 1 and f"estimate: {steps} element-steps" in said[0], said
+    # a scene that cannot be read: the run's own error, not the estimate's
+    bad = write_scene(tmp_path / "b", groups={"numerics": "substeps = 0"})
+    with pytest.raises(pavefric.PavefricError, match="substeps"):
+        pavefric.run(bad, output=tmp_path / "b.nc")
+    assert not (tmp_path / "b.nc").exists()
 
 
 def test_a_run_that_cannot_fit_is_refused_before_allocating(profile_m):

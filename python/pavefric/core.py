@@ -52,6 +52,31 @@ class PavefricWarning(UserWarning):
     ``warnings`` attribute)."""
 
 
+class PavefricCostWarning(UserWarning):
+    """A run estimated (before it starts) to take ``ANNOUNCE_SECONDS`` or more
+    on one thread: the warning carries the estimate (element-steps, memory,
+    seconds), which the output also records (``estimated_seconds``). It is not
+    a ``PavefricWarning`` (nothing is wrong with the input): silence it with
+    ``warnings.simplefilter("ignore", pavefric.PavefricCostWarning)``."""
+
+
+#: A run estimated to take this long (s, one thread) or more warns before it
+#: starts (``PavefricCostWarning``); the program prints its estimate from 1 s.
+ANNOUNCE_SECONDS = 10.0
+
+
+def _announce(estimate, text, status, message) -> None:
+    """Warn before a long run (the estimate from pf_estimate or
+    pf_scene_estimate). A scene the estimate cannot read is left to the run,
+    which says why in its own order of checks."""
+    if int(status) != 0 or float(estimate[2]) < ANNOUNCE_SECONDS:
+        return
+    import warnings
+
+    warnings.warn(f"pavefric: a long run ({_text(text)}); the output records it as "
+                  "estimated_seconds", PavefricCostWarning, stacklevel=3)
+
+
 class ProfilesFailedWarning(UserWarning):
     """A batch finished but some of its profiles failed (the program's exit
     status 4): the output is written, its ``status`` (2) and ``error_message``
@@ -502,6 +527,14 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         If a value is bad (naming the group, the variable and the value).
     PavefricKeywordError
         If a keyword is not a model variable.
+
+    Warns
+    -----
+    PavefricWarning
+        Suspicious input or results (also in ``ds.attrs["warnings"]``).
+    PavefricCostWarning
+        Before a run estimated to take ``ANNOUNCE_SECONDS`` (10 s) or more on
+        one thread, with the estimate (``estimated_seconds`` in the output).
     """
     import xarray as xr
 
@@ -526,6 +559,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         n_el, npos, n_series, status, message = _core.pf_layout(*typed, z.size)
         _check(status, message, keywords=True)
         npos = max(npos, 1)
+    _announce(*_core.pf_estimate(z, *typed))
     _, _, outputs = _tables()
     ntext = 4096 + 2 * len(typed[-1]) + 32 * len(typed[0])
     while True:
@@ -678,6 +712,12 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
     ------
     PavefricError
         If the scene is bad or the run fails (nothing is written then).
+
+    Warns
+    -----
+    PavefricCostWarning
+        Before a single scene estimated to take ``ANNOUNCE_SECONDS`` (10 s)
+        or more on one thread, with the estimate.
     """
     command = "pavefric.run(" + shlex.quote(str(path)) + (
         f", output={shlex.quote(str(output))})" if output else ")")
@@ -687,6 +727,7 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
     _check(status, message)
     if is_batch:
         return _run_batch(str(path), str(output or ""), command, progress)
+    _announce(*_core.pf_scene_estimate(_b(os.fspath(path))))
     out_path, warnings_text, status, message = _core.pf_run_scene(
         _b(os.fspath(path)), _b(os.fspath(output) if output else ""), _b(command))
     _check(status, message)

@@ -157,6 +157,54 @@ subroutine pf_layout(t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals,
    n_series = series_count(scene%model)
 end subroutine pf_layout
 
+!> The cost of running pf_simulate on heights z (m) with these settings,
+!> before it runs: estimate = element-steps (all speeds, first pass), bytes,
+!> seconds on one thread (the program's calibrated rate); `text` the
+!> program's announcement line. A run that
+!> would not fit in memory is refused here (status, message), as by the run.
+subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, &
+      & t_text, estimate, text, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_scene, only: scene_type, scene_from_typed
+   use pavefric_simulate, only: cost_estimate_type, check_memory
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_run, only: scene_estimate, estimate_text
+   use pavefric_error, only: error_type
+   implicit none
+   integer(c_int), intent(in) :: np
+   real(c_double), intent(in) :: z(np)
+   !> The settings as typed items (as pf_simulate takes them).
+   integer(c_int), intent(in) :: t_n, t_nreal
+   integer(c_int), intent(in) :: t_ids(t_n), t_kinds(t_n), t_counts(t_n), t_lengths(t_n)
+   real(c_double), intent(in) :: t_reals(t_nreal)
+   character(len=*), intent(in) :: t_text
+   real(c_double), intent(out) :: estimate(3)
+   character(len=512), intent(out) :: text
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(clean_profile_type) :: clean
+   type(cost_estimate_type) :: cost
+   type(error_type), allocatable :: error
+   character(len=:), allocatable :: line
+   estimate = 0; text = ""; status = 0; message = ""
+   call scene_from_typed(t_ids, t_kinds, t_reals, t_counts, t_text, t_lengths, scene, error)
+   if (allocated(error)) goto 99
+   clean%z = z
+   clean%dx = scene%dx
+   cost = scene_estimate(scene, clean)
+   call check_memory(cost, error)
+   if (allocated(error)) goto 99
+   call estimate_text(cost, scene%model%tolerance, line)
+   text = line
+   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds]
+99 continue
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+   end if
+end subroutine pf_estimate
+
 !> Run the model on heights z (m) with the settings as typed items (t_*:
 !> &surface dx and closed, &operation speeds_kmh, &output series and any
 !> model variable, checked by their declarations): the same run as the
@@ -284,6 +332,46 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
       message = error%message
    end if
 end subroutine pf_simulate
+
+!> The cost of running a scene file (not a batch), before it runs: its scene
+!> and profile are read and preprocessed as the run does; estimate and text
+!> as pf_estimate's. A scene that cannot be read gives status /= 0 (the run
+!> then reports why, in its own order of checks).
+subroutine pf_scene_estimate(path, estimate, text, status, message)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_scene, only: scene_type, read_scene
+   use pavefric_simulate, only: cost_estimate_type, check_memory
+   use pavefric_preprocess, only: clean_profile_type
+   use pavefric_run, only: scene_estimate, estimate_text, load_scene_profile
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path
+   real(c_double), intent(out) :: estimate(3)
+   character(len=512), intent(out) :: text
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(scene_type) :: scene
+   type(clean_profile_type) :: clean
+   type(cost_estimate_type) :: cost
+   type(error_type), allocatable :: error
+   character(len=:), allocatable :: line
+   estimate = 0; text = ""; status = 0; message = ""
+   call read_scene(path, scene, error)
+   if (allocated(error)) goto 99
+   call load_scene_profile(scene, clean, error)
+   if (allocated(error)) goto 99
+   cost = scene_estimate(scene, clean)
+   call check_memory(cost, error)
+   if (allocated(error)) goto 99
+   call estimate_text(cost, scene%model%tolerance, line)
+   text = line
+   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds]
+99 continue
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+   end if
+end subroutine pf_scene_estimate
 
 !> Run a scene file and write its NetCDF output, as the program does; the
 !> warnings recorded in it come back in `warnings` (lines, truncated).
