@@ -375,3 +375,24 @@ def test_the_film_load_share_is_a_share_on_a_hydroplaning_pad():
     for share in (wide, flat):
         assert np.all((share >= 0.0) & (share <= 1.0)), share - 1
     assert np.all(wide == 1.0) and flat[1] == 1.0 and flat[0] == 0.0
+
+
+def test_the_roots_study_is_the_paragraph_it_regenerates():
+    """docs/model.md's "more than one root" paragraph cites `python -m
+    pavefric.studies.reynolds_roots`: its first rows are the paragraph's
+    figures (mu and film_load_share at substeps 1 and 16), and the jump it
+    names (0.5 mm at 16 substeps) is the Reynolds film's alone: the dry pad
+    and the other wet models move under 2e-5 m in a step. When the film's
+    defect is mended, this test fails and the paragraph is rewritten."""
+    from pavefric.studies import reynolds_roots as study
+
+    z = spectral_profile(**study.PROFILE)
+    text = (Path(__file__).resolve().parents[1] / "docs" / "model.md").read_text()
+    rows = study.substep_table(z, (1, 16))
+    mus = ", ".join(f"{r[1]:.3f}" for r in rows)
+    shares = ", ".join(f"{r[2]:.3f}" for r in rows)
+    flat = " ".join(text.split())
+    assert f"mu {mus}, " in flat and f"`film_load_share` {shares}, " in flat, (mus, shares)
+    jumps = {name: jump for s, name, mu, jump in study.model_jumps(z, (16,))}
+    assert 4e-4 < jumps["reynolds"] < 6e-4
+    assert max(jumps["dry"], jumps["kane2017"], jumps["squeeze"]) < 2e-5
