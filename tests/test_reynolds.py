@@ -396,3 +396,18 @@ def test_the_roots_study_is_the_paragraph_it_regenerates():
     jumps = {name: jump for s, name, mu, jump in study.model_jumps(z, (16,))}
     assert 4e-4 < jumps["reynolds"] < 6e-4
     assert max(jumps["dry"], jumps["kane2017"], jumps["squeeze"]) < 2e-5
+
+
+def test_a_hydroplaning_film_holds_about_twice_the_water_on_the_road():
+    """mean_water_thickness on a pad the film carries (400 km/h): the water
+    brought, V H_in per unit width, moves under the pad at V/2 (the road at
+    V, the pad at rest), so it is about twice as thick as on the road; an
+    attack took 2.2 times the depth for a defect (docs/outputs.md)."""
+    for name, depth in (("smooth", 1e-3), ("rough", 1e-4), ("rough", 1e-3)):
+        ds = wet(profile(name), [400.0], depth)
+        assert float(ds["film_load_share"][0]) > 0.7
+        ratio = float(ds["mean_water_thickness"][0]) / depth
+        assert 1.5 < ratio < 2.3, (name, depth, ratio)
+    # at walking pace the same water barely fills the texture under the pad
+    slow = wet(profile("rough"), [20.0], 1e-3)
+    assert float(slow["mean_water_thickness"][0]) < 0.2e-3

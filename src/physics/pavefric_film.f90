@@ -198,7 +198,9 @@ contains
          & "by the water film, averaged over positions (mean_hydro_load / &pad load)")
       t(7) = output_var("film", "mean_water_thickness", "m", "water between the pad and " // &
          & "the road per unit of pad area, averaged over positions: with wet_model = " // &
-         & "'reynolds' each element's mean gap h_T times its fill theta, over the pad; 0 for " // &
+         & "'reynolds' each element's mean gap h_T times its fill theta, over the pad (up " // &
+         & "to about twice the water depth: under the pad the water moves at V/2, half the " // &
+         & "road's speed, so the same flow is twice as thick); 0 for " // &
          & "the models that do not resolve the water under the pad (kane2017; squeeze's " // &
          & "film on the contacts is mean_film_thickness)")
       t(8) = output_var("film", "film_unsettled", "1", "averaged positions where the " // &
