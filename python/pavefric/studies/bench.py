@@ -548,6 +548,9 @@ ESTIMATE_SCENES = [
     *[("training", f"wet squeeze, {n} speed(s)",
        f"&water depth = 1e-3, wet_model = 'squeeze' / &operation speeds_kmh = {_SPEEDS[n]} /")
       for n in (1, 12)],
+    *[("training", f"wet reynolds, {n} speed(s)",
+       f"&water depth = 1e-3, wet_model = 'reynolds' / &operation speeds_kmh = {_SPEEDS[n]} /")
+      for n in (1, 6)],
     ("training", "dry Kelvin-Voigt, 1 speed, no error estimate",
      "&rubber viscosity = 3e3 / &numerics error_estimate = .false. / &operation speeds_kmh = 60 /"),
     ("training", "wet kane2017, 3 speeds, no error estimate",
@@ -567,6 +570,9 @@ ESTIMATE_SCENES = [
     ("test", "wet kane2017, 10 speeds, a 40 mm pad",
      "&water depth = 2e-3 / &pad length = 0.040 / "
      "&operation speeds_kmh = 5, 10, 20, 30, 40, 50, 60, 70, 80, 90 /"),
+    ("test", "closed 16,384 points, wet reynolds, 3 speeds, substeps 2",
+     "&surface closed = .true. / &water depth = 0.5e-3, wet_model = 'reynolds' / "
+     "&numerics substeps = 2 / &operation speeds_kmh = 20, 50, 80 /"),
     ("test", "dry, 6 speeds, no error estimate",
      "&numerics error_estimate = .false. / &operation speeds_kmh = 10, 20, 30, 40, 60, 80 /"),
     ("test", "dry Maxwell 1 arm, 4 speeds, position_stride 2",
@@ -630,7 +636,8 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
 #: sec_point is paid once per run (reading, preprocessing, texture,
 #: writing), sec_point_pass per pass (the refined geometry).
 COST_RATES = ("sec_point", "sec_point_pass", "sec_step", "sec_arm", "sec_bearing_step", "sec_bearing_position",
-              "sec_squeeze_step", "sec_squeeze_position")
+              "sec_squeeze_step", "sec_squeeze_position", "sec_reynolds_step",
+              "sec_reynolds_position")
 SEC_RUN = 1.0e-3
 
 
@@ -650,12 +657,15 @@ def _cost_features(ds, groups: str) -> list[float]:
     arms = int(np.size(ds.attrs["param_rubber_prony_times"])) if "maxwell" in groups else 0
     wet = "depth" in groups
     squeeze = "squeeze" in groups
+    reynolds = "reynolds" in groups
+    bearing = wet and not squeeze and not reynolds
     points = float(ds.attrs["profile_points"])
     fine = float(ds.attrs["param_numerics_substeps"]) * float(
         ds.attrs["param_numerics_elements_per_sample"])
     return [points, passes * points * fine, passes * steps, passes * steps * arms,
-            passes * steps * (wet and not squeeze), passes * positions * (wet and not squeeze),
-            passes * steps * squeeze, passes * positions * squeeze]
+            passes * steps * bearing, passes * positions * bearing,
+            passes * steps * squeeze, passes * positions * squeeze,
+            passes * steps * reynolds, passes * positions * reynolds]
 
 
 def _log_refit(log, rows) -> None:
