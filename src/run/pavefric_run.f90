@@ -24,7 +24,7 @@ module pavefric_run
    private
 
    public :: run_scene, run_profile, load_scene_profile, ctm_dx, preprocess_summary, timestamp
-   public :: scene_estimate, estimate_text, announce_interface
+   public :: scene_estimate, estimate_text, announce_interface, checked_estimate
    public :: rms_plausible_low, rms_plausible_high, mu_plausible_high
    public :: texture_warning, result_warnings
 
@@ -74,6 +74,21 @@ contains
       c%total_element_steps = c%total_element_steps * phases
       c%seconds = c%seconds * real(phases, wp)
    end function scene_estimate
+
+   !> scene_estimate, refused (error) when the run would not fit in the
+   !> memory the process may use, and in words (estimate_text): what the
+   !> program announces and Python's simulate() and run() warn with.
+   subroutine checked_estimate(scene, clean, cost, line, error)
+      type(scene_type), intent(in) :: scene
+      type(clean_profile_type), intent(in) :: clean
+      type(cost_estimate_type), intent(out) :: cost
+      character(len=:), allocatable, intent(out) :: line
+      type(error_type), allocatable, intent(out) :: error
+      cost = scene_estimate(scene, clean)
+      call check_memory(cost, error)
+      if (allocated(error)) return
+      call estimate_text(cost, scene%model%tolerance, line)
+   end subroutine checked_estimate
 
    !> The estimate in words, for the progress line.
    subroutine estimate_text(c, tolerance, text)
@@ -236,13 +251,10 @@ contains
       call load_scene_profile(scene, clean, error)
       if (allocated(error)) return
       if (present(announce)) then
-         cost = scene_estimate(scene, clean)
-         call check_memory(cost, error)      ! a refusal is the one line, not after the estimate
+         ! a refusal is the one line, not after the estimate
+         call checked_estimate(scene, clean, cost, line, error)
          if (allocated(error)) return
-         if (cost%seconds >= announce_seconds) then
-            call estimate_text(cost, scene%model%tolerance, line)
-            call announce(line)
-         end if
+         if (cost%seconds >= announce_seconds) call announce(line)
       end if
       call run_profile(scene, clean, res, meta, error)
       if (allocated(error)) return

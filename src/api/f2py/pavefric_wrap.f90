@@ -160,15 +160,15 @@ end subroutine pf_layout
 !> The cost of running pf_simulate on heights z (m) with these settings,
 !> before it runs: estimate = element-steps (all speeds, first pass), bytes,
 !> seconds on one thread (the program's calibrated rate); `text` the
-!> program's announcement line. A run that
-!> would not fit in memory is refused here (status, message), as by the run.
+!> program's announcement line. A run that would not fit in memory is
+!> refused here (status, message), as by the run.
 subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, &
       & t_text, estimate, text, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_scene, only: scene_type, scene_from_typed
-   use pavefric_simulate, only: cost_estimate_type, check_memory
+   use pavefric_simulate, only: cost_estimate_type
    use pavefric_preprocess, only: clean_profile_type
-   use pavefric_run, only: scene_estimate, estimate_text
+   use pavefric_run, only: checked_estimate
    use pavefric_error, only: error_type
    implicit none
    integer(c_int), intent(in) :: np
@@ -192,10 +192,8 @@ subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    if (allocated(error)) goto 99
    clean%z = z
    clean%dx = scene%dx
-   cost = scene_estimate(scene, clean)
-   call check_memory(cost, error)
+   call checked_estimate(scene, clean, cost, line, error)
    if (allocated(error)) goto 99
-   call estimate_text(cost, scene%model%tolerance, line)
    text = line
    estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds]
 99 continue
@@ -340,9 +338,9 @@ end subroutine pf_simulate
 subroutine pf_scene_estimate(path, estimate, text, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_scene, only: scene_type, read_scene
-   use pavefric_simulate, only: cost_estimate_type, check_memory
+   use pavefric_simulate, only: cost_estimate_type
    use pavefric_preprocess, only: clean_profile_type
-   use pavefric_run, only: scene_estimate, estimate_text, load_scene_profile
+   use pavefric_run, only: checked_estimate, load_scene_profile
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path
@@ -360,10 +358,8 @@ subroutine pf_scene_estimate(path, estimate, text, status, message)
    if (allocated(error)) goto 99
    call load_scene_profile(scene, clean, error)
    if (allocated(error)) goto 99
-   cost = scene_estimate(scene, clean)
-   call check_memory(cost, error)
+   call checked_estimate(scene, clean, cost, line, error)
    if (allocated(error)) goto 99
-   call estimate_text(cost, scene%model%tolerance, line)
    text = line
    estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds]
 99 continue
