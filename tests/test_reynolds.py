@@ -384,9 +384,9 @@ def test_the_roots_study_is_the_paragraph_it_regenerates():
     names (0.5 mm at 16 substeps) is the Reynolds film's alone: the dry pad
     and the other wet models move under 2e-5 m in a step. When the film's
     defect is mended, this test fails and the paragraph is rewritten."""
-    from pavefric.studies import reynolds_roots as study
-
     import re
+
+    from pavefric.studies import reynolds_roots as study
 
     z = spectral_profile(**study.PROFILE)
     text = (Path(__file__).resolve().parents[1] / "docs" / "model.md").read_text()

@@ -19,8 +19,8 @@ open = open_dataset  # noqa: A001  - pavefric.open(path) reads an output file
 
 from ._version import __version__  # meson.build project(version:), at build time
 
-__all__ = ["ANNOUNCE_SECONDS", "CTM_DX", "PavefricCostWarning", "PavefricError", "PavefricKeywordError", "PavefricWarning", "Profile",
-           "ProfilesFailedWarning", "Scene", "load_scene", "defaults", "groups", "parameters",
+__all__ = ["ANNOUNCE_SECONDS", "CTM_DX", "PavefricCostWarning", "PavefricError",
+           "PavefricKeywordError", "PavefricWarning", "Profile", "ProfilesFailedWarning", "Scene", "load_scene", "defaults", "groups", "parameters",
            "layout", "open", "open_dataset", "ifi", "plot_mu_speed", "plot_profile",
            "read_profile", "texture", "run", "simulate", "__version__", "write_profiles",
            "list_profiles", "ProfileEntry", "check_output", "element_profile"]
