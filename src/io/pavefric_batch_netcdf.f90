@@ -171,8 +171,9 @@ contains
             & "and distance slid (mu = mu_hysteresis + mu_adhesion)", v_mua)
          call w%def("mu_error_estimate", nf90_double, [d_s, d_d, d_p], "1", &
             & "estimated error of mu from the time step (&numerics error_estimate: three " // &
-            & "times the change at half the step; or the tolerance's estimate); missing where " // &
-            & "none was made", v_mue)
+            & "times the change at half the step, and half the elements where the pad stood " // &
+            & "on fewer than 4 elements in contact on average; or the tolerance's estimate); " // &
+            & "missing where none was made", v_mue)
          call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
             & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
          call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &

@@ -55,6 +55,8 @@ module pavefric_model
    real(wp), parameter :: tolerance_floor = 1.0e-14_wp
    !> The largest &numerics substeps, also where accuracy on demand stops halving.
    integer, parameter, public :: max_substeps = 4096
+   !> The largest &numerics elements_per_sample.
+   integer, parameter, public :: max_elements_per_sample = 4096
 
    !> The values used, as a namelist that reproduces them (defaults
    !> included); optional variables not set are left out. `groups`
@@ -287,7 +289,8 @@ contains
          & max_substeps)
       s(p_elements_per_sample) = int_param("numerics", "elements_per_sample", "1", "model", &
          & "pad elements per profile spacing: element width dx / elements_per_sample; " // &
-         & "heights and facet tangents interpolated linearly between samples", 1, 4096)
+         & "heights and facet tangents interpolated linearly between samples", 1, &
+         & max_elements_per_sample)
       s(p_position_stride) = int_param("numerics", "position_stride", "1", "model", &
          & "the pad advances this many (refined) samples per step and only those " // &
          & "positions are averaged: exact for elastic dry scenes up to sampling, a " // &
@@ -307,7 +310,9 @@ contains
          & lower=0.0_wp, upper=1.0_wp)
       s(p_error_estimate) = logical_param("numerics", "error_estimate", ".true.", "model", &
          & "with tolerance = 0, every speed's error from the time step is estimated from " // &
-         & "a second pass at half the step (substeps doubled; about twice the run's cost) " // &
+         & "a second pass at half the step (substeps doubled; about twice the run's cost; " // &
+         & "where the pad stood on fewer than 4 elements in contact, elements_per_sample " // &
+         & "doubled instead, which halves the elements with the step, about four times) " // &
          & "as three times the change, recorded as mu_error_estimate, with a warning where it " // &
          & "exceeds 5 % of mu (and 0.001); speeds the exact integrator ran need no pass (estimate 0). " // &
          & ".false.: no second pass and no estimate (docs/accuracy.md)")

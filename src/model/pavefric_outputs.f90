@@ -32,7 +32,7 @@ module pavefric_outputs
    public :: output_condition
 
    !> The variables the pad, its balance and the numerics declare (below).
-   integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 4
+   integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 5
    !> The wet models' own (their registry entries): the squeeze film's 5,
    !> the Reynolds film's 2.
    integer, parameter :: n_wet_model_outputs = 7
@@ -40,7 +40,7 @@ module pavefric_outputs
       & n_film_outputs + n_wet_model_outputs + n_numerics_outputs
 
    !> The output file's order of the variables (and the C API's indices).
-   character(len=*), parameter :: file_order(n_outputs) = [character(len=24) :: &
+   character(len=*), parameter :: file_order(n_outputs) = [character(len=32) :: &
       & "mu", "n_clamped", "hydroplaning_fraction", "wet_fraction", "max_balance_residual", &
       & "mean_hydro_load", "max_compression", "bearing_evaluations", "memory_updates", &
       & "viscous_memory_ran", "bearing_ran", "squeeze_film_ran", "mean_local_friction", &
@@ -48,7 +48,7 @@ module pavefric_outputs
       & "film_thickness", "local_friction", "mu_error_estimate", "substeps_used", &
       & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran", &
       & "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled", &
-      & "film_pressure_max", "water_thickness"]
+      & "film_pressure_max", "water_thickness", "estimate_elements_per_sample"]
 
    !> What the output says besides the result variables: where the results
    !> came from, the profile, its texture, the parameters used, warnings.
@@ -126,9 +126,11 @@ contains
    pure function numerics_outputs() result(t)
       type(output_var_type) :: t(n_numerics_outputs)
       t(1) = output_var("numerics", "mu_error_estimate", "1", "estimated error of mu from " // &
-         & "the time step (the pad's step along the road). At tolerance = 0 (&numerics " // &
-         & "error_estimate): three times the change of mu at half the step, 0 where the " // &
-         & "exact integrator ran. With &numerics tolerance: twice the larger of its last " // &
+         & "the time step (the pad's step along the road) and, where the pad stood on few " // &
+         & "elements, their resolution. At tolerance = 0 (&numerics error_estimate): three " // &
+         & "times the change of mu at half the step (and half the elements where " // &
+         & "estimate_elements_per_sample says so), 0 where the exact integrator ran. " // &
+         & "With &numerics tolerance: twice the larger of its last " // &
          & "two changes as the step was halved, or where mu is extrapolated, the larger of " // &
          & "the extrapolated value's change and the last change", when=when_error_estimate)
       t(2) = output_var("numerics", "substeps_used", "1", "time steps per element spacing " // &
@@ -142,6 +144,13 @@ contains
          & "integrated exactly in time, from contact event to event (&numerics time_scheme " // &
          & "= 'auto' or 'exact': a Kelvin-Voigt rubber with memory on a road " // &
          & "without a film), else backward Euler", out_flag)
+      t(5) = output_var("numerics", "estimate_elements_per_sample", "1", &
+         & "elements_per_sample of the pass mu_error_estimate was made from: the run's " // &
+         & "where the pass halved the time step only (substeps doubled), twice the run's " // &
+         & "where the pad stood on fewer than 4 elements in contact on average and the " // &
+         & "pass halved the elements too (their resolution then dominates the error); " // &
+         & "with &numerics tolerance the run's (the tolerance refines the time step only)", &
+         & out_int64, when=when_error_estimate)
    end function numerics_outputs
 
    !> Variable k's declaration: from `table` (output_table(), when the
@@ -309,6 +318,8 @@ contains
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%extrapolated)
       case ("exact_integrator_ran")
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%exact_integrator_ran)
+      case ("estimate_elements_per_sample")
+         values(1:ns) = real(res%estimate_elements_per_sample, wp)
       case ("contact_fraction")
          values(1:ns) = res%contact_fraction
       case ("film_load_share")

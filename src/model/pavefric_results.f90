@@ -85,6 +85,10 @@ module pavefric_results
       !> from the previous time step) and the substeps that met it.
       real(wp), allocatable :: mu_error(:)
       integer, allocatable :: substeps_used(:)
+      !> With the error estimate at tolerance = 0: the elements_per_sample
+      !> of its pass (twice the run's where the pad stood on few elements
+      !> and the pass refined them too); else the run's.
+      integer, allocatable :: estimate_elements_per_sample(:)
       !> Whether mu is the Richardson value of the last two passes (per speed).
       logical, allocatable :: extrapolated(:)
       !> Mean local friction over the contacts (force-weighted) with a

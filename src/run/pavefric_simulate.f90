@@ -9,7 +9,8 @@ module pavefric_simulate
    use pavefric_kinds, only: wp, i8, kmh_to_ms
    use pavefric_error, only: error_type, fatal_error, add_warning, stat_memory, stat_internal
    use pavefric_format, only: to_str, round_sig
-   use pavefric_model, only: model_type, validate_model, shape_code, max_substeps
+   use pavefric_model, only: model_type, validate_model, shape_code, max_substeps, &
+      & max_elements_per_sample
    use pavefric_pad, only: pad_bottom
    use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
@@ -88,6 +89,16 @@ module pavefric_simulate
    !> which a run at tolerance = 0 warns (&numerics error_estimate); an
    !> estimate below `estimate_floor` never warns (mu itself near 0).
    real(wp), parameter :: estimate_warning = 0.05_wp, estimate_floor = 1.0e-3_wp
+   !> Elements in contact, averaged over the positions, below which the pad
+   !> does not resolve its contacts: the shipped tread compound below 30 C
+   !> stands on one to three of the 23 default elements, and its friction
+   !> then changes by up to a factor 2 as the elements are refined, at any
+   !> time step (docs/accuracy.md, "The pad's resolution"). The error
+   !> estimate's pass then halves the elements with the step, and a
+   !> tolerance warns. (At 4.2 contacts the compound's time-step estimate
+   !> still covers its error, 1.2 times; the paper's rubber stands on 4 to
+   !> 15, where the elements change mu by a tenth of the step's error.)
+   real(wp), parameter :: contacts_resolved = 4.0_wp
    !> Round a closed profile, a negative rubber part no larger than this
    !> share of the steps' mean |work| is the stored energy's rounding (the
    !> dissipation it stands for is >= 0 by construction; a dry road's path
@@ -352,6 +363,8 @@ contains
       if (allocated(acc%mu_error) .and. allocated(r%mu_error)) then
          acc%mu_error = max(acc%mu_error, r%mu_error)
          acc%substeps_used = max(acc%substeps_used, r%substeps_used)
+         acc%estimate_elements_per_sample = max(acc%estimate_elements_per_sample, &
+            & r%estimate_elements_per_sample)
          acc%extrapolated = acc%extrapolated .or. r%extrapolated
       end if
       acc%n_spinup = acc%n_spinup + r%n_spinup
@@ -505,9 +518,11 @@ contains
          & m%time_scheme == "auto"
       call simulate_fixed(mm, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
-      allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), active(ns))
+      allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), active(ns), &
+         & res%estimate_elements_per_sample(ns))
       res%mu_error = huge(1.0_wp)
       res%substeps_used = mm%substeps
+      res%estimate_elements_per_sample = m%elements_per_sample
       res%extrapolated = .false.
       prev = res%mu
       prev_h = res%mu_hysteresis
@@ -596,7 +611,11 @@ contains
    !> error_estimate): one more pass, without series, at half the step
    !> (substeps doubled), and three times its change from `res`'s mu as the
    !> estimate of the error of `res`'s mu (the result reported stays the
-   !> run's own). An error falling as the step to the power p is
+   !> run's own). At the speeds where the pad stood on fewer than
+   !> `contacts_resolved` elements in contact, the pass doubles
+   !> elements_per_sample instead: the elements halve with the step, so its
+   !> change holds the pad's resolution error too (four times the run's
+   !> element-steps; estimate_elements_per_sample records which pass). An error falling as the step to the power p is
    !> 1 / (1 - 2^-p) times that change: 2 at first order, 3 at p = 0.59;
    !> measured orders are 0.65 to 1.3 (docs/accuracy.md), and on the
    !> reference surfaces the default run's error was at most two thirds of
@@ -617,48 +636,98 @@ contains
       type(model_type) :: mc
       type(sim_result_type) :: r
       type(error_type), allocatable :: err
-      integer, allocatable :: idx(:)
-      integer :: ns, j, k
+      integer, allocatable :: idx(:), group(:)
+      logical, allocatable :: pad(:)
+      integer :: ns, j, k, g
       ns = size(speeds_kmh)
-      allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns))
+      allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), &
+         & res%estimate_elements_per_sample(ns))
       res%mu_error = 0.0_wp
       res%substeps_used = m%substeps
       res%extrapolated = .false.
+      res%estimate_elements_per_sample = m%elements_per_sample
       idx = pack([(j, j = 1, ns)], .not. res%exact_integrator_ran)
       if (size(idx) == 0) return
       if (2 * m%substeps > max_substeps) then
-         deallocate(res%mu_error, res%substeps_used, res%extrapolated)
-         call add_warning(res%warnings, "&numerics error_estimate: no estimate of mu's " // &
-            & "error from the time step at substeps = " // to_str(m%substeps) // &
-            & " (its pass at half the step would pass " // to_str(max_substeps) // ")")
+         call no_estimate(" at substeps = " // to_str(m%substeps) // " (its pass at half " // &
+            & "the step would pass " // to_str(max_substeps) // ")")
          return
       end if
-      mc = m
-      mc%substeps = 2 * m%substeps
-      mc%time_scheme = "euler"
-      mc%error_estimate = .false.
-      call simulate_fixed(mc, z, dx, closed, speeds_kmh(idx), .false., r, err)
-      if (allocated(err)) then
-         deallocate(res%mu_error, res%substeps_used, res%extrapolated)
-         call add_warning(res%warnings, "&numerics error_estimate: no estimate of mu's " // &
-            & "error from the time step, its pass at half the step failed: " // err%message)
-         return
-      end if
-      do k = 1, size(idx)
-         res%mu_error(idx(k)) = 3.0_wp * abs(res%mu(idx(k)) - r%mu(k))
+      ! speeds where the pad stood on few elements: their pass halves the
+      ! elements with the step (elements_per_sample doubled at the same
+      ! substeps halves the step too)
+      pad = [(unresolved_contacts(res, j), j = 1, ns)]
+      if (2 * m%elements_per_sample > max_elements_per_sample) pad = .false.
+      do g = 1, 2
+         group = pack(idx, pad(idx) .eqv. (g == 2))
+         if (size(group) == 0) cycle
+         mc = m
+         mc%time_scheme = "euler"
+         mc%error_estimate = .false.
+         if (g == 1) then
+            mc%substeps = 2 * m%substeps
+         else
+            mc%elements_per_sample = 2 * m%elements_per_sample
+         end if
+         call simulate_fixed(mc, z, dx, closed, speeds_kmh(group), .false., r, err)
+         if (allocated(err)) then
+            call no_estimate(", its pass at half the step failed: " // err%message)
+            return
+         end if
+         do k = 1, size(group)
+            res%mu_error(group(k)) = 3.0_wp * abs(res%mu(group(k)) - r%mu(k))
+            res%estimate_elements_per_sample(group(k)) = mc%elements_per_sample
+         end do
       end do
+   contains
+      subroutine no_estimate(why)
+         character(len=*), intent(in) :: why
+         deallocate(res%mu_error, res%substeps_used, res%extrapolated, &
+            & res%estimate_elements_per_sample)
+         call add_warning(res%warnings, "&numerics error_estimate: no estimate of mu's " // &
+            & "error from the time step" // why)
+      end subroutine no_estimate
    end subroutine estimate_step_error
 
-   !> After a run at tolerance = 0 (all of the pad's grid phases merged): a
-   !> warning where mu's estimated error exceeds `estimate_warning` of mu
-   !> (and `estimate_floor`), at the speed where its share is largest.
+   !> Whether the pad stood on fewer than `contacts_resolved` elements in
+   !> contact at speed j, averaged over the positions (and on some: a pad
+   !> the film carries all along has no contacts to resolve).
+   pure logical function unresolved_contacts(res, j)
+      type(sim_result_type), intent(in) :: res
+      integer, intent(in) :: j
+      real(wp) :: contacts
+      contacts = res%contact_fraction(j) * real(res%n_elements, wp)
+      unresolved_contacts = contacts > 0.0_wp .and. contacts < contacts_resolved
+   end function unresolved_contacts
+
+   !> After a run (all of the pad's grid phases merged). At tolerance = 0:
+   !> a warning where mu's estimated error exceeds `estimate_warning` of mu
+   !> (and `estimate_floor`), at the speed where its share is largest,
+   !> naming what the estimate's pass refined. With a tolerance (which
+   !> refines the time step only): a warning where the pad stood on too
+   !> few elements for the tolerance to mean mu's error.
    subroutine warn_estimate(m, res)
       type(model_type), intent(in) :: m
       type(sim_result_type), intent(inout) :: res
       integer :: worst, j
       real(wp) :: share, worst_share
-      if (m%tolerance > 0.0_wp .or. .not. allocated(res%mu_error)) return
+      if (.not. allocated(res%mu_error)) return
       if (size(res%mu_error) == 0) return
+      if (m%tolerance > 0.0_wp) then
+         do j = 1, size(res%mu_error)
+            if (.not. unresolved_contacts(res, j)) cycle
+            call add_warning(res%warnings, "&numerics tolerance = " // to_str(m%tolerance) // &
+               & " bounds the error from the time step only: at " // &
+               & to_str(res%speed_kmh(j)) // " km/h the pad stood on " // &
+               & to_str(round_sig(res%contact_fraction(j) * real(res%n_elements, wp), 2)) // &
+               & " elements in contact on average (fewer than " // &
+               & to_str(nint(contacts_resolved)) // "), where mu also depends on the " // &
+               & "elements' resolution by more: raise &numerics elements_per_sample " // &
+               & "until mu settles (docs/accuracy.md, ""The pad's resolution"")")
+            exit
+         end do
+         return
+      end if
       worst = 0
       worst_share = estimate_warning
       do j = 1, size(res%mu_error)
@@ -671,15 +740,30 @@ contains
             worst_share = share
          end if
       end do
-      if (worst > 0) call add_warning(res%warnings, &
-         & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
-         & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
-         & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
-         & to_str(res%speed_kmh(worst)) // " km/h from the pad's step along " // &
-         & "the road (mu_error_estimate: three times the change at half the step, " // &
-         & "substeps doubled): set &numerics " // &
-         & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry road " // &
-         & "(docs/accuracy.md)")
+      if (worst == 0) return
+      if (res%estimate_elements_per_sample(worst) > m%elements_per_sample) then
+         call add_warning(res%warnings, &
+            & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
+            & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
+            & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
+            & to_str(res%speed_kmh(worst)) // " km/h from the pad's step and its elements: " // &
+            & "it stood on " // to_str(round_sig(res%contact_fraction(worst) * &
+            & real(res%n_elements, wp), 2)) // " elements in contact on average " // &
+            & "(mu_error_estimate: three times the change at half the step and half the " // &
+            & "elements, elements_per_sample doubled): raise &numerics elements_per_sample " // &
+            & "(e.g. 4) and substeps until mu settles (docs/accuracy.md, ""The pad's " // &
+            & "resolution"")")
+      else
+         call add_warning(res%warnings, &
+            & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
+            & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
+            & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
+            & to_str(res%speed_kmh(worst)) // " km/h from the pad's step along " // &
+            & "the road (mu_error_estimate: three times the change at half the step, " // &
+            & "substeps doubled): set &numerics " // &
+            & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry road " // &
+            & "(docs/accuracy.md)")
+      end if
    end subroutine warn_estimate
 
    !> Speed k of `from` into speed j of `to` (every per-speed result).
@@ -1069,7 +1153,9 @@ contains
    !> The cost of a run's element-steps in backward-Euler passes at its
    !> substeps: 2 for the exact integrator (1.1 to 3.7 one pass,
    !> docs/accuracy.md), 3 with the error estimate's pass at half the step
-   !> (&numerics error_estimate at tolerance = 0), else 1.
+   !> (&numerics error_estimate at tolerance = 0), else 1. (Where the pad
+   !> stands on few elements the estimate's pass halves them too, 5 passes:
+   !> known only after the run, so not counted here.)
    pure real(wp) function step_passes(m, n_state) result(passes)
       type(model_type), intent(in) :: m
       integer, intent(in) :: n_state
