@@ -65,7 +65,7 @@ SCENE_VARS = ["speed", "speed_kmh", "mu", "n_clamped", "hydroplaning_fraction", 
               # written since 0.1.0
               "squeeze_film_ran", "mean_local_friction", "mean_film_thickness",
               "film_thickness", "local_friction", "mu_error_estimate", "substeps_used",
-              "mu_hysteresis", "mu_adhesion", "mu_extrapolated"]
+              "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "estimate_elements_per_sample"]
 BATCH_VARS = ["depth", "speed", "speed_kmh", "mu", "wet_fraction", "hydroplaning_fraction",
               "max_balance_residual", "n_clamped", "mpd", "rms_height", "rms_slope", "status",
               "mu_hysteresis", "mu_adhesion"]
