@@ -355,7 +355,7 @@ def _pad_resolution_section() -> list[str]:
         "about 15 of them and the elements' resolution moves its mu by a tenth of the time "
         "step's error (the `elements_per_sample` rows of the scenes below). A stiff rubber "
         "stands on a few: the shipped tread compound below 40 °C on one to four. Its default "
-        "mu is then a fifth to a half of the resolved value, and part of that error is the "
+        "mu is then a fifth to three fifths of the resolved value, and part of that error is the "
         "elements' at any time step (on the tests' 1,024-point profile at 0 °C: mu 0.025 "
         "with the time step converged, 0.052 with the elements too, "
         "tests/test_error_estimate.py), because a contact patch narrower than an element "
