@@ -314,7 +314,8 @@ contains
          & "where the pad stood on fewer than 4 elements in contact, elements_per_sample " // &
          & "doubled instead, which halves the elements with the step, about four times) " // &
          & "as three times the change, recorded as mu_error_estimate, with a warning where it " // &
-         & "exceeds 5 % of mu (and 0.001); speeds the exact integrator ran need no pass (estimate 0). " // &
+         & "exceeds 5 % of mu (and 0.001); speeds the exact integrator ran need no pass (estimate 0) unless the pad " // &
+         & "stood on fewer than 4 elements (then the elements' pass, exact in time). " // &
          & ".false.: no second pass and no estimate (docs/accuracy.md)")
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
          & "'auto': 'exact' where it applies (the Kelvin-Voigt rubber on a dry road, " // &

@@ -129,7 +129,8 @@ contains
          & "the time step (the pad's step along the road) and, where the pad stood on few " // &
          & "elements, their resolution. At tolerance = 0 (&numerics error_estimate): three " // &
          & "times the change of mu at half the step (and half the elements where " // &
-         & "estimate_elements_per_sample says so), 0 where the exact integrator ran. " // &
+         & "estimate_elements_per_sample says so), 0 where the exact integrator ran on 4 " // &
+         & "elements or more. " // &
          & "With &numerics tolerance: twice the larger of its last " // &
          & "two changes as the step was halved, or where mu is extrapolated, the larger of " // &
          & "the extrapolated value's change and the last change", when=when_error_estimate)

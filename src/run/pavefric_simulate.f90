@@ -90,14 +90,15 @@ module pavefric_simulate
    !> estimate below `estimate_floor` never warns (mu itself near 0).
    real(wp), parameter :: estimate_warning = 0.05_wp, estimate_floor = 1.0e-3_wp
    !> Elements in contact, averaged over the positions, below which the pad
-   !> does not resolve its contacts: the shipped tread compound below 30 C
-   !> stands on one to three of the 23 default elements, and its friction
-   !> then changes by up to a factor 2 as the elements are refined, at any
-   !> time step (docs/accuracy.md, "The pad's resolution"). The error
-   !> estimate's pass then halves the elements with the step, and a
-   !> tolerance warns. (At 4.2 contacts the compound's time-step estimate
-   !> still covers its error, 1.2 times; the paper's rubber stands on 4 to
-   !> 15, where the elements change mu by a tenth of the step's error.)
+   !> does not resolve its contacts (counted where any element touched):
+   !> the shipped tread compound below 40 C stands on one to four of the 23
+   !> default elements, and its friction then changes by up to a factor 2
+   !> as the elements are refined, at any time step (docs/accuracy.md, "The
+   !> pad's resolution"). The error estimate's pass then halves the
+   !> elements with the step, and a tolerance warns. (At 4.4 contacts the
+   !> compound's time-step estimate still covers its error, 1.2 times; the
+   !> paper's rubber stands on 4 to 15, where the elements change mu by a
+   !> tenth of the step's error.)
    real(wp), parameter :: contacts_resolved = 4.0_wp
    !> Round a closed profile, a negative rubber part no larger than this
    !> share of the steps' mean |work| is the stored energy's rounding (the
@@ -247,75 +248,99 @@ contains
       logical, intent(in) :: closed, want_series
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
-      type(model_type) :: me
-      type(sim_result_type) :: r
-      real(wp), allocatable :: ze(:)
-      real(wp) :: dxe, phase
-      integer :: stat, k
-      if (.not. resamples(m, dx)) then
-         call simulate_spaced(m, z, dx, res)
-         if (.not. allocated(error)) call warn_estimate(m, res)
-         return
-      end if
-      ! the pad's own elements: the profile filtered and resampled to them
-      call validate_model(m, error)
+      call run_grids(m, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
-      call check_heights(z, error)
-      if (allocated(error)) return
-      if (resampled_points(size(z), dx, closed, m%element_length, 0.0_wp) < 1) then
-         call fatal_error(error, "&pad element_length = " // to_str(m%element_length) // &
-            & ": the profile resampled to it would have more than 2e9 points; give a larger " // &
-            & "element_length (default 0.87e-3 m) or 0 for the profile's own spacing", stat_memory)
-         return
-      end if
-      me = m
-      me%element_length = 0.0_wp
-      ! the pad's grid at each phase; an open profile too short for a phase
-      ! (the last start beyond its end) has fewer phases
-      do k = 0, element_phases - 1
-         phase = real(k, wp) / real(element_phases, wp)
-         if (resampled_points(size(z), dx, closed, m%element_length, phase) < 1) exit
-         call resample_to_length(z, dx, closed, m%element_length, phase, ze, dxe, stat)
-         if (stat /= 0) then
-            call fatal_error(error, "not enough memory to resample a profile of " // &
-               & to_str(size(z)) // " points to &pad element_length = " // &
-               & to_str(m%element_length) // " m", stat_memory)
-            return
-         end if
-         if (k == 0) then
-            call simulate_spaced(me, ze, dxe, res)
-            if (allocated(error)) return
-         else
-            call simulate_spaced(me, ze, dxe, r)
-            ! a later phase the pad does not fit (an open profile one
-            ! element long): the phases before it stand
-            if (allocated(error)) then
-               if (error%stat == stat_memory .or. error%stat == stat_internal) return
-               deallocate(error)
-               exit
-            end if
-            call merge_phase(res, r, phase * dxe, stat)
-            if (stat /= 0) then
-               call fatal_error(error, "not enough memory to merge the series of " // &
-                  & to_str(element_phases) // " phases of the pad's element grid (" // &
-                  & to_str(res%n_positions) // " positions); run without &output series " // &
-                  & "or on a shorter profile", stat_memory)
-               return
-            end if
-         end if
-      end do
+      if (m%tolerance <= 0.0_wp .and. m%error_estimate) &
+         & call estimate_step_error(m, speeds_kmh, res, runner)
       call warn_estimate(m, res)
    contains
-      subroutine simulate_spaced(mm, zz, dd, out)
+      !> The run at `mm` for `speeds` over the pad's grid(s): the profile as
+      !> given, or resampled to &pad element_length at each phase of the
+      !> pad's grid, the phases merged (no error estimate: the caller's).
+      subroutine run_grids(mm, speeds, series, out, err)
          type(model_type), intent(in) :: mm
-         real(wp), intent(in) :: zz(:), dd
+         real(wp), intent(in) :: speeds(:)
+         logical, intent(in) :: series
          type(sim_result_type), intent(out) :: out
+         type(error_type), allocatable, intent(out) :: err
+         type(model_type) :: me
+         type(sim_result_type) :: r
+         real(wp), allocatable :: ze(:)
+         real(wp) :: dxe, phase
+         integer :: stat, k
+         if (.not. resamples(mm, dx)) then
+            call simulate_spaced(mm, z, dx, speeds, series, out, err)
+            return
+         end if
+         ! the pad's own elements: the profile filtered and resampled to them
+         call validate_model(mm, err)
+         if (allocated(err)) return
+         call check_heights(z, err)
+         if (allocated(err)) return
+         if (resampled_points(size(z), dx, closed, mm%element_length, 0.0_wp) < 1) then
+            call fatal_error(err, "&pad element_length = " // to_str(mm%element_length) // &
+               & ": the profile resampled to it would have more than 2e9 points; give a " // &
+               & "larger element_length (default 0.87e-3 m) or 0 for the profile's own " // &
+               & "spacing", stat_memory)
+            return
+         end if
+         me = mm
+         me%element_length = 0.0_wp
+         ! the pad's grid at each phase; an open profile too short for a phase
+         ! (the last start beyond its end) has fewer phases
+         do k = 0, element_phases - 1
+            phase = real(k, wp) / real(element_phases, wp)
+            if (resampled_points(size(z), dx, closed, mm%element_length, phase) < 1) exit
+            call resample_to_length(z, dx, closed, mm%element_length, phase, ze, dxe, stat)
+            if (stat /= 0) then
+               call fatal_error(err, "not enough memory to resample a profile of " // &
+                  & to_str(size(z)) // " points to &pad element_length = " // &
+                  & to_str(mm%element_length) // " m", stat_memory)
+               return
+            end if
+            if (k == 0) then
+               call simulate_spaced(me, ze, dxe, speeds, series, out, err)
+               if (allocated(err)) return
+            else
+               call simulate_spaced(me, ze, dxe, speeds, series, r, err)
+               ! a later phase the pad does not fit (an open profile one
+               ! element long): the phases before it stand
+               if (allocated(err)) then
+                  if (err%stat == stat_memory .or. err%stat == stat_internal) return
+                  deallocate(err)
+                  exit
+               end if
+               call merge_phase(out, r, phase * dxe, stat)
+               if (stat /= 0) then
+                  call fatal_error(err, "not enough memory to merge the series of " // &
+                     & to_str(element_phases) // " phases of the pad's element grid (" // &
+                     & to_str(out%n_positions) // " positions); run without &output " // &
+                     & "series or on a shorter profile", stat_memory)
+                  return
+               end if
+            end if
+         end do
+      end subroutine run_grids
+
+      !> The error estimate's passes: run_grids without series.
+      subroutine runner(mm, speeds, out, err)
+         type(model_type), intent(in) :: mm
+         real(wp), intent(in) :: speeds(:)
+         type(sim_result_type), intent(out) :: out
+         type(error_type), allocatable, intent(out) :: err
+         call run_grids(mm, speeds, .false., out, err)
+      end subroutine runner
+
+      subroutine simulate_spaced(mm, zz, dd, speeds, series, out, err)
+         type(model_type), intent(in) :: mm
+         real(wp), intent(in) :: zz(:), dd, speeds(:)
+         logical, intent(in) :: series
+         type(sim_result_type), intent(out) :: out
+         type(error_type), allocatable, intent(out) :: err
          if (mm%tolerance > 0.0_wp) then
-            call simulate_to_tolerance(mm, zz, dd, closed, speeds_kmh, want_series, out, error)
+            call simulate_to_tolerance(mm, zz, dd, closed, speeds, series, out, err)
          else
-            call simulate_fixed(mm, zz, dd, closed, speeds_kmh, want_series, out, error)
-            if (.not. allocated(error) .and. mm%error_estimate) &
-               & call estimate_step_error(mm, zz, dd, closed, speeds_kmh, out)
+            call simulate_fixed(mm, zz, dd, closed, speeds, series, out, err)
          end if
          out%element_spacing = dd
       end subroutine simulate_spaced
@@ -608,37 +633,52 @@ contains
    end subroutine simulate_to_tolerance
 
    !> The error estimate of a run at tolerance = 0 (&numerics
-   !> error_estimate): one more pass, without series, at half the step
-   !> (substeps doubled), and three times its change from `res`'s mu as the
-   !> estimate of the error of `res`'s mu (the result reported stays the
-   !> run's own). At the speeds where the pad stood on fewer than
-   !> `contacts_resolved` elements in contact, the pass doubles
-   !> elements_per_sample instead: the elements halve with the step, so its
-   !> change holds the pad's resolution error too (four times the run's
-   !> element-steps; estimate_elements_per_sample records which pass). An error falling as the step to the power p is
-   !> 1 / (1 - 2^-p) times that change: 2 at first order, 3 at p = 0.59;
-   !> measured orders are 0.65 to 1.3 (docs/accuracy.md), and on the
-   !> reference surfaces the default run's error was at most two thirds of
-   !> the estimate at 5 to 100 km/h, dry and wet (tests/test_error_estimate.py).
-   !> The pass costs about twice the first. A coarse pass (position_stride doubled,
-   !> half the cost) was measured and rejected: it keeps the pad stepping
-   !> from sample to sample, which is where most of the error of one step
-   !> per sample lies on a wet road: on ctm_wet at 20 km/h its change was
-   !> 1/34 of the error (docs/accuracy.md). Speeds the exact integrator ran have no
-   !> time-step error (estimate 0, no pass). The pass's own warnings are
-   !> not repeated; if it fails (the run stands) the run has no estimate and
-   !> a warning says why; warn_estimate warns where the estimate is large.
-   subroutine estimate_step_error(m, z, dx, closed, speeds_kmh, res)
+   !> error_estimate), made on the run `res` as reported (the pad's grid
+   !> phases merged): one more pass, without series, at half the step
+   !> (substeps doubled), and three times its change of mu as the estimate
+   !> of the error of `res`'s mu (the result reported stays the run's own).
+   !> An error falling as the step to the power p is 1 / (1 - 2^-p) times
+   !> that change: 2 at first order, 3 at p = 0.59; measured orders are 0.65
+   !> to 1.3 (docs/accuracy.md), and on the reference surfaces the default
+   !> run's error was at most two thirds of the estimate at 5 to 100 km/h,
+   !> dry and wet (tests/test_error_estimate.py). The pass costs about twice
+   !> the first. A coarse pass (position_stride doubled, half the cost) was
+   !> measured and rejected: it keeps the pad stepping from sample to
+   !> sample, which is where most of the error of one step per sample lies
+   !> on a wet road: on ctm_wet at 20 km/h its change was 1/34 of the error
+   !> (docs/accuracy.md).
+   !> At the speeds where the pad stood on few elements (unresolved_contacts)
+   !> the pass doubles elements_per_sample instead: the elements halve with
+   !> the step, so its change holds the pad's resolution error too (four
+   !> times the run's element-steps; estimate_elements_per_sample records
+   !> it). Speeds the exact integrator ran have no time-step error: estimate
+   !> 0 and no pass, unless the pad stood on few elements there, where the
+   !> pass with the elements halved runs with the same integrator.
+   !> The passes' own warnings are not repeated. If the elements' pass fails
+   !> (an open profile too short for twice the elements), its speeds fall
+   !> back to the step's pass (exact speeds: 0) and a warning says so; if the
+   !> step's pass is impossible or fails, the run has no estimate and a
+   !> warning says why; warn_estimate warns where the estimate is large.
+   subroutine estimate_step_error(m, speeds_kmh, res, runner)
       type(model_type), intent(in) :: m
-      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
-      logical, intent(in) :: closed
+      real(wp), intent(in) :: speeds_kmh(:)
       type(sim_result_type), intent(inout) :: res
+      interface
+         !> The run at `mm` for `speeds` as the reported one was made.
+         subroutine runner(mm, speeds, out, err)
+            import :: model_type, wp, sim_result_type, error_type
+            type(model_type), intent(in) :: mm
+            real(wp), intent(in) :: speeds(:)
+            type(sim_result_type), intent(out) :: out
+            type(error_type), allocatable, intent(out) :: err
+         end subroutine runner
+      end interface
       type(model_type) :: mc
       type(sim_result_type) :: r
       type(error_type), allocatable :: err
-      integer, allocatable :: idx(:), group(:)
+      integer, allocatable :: group(:)
       logical, allocatable :: pad(:)
-      integer :: ns, j, k, g
+      integer :: ns, j, k
       ns = size(speeds_kmh)
       allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), &
          & res%estimate_elements_per_sample(ns))
@@ -646,38 +686,49 @@ contains
       res%substeps_used = m%substeps
       res%extrapolated = .false.
       res%estimate_elements_per_sample = m%elements_per_sample
-      idx = pack([(j, j = 1, ns)], .not. res%exact_integrator_ran)
-      if (size(idx) == 0) return
+      ! speeds where the pad stood on few elements: their pass halves the
+      ! elements with the step (elements_per_sample doubled at the same
+      ! substeps halves the step too), with the run's own integrator
+      pad = [(unresolved_contacts(res, j), j = 1, ns)]
+      if (2 * m%elements_per_sample > max_elements_per_sample) pad = .false.
+      group = pack([(j, j = 1, ns)], pad)
+      if (size(group) > 0) then
+         mc = m
+         mc%error_estimate = .false.
+         mc%elements_per_sample = 2 * m%elements_per_sample
+         call runner(mc, speeds_kmh(group), r, err)
+         if (allocated(err)) then
+            call add_warning(res%warnings, "&numerics error_estimate: the pass with " // &
+               & "elements_per_sample doubled (where the pad stood on fewer than " // &
+               & to_str(nint(contacts_resolved)) // " elements in contact) failed, so the " // &
+               & "estimate there covers the time step only: " // err%message)
+            pad = .false.
+         else
+            do k = 1, size(group)
+               res%mu_error(group(k)) = 3.0_wp * abs(res%mu(group(k)) - r%mu(k))
+               res%estimate_elements_per_sample(group(k)) = mc%elements_per_sample
+            end do
+         end if
+      end if
+      ! the others (not the exact integrator's): the pass at half the step
+      group = pack([(j, j = 1, ns)], .not. pad .and. .not. res%exact_integrator_ran)
+      if (size(group) == 0) return
       if (2 * m%substeps > max_substeps) then
          call no_estimate(" at substeps = " // to_str(m%substeps) // " (its pass at half " // &
             & "the step would pass " // to_str(max_substeps) // ")")
          return
       end if
-      ! speeds where the pad stood on few elements: their pass halves the
-      ! elements with the step (elements_per_sample doubled at the same
-      ! substeps halves the step too)
-      pad = [(unresolved_contacts(res, j), j = 1, ns)]
-      if (2 * m%elements_per_sample > max_elements_per_sample) pad = .false.
-      do g = 1, 2
-         group = pack(idx, pad(idx) .eqv. (g == 2))
-         if (size(group) == 0) cycle
-         mc = m
-         mc%time_scheme = "euler"
-         mc%error_estimate = .false.
-         if (g == 1) then
-            mc%substeps = 2 * m%substeps
-         else
-            mc%elements_per_sample = 2 * m%elements_per_sample
-         end if
-         call simulate_fixed(mc, z, dx, closed, speeds_kmh(group), .false., r, err)
-         if (allocated(err)) then
-            call no_estimate(", its pass at half the step failed: " // err%message)
-            return
-         end if
-         do k = 1, size(group)
-            res%mu_error(group(k)) = 3.0_wp * abs(res%mu(group(k)) - r%mu(k))
-            res%estimate_elements_per_sample(group(k)) = mc%elements_per_sample
-         end do
+      mc = m
+      mc%time_scheme = "euler"
+      mc%error_estimate = .false.
+      mc%substeps = 2 * m%substeps
+      call runner(mc, speeds_kmh(group), r, err)
+      if (allocated(err)) then
+         call no_estimate(", its pass at half the step failed: " // err%message)
+         return
+      end if
+      do k = 1, size(group)
+         res%mu_error(group(k)) = 3.0_wp * abs(res%mu(group(k)) - r%mu(k))
       end do
    contains
       subroutine no_estimate(why)
@@ -690,15 +741,27 @@ contains
    end subroutine estimate_step_error
 
    !> Whether the pad stood on fewer than `contacts_resolved` elements in
-   !> contact at speed j, averaged over the positions (and on some: a pad
-   !> the film carries all along has no contacts to resolve).
+   !> contact at speed j (contacts_touching: a pad the film carries all
+   !> along has no contacts to resolve).
    pure logical function unresolved_contacts(res, j)
       type(sim_result_type), intent(in) :: res
       integer, intent(in) :: j
       real(wp) :: contacts
-      contacts = res%contact_fraction(j) * real(res%n_elements, wp)
+      contacts = contacts_touching(res, j)
       unresolved_contacts = contacts > 0.0_wp .and. contacts < contacts_resolved
    end function unresolved_contacts
+
+   !> The elements in contact at speed j, averaged over the positions where
+   !> any touched (those where the film carried the pad alone, the
+   !> hydroplaning_fraction, have no contacts to resolve); 0 where none did.
+   pure real(wp) function contacts_touching(res, j) result(contacts)
+      type(sim_result_type), intent(in) :: res
+      integer, intent(in) :: j
+      contacts = 0.0_wp
+      if (res%hydroplaning_fraction(j) >= 1.0_wp) return
+      contacts = res%contact_fraction(j) * real(res%n_elements, wp) / &
+         & (1.0_wp - res%hydroplaning_fraction(j))
+   end function contacts_touching
 
    !> After a run (all of the pad's grid phases merged). At tolerance = 0:
    !> a warning where mu's estimated error exceeds `estimate_warning` of mu
@@ -719,11 +782,13 @@ contains
             call add_warning(res%warnings, "&numerics tolerance = " // to_str(m%tolerance) // &
                & " bounds the error from the time step only: at " // &
                & to_str(res%speed_kmh(j)) // " km/h the pad stood on " // &
-               & to_str(round_sig(res%contact_fraction(j) * real(res%n_elements, wp), 2)) // &
+               & to_str(round_sig(contacts_touching(res, j), 3)) // &
                & " elements in contact on average (fewer than " // &
-               & to_str(nint(contacts_resolved)) // "), where mu also depends on the " // &
-               & "elements' resolution by more: raise &numerics elements_per_sample " // &
-               & "until mu settles (docs/accuracy.md, ""The pad's resolution"")")
+               & to_str(nint(contacts_resolved)) // "), where mu also depends on how " // &
+               & "finely the elements resolve the contacts, which the tolerance does not " // &
+               & "refine: raise &numerics elements_per_sample (from " // &
+               & to_str(m%elements_per_sample) // ") until mu settles (docs/accuracy.md, " // &
+               & """The pad's resolution"")")
             exit
          end do
          return
@@ -747,12 +812,12 @@ contains
             & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
             & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
             & to_str(res%speed_kmh(worst)) // " km/h from the pad's step and its elements: " // &
-            & "it stood on " // to_str(round_sig(res%contact_fraction(worst) * &
-            & real(res%n_elements, wp), 2)) // " elements in contact on average " // &
-            & "(mu_error_estimate: three times the change at half the step and half the " // &
-            & "elements, elements_per_sample doubled): raise &numerics elements_per_sample " // &
-            & "(e.g. 4) and substeps until mu settles (docs/accuracy.md, ""The pad's " // &
-            & "resolution"")")
+            & "it stood on " // to_str(round_sig(contacts_touching(res, worst), 3)) // &
+            & " elements in contact on average (mu_error_estimate: three times the change " // &
+            & "at half the step and half the elements, elements_per_sample doubled): raise " // &
+            & "&numerics elements_per_sample (e.g. to " // &
+            & to_str(4 * m%elements_per_sample) // ") and substeps until mu settles " // &
+            & "(docs/accuracy.md, ""The pad's resolution"")")
       else
          call add_warning(res%warnings, &
             & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
