@@ -774,6 +774,7 @@ contains
       type(sim_result_type), intent(inout) :: res
       integer :: worst, j
       real(wp) :: share, worst_share
+      character(len=:), allocatable :: off
       if (.not. allocated(res%mu_error)) return
       if (size(res%mu_error) == 0) return
       if (m%tolerance > 0.0_wp) then
@@ -806,12 +807,12 @@ contains
          end if
       end do
       if (worst == 0) return
+      off = "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
+         & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
+         & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
+         & to_str(res%speed_kmh(worst)) // " km/h from the pad's "
       if (res%estimate_elements_per_sample(worst) > m%elements_per_sample) then
-         call add_warning(res%warnings, &
-            & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
-            & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
-            & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
-            & to_str(res%speed_kmh(worst)) // " km/h from the pad's step and its elements: " // &
+         call add_warning(res%warnings, off // "step and its elements: " // &
             & "it stood on " // to_str(round_sig(contacts_touching(res, worst), 3)) // &
             & " elements in contact on average (mu_error_estimate: three times the change " // &
             & "at half the step and half the elements, elements_per_sample doubled): raise " // &
@@ -819,11 +820,7 @@ contains
             & to_str(4 * m%elements_per_sample) // ") and substeps until mu settles " // &
             & "(docs/accuracy.md, ""The pad's resolution"")")
       else
-         call add_warning(res%warnings, &
-            & "mu is estimated to be off by up to " // to_str(round_sig(res%mu_error(worst), 2)) &
-            & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
-            & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
-            & to_str(res%speed_kmh(worst)) // " km/h from the pad's step along " // &
+         call add_warning(res%warnings, off // "step along " // &
             & "the road (mu_error_estimate: three times the change at half the step, " // &
             & "substeps doubled): set &numerics " // &
             & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry road " // &
