@@ -162,6 +162,57 @@ def test_batch_records_the_estimate(tmp_path):
                                        rtol=1e-12, atol=1e-15)
 
 
+def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
+    """A batch records estimate_elements_per_sample per speed, depth and
+    profile, as each profile's single run does: 2 where a stiff compound
+    stood on fewer than 4 elements (0 C), 1 where the pass halved the time
+    step only (the same profile with the paper's rubber); missing where no
+    estimate was made (error_estimate = .false.)."""
+    import re
+
+    from pavefric.surfaces import write_profile
+
+    d = tmp_path / "p"
+    d.mkdir()
+    write_profile(str(d / "a.txt"), profile_m[:512])
+    write_profile(str(d / "b.txt"), profile_m[512:])
+    rubber = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
+    rubber = re.sub(r"temperature = 20\b", "temperature = 0", rubber)
+    for label, groups, expected in (("compound", rubber, 2), ("paper", "", 1)):
+        scene = tmp_path / f"{label}.nml"
+        scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
+                         "&surface height_unit = 'mm', mu_loc = 0.0 /\n"
+                         "&operation speeds_kmh = 20, 60 /\n" + groups)
+        out = tmp_path / f"{label}.nc"
+        r = run_program(str(scene), "-o", str(out))
+        assert r.returncode == 0, r.stderr
+        with xr.open_dataset(out) as ds:
+            eps = ds["estimate_elements_per_sample"].transpose(
+                "profile", "water_depth", "speed_kmh").values
+            names = [str(n) for n in ds["profile_name"].values]
+        assert np.all(eps == expected), (label, eps)
+        for i, name in enumerate(names):
+            one = pavefric.read_profile(d / f"{name.split('/')[-1]}.txt")
+            kw = dict(mu_loc=0.0)
+            if label == "compound":
+                kw.update(temperature=0.0, **_compound())
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", pavefric.PavefricWarning)
+                single = pavefric.simulate(one.heights, one.dx, [20.0, 60.0], **kw)
+            np.testing.assert_array_equal(eps[i, 0], single["estimate_elements_per_sample"].values)
+    # no estimate: the variable is there, every value missing
+    scene = tmp_path / "none.nml"
+    scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
+                     "&surface height_unit = 'mm' /\n&operation speeds_kmh = 20 /\n"
+                     "&numerics error_estimate = .false. /\n")
+    out = tmp_path / "none.nc"
+    r = run_program(str(scene), "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(out) as ds:
+        assert np.all(np.isnan(ds["estimate_elements_per_sample"].values))
+        assert np.all(np.isnan(ds["mu_error_estimate"].values))
+
+
 def test_no_room_for_the_half_step_pass_says_so(short_profile_m):
     """substeps = 4096 (the largest): the pass at half the step would pass
     the limit, so the run stands without an estimate and a warning says

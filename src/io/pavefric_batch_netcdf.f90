@@ -45,7 +45,7 @@ contains
       type(nc_writer_type) :: w
       integer :: stat, d_p, d_d, d_s, d_name, d_msg, d_warn, np, nd, ns, lname, lmsg, lwarn, i, k
       integer :: v_warn, v_nwarn
-      integer :: v_muh, v_mua, v_mue
+      integer :: v_muh, v_mua, v_mue, v_eps
       integer :: v_num, v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -174,6 +174,11 @@ contains
             & "times the change at half the step, and half the elements where the pad stood " // &
             & "on fewer than 4 elements in contact on average; or the tolerance's estimate); " // &
             & "missing where none was made", v_mue)
+         call w%def("estimate_elements_per_sample", nf90_int64, [d_s, d_d, d_p], "1", &
+            & "elements_per_sample of the pass mu_error_estimate was made from: the scene's " // &
+            & "where it halved the time step only, twice the scene's where the pad stood on " // &
+            & "fewer than 4 elements in contact on average and the pass halved the elements " // &
+            & "too; missing where no estimate was made", v_eps)
          call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
             & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
          call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
@@ -247,11 +252,13 @@ contains
          end do
          if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_ncl, 0, i8fill), &
             & "fill value")
+         ! missing wherever no estimate was made, not only where a profile failed
+         call w%check(nf90_def_var_fill(w%ncid, v_eps, 0, i8fill), "fill value")
          do k = 1, 10
             call fillatt([v_mu, v_muh, v_mua, v_mue, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
          end do
-         do k = 1, 8
-            call coordatt([v_mu, v_muh, v_mua, v_mue, v_wet, v_hyd, v_res, v_ncl], k, &
+         do k = 1, 9
+            call coordatt([v_mu, v_muh, v_mua, v_mue, v_eps, v_wet, v_hyd, v_res, v_ncl], k, &
                & result_coords)
          end do
          do k = 1, 5
@@ -312,6 +319,11 @@ contains
             a(:, :, i) = merge(blocks(i)%mu_error, fill, ok(i) .and. blocks(i)%mu_error >= 0.0_wp)
          end do
          call w%check(nf90_put_var(w%ncid, v_mue, a), "mu_error_estimate")
+         do i = 1, np
+            c(:, :, i) = merge(nint(blocks(i)%estimate_eps, i8), i8fill, &
+               & ok(i) .and. blocks(i)%estimate_eps >= 1.0_wp)
+         end do
+         call w%check(nf90_put_var(w%ncid, v_eps, c), "estimate_elements_per_sample")
          do i = 1, np
             a(:, :, i) = merge(blocks(i)%wet, fill, ok(i))
          end do

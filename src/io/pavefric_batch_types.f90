@@ -70,6 +70,10 @@ module pavefric_batch_types
       !> mu's estimated error from the time step (&numerics error_estimate
       !> or tolerance); -1 where the run made none.
       real(wp), allocatable :: mu_error(:,:)
+      !> elements_per_sample of the pass that made mu_error (twice the
+      !> scene's where the pad stood on few elements; the scene's with a
+      !> tolerance); -1 where the run made no estimate.
+      real(wp), allocatable :: estimate_eps(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.
       !> Warnings about the profile and its results (those a single scene of
@@ -85,7 +89,7 @@ contains
    !> Number of reals in a packed block.
    pure integer function block_values(batch)
       type(batch_type), intent(in) :: batch
-      block_values = n_head + 8 * batch%n_speeds * batch%n_depths
+      block_values = n_head + 9 * batch%n_speeds * batch%n_depths
    end function block_values
 
    !> Result arrays of the batch's shape, zero.
@@ -99,11 +103,12 @@ contains
          & blk%n_clamped)
       if (allocated(blk%mu_hysteresis)) deallocate(blk%mu_hysteresis, blk%mu_adhesion)
       if (allocated(blk%mu_error)) deallocate(blk%mu_error)
+      if (allocated(blk%estimate_eps)) deallocate(blk%estimate_eps)
       allocate(blk%mu(ns, nd), blk%wet(ns, nd), blk%hydroplaning(ns, nd), blk%residual(ns, nd), &
          & blk%n_clamped(ns, nd), blk%mu_hysteresis(ns, nd), blk%mu_adhesion(ns, nd), &
-         & blk%mu_error(ns, nd))
+         & blk%mu_error(ns, nd), blk%estimate_eps(ns, nd))
       blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
-      blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1
+      blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1; blk%estimate_eps = -1
    end subroutine block_allocate
 
    !> A block as reals (for the journal and for MPI); the digest and the
@@ -128,7 +133,8 @@ contains
       values(k+1:k+m) = reshape(blk%n_clamped, [m]);    k = k + m
       values(k+1:k+m) = reshape(blk%mu_hysteresis, [m]); k = k + m
       values(k+1:k+m) = reshape(blk%mu_adhesion, [m]);   k = k + m
-      values(k+1:k+m) = reshape(blk%mu_error, [m])
+      values(k+1:k+m) = reshape(blk%mu_error, [m]);     k = k + m
+      values(k+1:k+m) = reshape(blk%estimate_eps, [m])
    contains
       pure real(wp) function flag(yes)
          logical, intent(in) :: yes
@@ -185,7 +191,8 @@ contains
       blk%n_clamped = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
       blk%mu_hysteresis = reshape(values(k+1:k+m), [ns, nd]); k = k + m
       blk%mu_adhesion = reshape(values(k+1:k+m), [ns, nd]);   k = k + m
-      blk%mu_error = reshape(values(k+1:k+m), [ns, nd])
+      blk%mu_error = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
+      blk%estimate_eps = reshape(values(k+1:k+m), [ns, nd])
       if (.not. allocated(blk%message)) blk%message = ""
    contains
       !> Whether v is a whole number in [lo, hi] (NaN is not).

@@ -699,6 +699,7 @@ contains
       call move_alloc(from%mu_hysteresis, to%mu_hysteresis)
       call move_alloc(from%mu_adhesion, to%mu_adhesion)
       call move_alloc(from%mu_error, to%mu_error)
+      call move_alloc(from%estimate_eps, to%estimate_eps)
       call move_alloc(from%message, to%message)
    end subroutine move_alloc_block
 
@@ -922,7 +923,10 @@ contains
             blk%mu(:, d) = res%mu
             blk%mu_hysteresis(:, d) = res%mu_hysteresis
             blk%mu_adhesion(:, d) = res%mu_adhesion
-            if (allocated(res%mu_error)) blk%mu_error(:, d) = res%mu_error
+            if (allocated(res%mu_error)) then
+               blk%mu_error(:, d) = res%mu_error
+               blk%estimate_eps(:, d) = real(res%estimate_elements_per_sample, wp)
+            end if
             blk%wet(:, d) = res%wet_fraction
             blk%hydroplaning(:, d) = res%hydroplaning_fraction
             blk%residual(:, d) = res%max_balance_residual
@@ -950,7 +954,7 @@ contains
          blk%status = status_failed
          blk%message = printable_utf8(error%message)
          blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
-         blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1
+         blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1; blk%estimate_eps = -1
          blk%viscous = .false.
          blk%bearing = .false.
          return
