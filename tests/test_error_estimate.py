@@ -37,31 +37,59 @@ def test_default_estimate_bounds_the_actual_error(name, depth):
     assert not default["mu_extrapolated"].values.any()
 
 
-def test_estimate_is_three_times_the_change_at_half_the_step(profile_m):
-    """The estimate is made of exactly the two passes it names: at half the
-    step (substeps doubled) where the pad stood on 4 elements or more, at half
-    the step and half the elements (elements_per_sample doubled) where it
-    stood on fewer (90 km/h here: the film lifts the pad onto 1.9)."""
-    kw = dict(speeds_kmh=[10.0, 40.0, 90.0], viscosity=3e3, depth=1e-3)
+def _contacts(ds, k=0):
+    """Elements in contact at speed k, averaged where any touched."""
+    return (float(ds["contact_fraction"].values[k]) * ds.attrs["pad_elements"]
+            / (1.0 - float(ds["hydroplaning_fraction"].values[k])))
+
+
+def expected_estimate(run, mu, contacts, exact=False):
+    """The estimate as docs/numerics.md states it, from runs of the scene:
+    `run(**knobs)` returns (mu, contacts) at one speed. Where the pad stood
+    on fewer than 4 elements, the elements are halved (elements_per_sample
+    doubled) until it stands on 4, at most 4 times; from that level one
+    more pass, at half the elements where it still stands on fewer (or the
+    exact integrator ran), else at half the step; the estimate is
+    |mu - mu_level| + 3 |mu_level - mu_pass|. Returns the estimate and the
+    pass's elements_per_sample."""
+    eps, mu_k, c_k = 1, mu, contacts
+    for _ in range(4):
+        if not (0.0 < c_k < 4.0):
+            break
+        eps *= 2
+        mu_k, c_k = run(elements_per_sample=eps)
+    if exact or 0.0 < c_k < 4.0:
+        last, _ = run(elements_per_sample=2 * eps)
+        eps *= 2
+    else:
+        last, _ = run(elements_per_sample=eps, substeps=2, time_scheme="euler")
+    return abs(mu - mu_k) + 3.0 * abs(mu_k - last), eps
+
+
+def test_estimate_is_made_of_the_passes_it_names(profile_m):
+    """The estimate is made of exactly the passes it names: at half the step
+    (substeps doubled) where the pad stood on 4 elements or more; where it
+    stood on fewer (90 km/h here: the film lifts the pad onto 1.9), the
+    elements halved until it stands on 4, then one more pass, the estimate
+    the change the refinement made plus three times that pass's change."""
+    speeds = [10.0, 40.0, 90.0]
+    kw = dict(viscosity=3e3, depth=1e-3)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pavefric.PavefricWarning)
-        ds = pavefric.simulate(profile_m, 0.87e-3, **kw)
-    one = pavefric.simulate(profile_m, 0.87e-3, error_estimate=False, **kw)
-    two = pavefric.simulate(profile_m, 0.87e-3, error_estimate=False, substeps=2,
-                            time_scheme="euler", **kw)
-    pad = pavefric.simulate(profile_m, 0.87e-3, error_estimate=False, elements_per_sample=2,
-                            time_scheme="euler", **kw)
+        ds = pavefric.simulate(profile_m, 0.87e-3, speeds, **kw)
+    one = pavefric.simulate(profile_m, 0.87e-3, speeds, error_estimate=False, **kw)
     assert np.array_equal(ds["mu"].values, one["mu"].values)   # the run's own mu
-    # elements in contact where any touched (not where the film carried the pad alone)
-    contacts = (one["contact_fraction"].values * one.attrs["pad_elements"]
-                / (1.0 - one["hydroplaning_fraction"].values))
-    refined = ds["estimate_elements_per_sample"].values
-    np.testing.assert_array_equal(refined, np.where(contacts < 4.0, 2, 1))
-    assert set(refined) == {1, 2}, contacts                    # both kinds of pass here
-    finer = np.where(refined == 2, pad["mu"].values, two["mu"].values)
-    np.testing.assert_allclose(ds["mu_error_estimate"].values,
-                               3.0 * np.abs(finer - one["mu"].values), rtol=1e-12, atol=0)
-    assert np.all(ds["mu_error_estimate"].values > 0)
+    kinds = set()
+    for k, v in enumerate(speeds):
+        def run(**knobs):
+            r = pavefric.simulate(profile_m, 0.87e-3, [v], error_estimate=False, **kw, **knobs)
+            return float(r["mu"].values[0]), _contacts(r)
+        est, eps = expected_estimate(run, float(one["mu"].values[k]), _contacts(one, k))
+        assert ds["mu_error_estimate"].values[k] == pytest.approx(est, rel=1e-12, abs=0.0)
+        assert int(ds["estimate_elements_per_sample"].values[k]) == eps
+        kinds.add(eps > 1)
+        assert est > 0
+    assert kinds == {False, True}                               # both kinds here
 
 
 def test_no_estimate_when_switched_off(profile_m):
@@ -70,17 +98,46 @@ def test_no_estimate_when_switched_off(profile_m):
         assert v not in ds
 
 
-def test_exact_speeds_report_zero_without_a_pass():
-    """Dry Kelvin-Voigt with the exact integrator: no time-step error, so no
-    second pass (estimate 0); speed 0 (no memory) still gets its pass."""
+def test_exact_speeds_have_their_elements_estimated():
+    """Dry Kelvin-Voigt with the exact integrator: no time-step error, but
+    one from the pad's elements, so the pass halves the elements (with the
+    same integrator): the estimate is three times its change, small for the
+    paper's rubber on 12 elements, and within what Euler's says."""
     scene = pavefric.load_scene(ROOT / "inputs" / "ctm_dry.nml")
     ds = scene.simulate(speeds_kmh=[20.0, 60.0], time_scheme="exact")
     assert ds["exact_integrator_ran"].values.all()
-    assert np.all(ds["mu_error_estimate"].values == 0.0)
-    # the exact friction is the converged one: well within what Euler's says
+    assert np.all(ds["estimate_elements_per_sample"].values == 2)
+    pad = scene.simulate(speeds_kmh=[20.0, 60.0], time_scheme="exact", elements_per_sample=2,
+                         error_estimate=False)
+    np.testing.assert_allclose(ds["mu_error_estimate"].values,
+                               3.0 * np.abs(pad["mu"].values - ds["mu"].values), rtol=1e-12)
+    assert np.all(ds["mu_error_estimate"].values > 0)
+    assert np.all(ds["mu_error_estimate"].values < 1e-3)
+    # the exact friction is the converged one in time: within what Euler's says
     euler = scene.simulate(speeds_kmh=[20.0, 60.0], time_scheme="euler")
     assert np.all(np.abs(euler["mu"].values - ds["mu"].values)
                   <= euler["mu_error_estimate"].values)
+
+
+def test_exact_speeds_on_enough_elements_are_not_reported_exact():
+    """A stiff Kelvin-Voigt pad (1e9 N m-3, 1e5 N s m-3) runs the exact
+    integrator and stands on 5 to 6.4 elements: its mu was 9-13 % off the
+    resolved one while the estimate said 0, without a warning (review
+    reproducer). The elements' pass now runs for every exact speed and
+    bounds the error."""
+    scene = pavefric.load_scene(ROOT / "inputs" / "ctm_dry.nml")
+    kw = dict(speeds_kmh=[1.0, 5.0, 20.0], stiffness=1e9, viscosity=1e5, mu_loc=0.0,
+              time_scheme="auto")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pavefric.PavefricWarning)
+        ds = scene.simulate(**kw)
+        resolved = scene.simulate(elements_per_sample=32, error_estimate=False, **kw)
+    assert ds["exact_integrator_ran"].values.all()
+    contacts = ds["contact_fraction"].values * ds.attrs["pad_elements"]
+    assert np.all(contacts >= 4.0), contacts
+    actual = np.abs(ds["mu"].values - resolved["mu"].values)
+    assert np.all(actual > 0.05 * ds["mu"].values)              # 9-13 % off
+    assert np.all(actual <= ds["mu_error_estimate"].values), (actual, ds["mu_error_estimate"].values)
 
 
 def test_issue_reproducer_rough_profile_says_it_is_off(tmp_path):
@@ -164,10 +221,10 @@ def test_batch_records_the_estimate(tmp_path):
 
 def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
     """A batch records estimate_elements_per_sample per speed, depth and
-    profile, as each profile's single run does: 2 where a stiff compound
-    stood on fewer than 4 elements (0 C), 1 where the pass halved the time
-    step only (the same profile with the paper's rubber); missing where no
-    estimate was made (error_estimate = .false.)."""
+    profile, as each profile's single run does: 2 to 8 where a stiff
+    compound stood on fewer than 4 elements (0 C) and the estimate refined
+    them, 1 where the pass halved the time step only (the paper's rubber);
+    missing where no estimate was made (error_estimate = .false.)."""
     import re
 
     from pavefric.surfaces import write_profile
@@ -177,8 +234,9 @@ def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
     write_profile(str(d / "a.txt"), profile_m[:512])
     write_profile(str(d / "b.txt"), profile_m[512:])
     rubber = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
-    rubber = re.sub(r"temperature = 20\b", "temperature = 0", rubber)
-    for label, groups, expected in (("compound", rubber, 2), ("paper", "", 1)):
+    rubber = re.sub(r"^(\s*)temperature = 20\b", r"\1temperature = 0", rubber, flags=re.M)
+    assert "reference_temperature = 20" in rubber and "  temperature = 0" in rubber
+    for label, groups, expected in (("compound", rubber, (2, 4, 8)), ("paper", "", (1,))):
         scene = tmp_path / f"{label}.nml"
         scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
                          "&surface height_unit = 'mm', mu_loc = 0.0 /\n"
@@ -190,7 +248,9 @@ def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
             eps = ds["estimate_elements_per_sample"].transpose(
                 "profile", "water_depth", "speed_kmh").values
             names = [str(n) for n in ds["profile_name"].values]
-        assert np.all(eps == expected), (label, eps)
+        assert set(np.unique(eps)) <= set(expected), (label, eps)
+        if label == "compound":
+            assert np.any(eps > 2), eps                          # levels ran
         for i, name in enumerate(names):
             one = pavefric.read_profile(d / f"{name.split('/')[-1]}.txt")
             kw = dict(mu_loc=0.0)
@@ -213,17 +273,37 @@ def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
         assert np.all(np.isnan(ds["mu_error_estimate"].values))
 
 
-def test_no_room_for_the_half_step_pass_says_so(short_profile_m):
+def test_no_room_for_the_half_step_pass_halves_the_elements(short_profile_m):
     """substeps = 4096 (the largest): the pass at half the step would pass
-    the limit, so the run stands without an estimate and a warning says
-    why, naming error_estimate and the limit."""
+    the limit, so the estimate is made with the elements halved instead
+    (elements_per_sample doubled, which halves the step too; it had been
+    lost, with the elements' estimates of the other speeds: review
+    reproducer)."""
+    kw = dict(substeps=4096, closed=False, element_length=0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pavefric.PavefricWarning)
+        ds = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], **kw)
+    pad = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], elements_per_sample=2,
+                            error_estimate=False, **kw)
+    assert int(ds["estimate_elements_per_sample"].values[0]) == 2
+    assert ds["mu_error_estimate"].values[0] == pytest.approx(
+        3.0 * abs(pad["mu"].values[0] - ds["mu"].values[0]), rel=1e-12)
+
+
+def test_no_pass_possible_says_so():
+    """An open profile one pad long (no room for twice the elements) at
+    substeps = 4096 (no room for half the step): no pass can be made, so the
+    run stands without an estimate, and the warnings say why, naming
+    error_estimate, the limit and the pass that could not be made."""
+    from make_regression import read_heights
+    z = read_heights("synthetic_200.txt")[:23]
+    kw = dict(substeps=4096, closed=False, element_length=0.0)
     with pytest.warns(pavefric.PavefricWarning, match="error_estimate: no estimate.*4096"):
-        ds = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], substeps=4096, closed=False,
-                               element_length=0.0)
+        ds = pavefric.simulate(z, 0.87e-3, [40.0], **kw)
     assert "mu_error_estimate" not in ds and "substeps_used" not in ds
     assert "error_estimate: no estimate" in ds.attrs["warnings"]
-    plain = pavefric.simulate(short_profile_m, 0.87e-3, [40.0], substeps=4096, closed=False,
-                              element_length=0.0, error_estimate=False)
+    assert "elements_per_sample = 2" in ds.attrs["warnings"]
+    plain = pavefric.simulate(z, 0.87e-3, [40.0], error_estimate=False, **kw)
     assert np.array_equal(ds["mu"].values, plain["mu"].values)
 
 
@@ -280,27 +360,25 @@ def test_a_pad_on_few_elements_has_its_resolution_estimated(profile_m, temperatu
     (20 C) of the 23 elements: its default mu, 0.011 and 0.033 at 20 km/h,
     is 0.041 and 0.032 off the resolved 0.052 and 0.065, and most of that is
     the pad's resolution, which a pass at half the step never sees (its
-    estimate was 0.016 and 0.029; at 0 C, substeps 64 give 0.025). The pass then halves the elements too
-    (estimate_elements_per_sample = 2) and the estimate bounds the error;
-    the warning names elements_per_sample."""
-    from pavefric.rubber import compound
-    rubber = {k: v for k, v in compound(ROOT / "inputs" / "rubber" / "tread_compound.nml").items()
-              if k != "temperature"}
-    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=temperature, **rubber)
+    estimate was 0.016 and 0.029; at 0 C, substeps 64 give 0.025). The
+    estimate refines the elements until the pad stands on 4 and bounds the
+    error; the warning names elements_per_sample and what the refined pad
+    gave."""
+    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=temperature, **_compound())
     with pytest.warns(pavefric.PavefricWarning, match=r"elements_per_sample") as said:
         ds = pavefric.simulate(profile_m, 0.87e-3, **kw)
-    assert any("stood on" in str(w.message) for w in said)
+    assert any("stood on" in str(w.message) and "gave mu" in str(w.message) for w in said)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pavefric.PavefricWarning)
-        resolved = pavefric.simulate(profile_m, 0.87e-3, substeps=16, elements_per_sample=8,
+        resolved = pavefric.simulate(profile_m, 0.87e-3, substeps=16, elements_per_sample=16,
                                      error_estimate=False, **kw)["mu"].values[0]
         half_step = pavefric.simulate(profile_m, 0.87e-3, substeps=2, error_estimate=False,
                                       **kw)["mu"].values[0]
     mu, est = ds["mu"].values[0], ds["mu_error_estimate"].values[0]
     actual = abs(mu - resolved)
     assert ds["contact_fraction"].values[0] * ds.attrs["pad_elements"] < 4.0
-    assert int(ds["estimate_elements_per_sample"].values[0]) == 2
-    assert actual <= est <= 3.0 * actual, (mu, resolved, est)
+    assert int(ds["estimate_elements_per_sample"].values[0]) >= 2
+    assert actual <= est <= 2.0 * actual, (mu, resolved, est)
     assert 3.0 * abs(half_step - mu) < actual                  # the step's pass misses it
     if temperature == 0.0:
         # and the elements' part stays at any time step: 0.025 against 0.052
@@ -309,6 +387,27 @@ def test_a_pad_on_few_elements_has_its_resolution_estimated(profile_m, temperatu
             fine_step = pavefric.simulate(profile_m, 0.87e-3, substeps=64, error_estimate=False,
                                           **kw)["mu"].values[0]
         assert fine_step < 0.6 * resolved, (fine_step, resolved)
+
+
+@pytest.mark.parametrize("surface", ["GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"])
+def test_a_pad_on_one_element_is_not_estimated_from_one_halving(surface):
+    """On the paper's surfaces the shipped compound at 0 C stands on 1.1 to
+    1.3 elements: friction then rises along an S as the elements shrink,
+    and one halving's change was 2 to 24 times short of the error (GSP:
+    estimate 0.08 where mu is 0.41 off). The estimate refines the elements
+    until the pad stands on 4 and bounds the error on each surface (a test
+    set: the rule was set on inputs/ctm_dry.nml's profile)."""
+    scene = pavefric.load_scene(ROOT / "inputs" / "surfaces" / f"{surface}.nml")
+    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=0.0, depth=0.0, **_compound())
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pavefric.PavefricWarning)
+        ds = scene.simulate(**kw)
+        resolved = scene.simulate(substeps=16, elements_per_sample=32, error_estimate=False,
+                                  **kw)["mu"].values[0]
+    assert ds["contact_fraction"].values[0] * ds.attrs["pad_elements"] < 2.0
+    actual = abs(ds["mu"].values[0] - resolved)
+    est = ds["mu_error_estimate"].values[0]
+    assert actual <= est <= 2.0 * actual, (surface, ds["mu"].values[0], resolved, est)
 
 
 def test_a_tolerance_says_it_does_not_cover_a_pad_on_few_elements(profile_m):
@@ -352,7 +451,7 @@ def test_the_pad_resolution_table_is_the_one_in_the_docs():
         assert np.all(np.abs(np.array(shown) - np.array(want)) <= tol), (r["label"], shown, want)
         assert f"({r['pass_eps']})" in cells[3]
         assert r["estimate"] >= r["actual"], r
-        assert r["pass_eps"] == (2 if r["contacts"] < 4.0 else 1)
+        assert (r["pass_eps"] >= 2) == (r["contacts"] < 4.0)
 
 
 def _compound():
@@ -365,25 +464,24 @@ def test_the_elements_pass_is_chosen_on_the_merged_run(profile_m):
     """With &pad element_length the run is the merge of the pad's grid
     phases; the estimate is made on it (review reproducer: at 0.6 mm
     spacing, 42 C, 25 km/h one phase stood on fewer than 4 elements and the
-    merged run on 4.02, and the output said 2). Each speed's pass follows the
-    merged contacts, and its estimate is three times the change of the merged
-    pass."""
+    merged run on 4.02, and the output said 2). Each speed's passes follow
+    the merged contacts: the estimate is the one its passes, merged runs
+    too, give."""
     kw = dict(mu_loc=0.0, **_compound())
     z = profile_m
     for temperature in (34.0, 42.0):
+        speeds = [15.0, 25.0, 40.0]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", pavefric.PavefricWarning)
-            ds = pavefric.simulate(z, 0.6e-3, [15.0, 25.0, 40.0], temperature=temperature, **kw)
-            pad = pavefric.simulate(z, 0.6e-3, [15.0, 25.0, 40.0], temperature=temperature,
-                                    elements_per_sample=2, error_estimate=False, **kw)
-            step = pavefric.simulate(z, 0.6e-3, [15.0, 25.0, 40.0], temperature=temperature,
-                                     substeps=2, time_scheme="euler", error_estimate=False, **kw)
-        contacts = ds["contact_fraction"].values * ds.attrs["pad_elements"]
-        refined = ds["estimate_elements_per_sample"].values
-        np.testing.assert_array_equal(refined, np.where(contacts < 4.0, 2, 1))
-        finer = np.where(refined == 2, pad["mu"].values, step["mu"].values)
-        np.testing.assert_allclose(ds["mu_error_estimate"].values,
-                                   3.0 * np.abs(finer - ds["mu"].values), rtol=1e-12, atol=0)
+            ds = pavefric.simulate(z, 0.6e-3, speeds, temperature=temperature, **kw)
+        for k, v in enumerate(speeds):
+            def run(**knobs):
+                r = pavefric.simulate(z, 0.6e-3, [v], temperature=temperature,
+                                      error_estimate=False, **kw, **knobs)
+                return float(r["mu"].values[0]), _contacts(r)
+            est, eps = expected_estimate(run, float(ds["mu"].values[k]), _contacts(ds, k))
+            assert ds["mu_error_estimate"].values[k] == pytest.approx(est, rel=1e-12, abs=0.0)
+            assert int(ds["estimate_elements_per_sample"].values[k]) == eps
 
 
 def test_the_exact_integrator_has_its_elements_estimated(profile_m):
@@ -396,15 +494,18 @@ def test_the_exact_integrator_has_its_elements_estimated(profile_m):
     with pytest.warns(pavefric.PavefricWarning, match="elements_per_sample"):
         ds = pavefric.simulate(profile_m, 0.87e-3, [20.0], **kw)
     assert bool(ds["exact_integrator_ran"].values[0])
-    assert int(ds["estimate_elements_per_sample"].values[0]) == 2
-    pad = pavefric.simulate(profile_m, 0.87e-3, [20.0], elements_per_sample=2,
-                            error_estimate=False, **kw)
-    assert bool(pad["exact_integrator_ran"].values[0])
+
+    def run(**knobs):
+        r = pavefric.simulate(profile_m, 0.87e-3, [20.0], error_estimate=False, **kw, **knobs)
+        assert bool(r["exact_integrator_ran"].values[0])
+        return float(r["mu"].values[0]), _contacts(r)
     mu, est = ds["mu"].values[0], ds["mu_error_estimate"].values[0]
-    assert est == pytest.approx(3.0 * abs(pad["mu"].values[0] - mu), rel=1e-12)
+    expected, eps = expected_estimate(run, float(mu), _contacts(ds), exact=True)
+    assert est == pytest.approx(expected, rel=1e-12)
+    assert int(ds["estimate_elements_per_sample"].values[0]) == eps >= 4
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pavefric.PavefricWarning)
-        resolved = pavefric.simulate(profile_m, 0.87e-3, [20.0], elements_per_sample=8,
+        resolved = pavefric.simulate(profile_m, 0.87e-3, [20.0], elements_per_sample=32,
                                      error_estimate=False, **kw)["mu"].values[0]
     assert abs(mu - resolved) <= est, (mu, resolved, est)
 
@@ -412,14 +513,30 @@ def test_the_exact_integrator_has_its_elements_estimated(profile_m):
 def test_a_failed_elements_pass_falls_back_to_the_step(profile_m):
     """An open profile exactly one pad long has no room for twice the
     elements: that pass fails, and the speed keeps the estimate of the pass
-    at half the step, with a warning saying so (it had lost every estimate,
-    blaming the step's pass: review reproducer)."""
+    at half the step, with a warning saying so in its own words (the pass's
+    input check, quoted, had advised a longer profile for "the pad's 46
+    elements": review reproducer)."""
     kw = dict(mu_loc=0.0, temperature=0.0, closed=False, **_compound())
-    with pytest.warns(pavefric.PavefricWarning, match="elements_per_sample doubled.*failed"):
+    with pytest.warns(pavefric.PavefricWarning,
+                      match="could not be refined beyond elements_per_sample = 1") as said:
         ds = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], **kw)
+    assert any("its check said" in str(w.message) for w in said)
     assert "mu_error_estimate" in ds
     step = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], substeps=2, time_scheme="euler",
                              error_estimate=False, **kw)
     assert ds["mu_error_estimate"].values[0] == pytest.approx(
         3.0 * abs(step["mu"].values[0] - ds["mu"].values[0]), rel=1e-12)
     assert int(ds["estimate_elements_per_sample"].values[0]) == 1
+
+
+def test_two_warnings_of_a_run_stay_two(profile_m):
+    """A run whose passes warn twice (a tolerance not met, and the pad on
+    few elements) gives two warnings, not one line joined by an escaped
+    newline (review reproducer: Python received '...\\x0a&numerics ...')."""
+    with pytest.warns(pavefric.PavefricWarning) as said:
+        ds = pavefric.simulate(profile_m[:48], 0.87e-3, [20.0], mu_loc=0.0, temperature=0.0,
+                               tolerance=1e-12, closed=False, **_compound())
+    texts = [str(w.message) for w in said]
+    assert not any("\\x0a" in t for t in texts), texts
+    assert any("not met" in t for t in texts) and any("bounds the error" in t for t in texts)
+    assert "\\x0a" not in ds.attrs["warnings"]

@@ -7,7 +7,7 @@ module pavefric_error
    implicit none
    private
 
-   public :: error_type, fatal_error, add_warning
+   public :: error_type, fatal_error, add_warning, add_warnings
    public :: stat_input, stat_internal, stat_memory, stat_io
 
    !> Bad input: a namelist value, a profile file, a scene that cannot run.
@@ -51,6 +51,26 @@ contains
       call printable(line, clean)
       warnings = warnings // clean
    end subroutine add_warning
+
+   !> Append a list of warnings (lines separated by newlines, as add_warning
+   !> builds them) line by line: each stays its own line, its newline not
+   !> escaped as one line's control character would be.
+   pure subroutine add_warnings(warnings, lines)
+      character(len=:), allocatable, intent(inout) :: warnings
+      character(len=*), intent(in) :: lines
+      integer :: start, stop
+      start = 1
+      do while (start <= len(lines))
+         stop = index(lines(start:), achar(10))
+         if (stop == 0) then
+            stop = len(lines) + 1
+         else
+            stop = start + stop - 1
+         end if
+         if (stop > start) call add_warning(warnings, lines(start:stop - 1))
+         start = stop + 1
+      end do
+   end subroutine add_warnings
 
    !> `text` with every control character (a form feed, a tab, a line break
    !> quoted from the input) written as \xHH: a message is one line on a

@@ -309,14 +309,16 @@ contains
          & "two halvings the estimate is made of) (docs/accuracy.md)", &
          & lower=0.0_wp, upper=1.0_wp)
       s(p_error_estimate) = logical_param("numerics", "error_estimate", ".true.", "model", &
-         & "with tolerance = 0, every speed's error from the time step is estimated from " // &
-         & "a second pass at half the step (substeps doubled; about twice the run's cost; " // &
-         & "where the pad stood on fewer than 4 elements in contact, elements_per_sample " // &
-         & "doubled instead, which halves the elements with the step, about four times) " // &
-         & "as three times the change, recorded as mu_error_estimate, with a warning where it " // &
-         & "exceeds 5 % of mu (and 0.001); speeds the exact integrator ran need no pass (estimate 0) unless the pad " // &
-         & "stood on fewer than 4 elements (then the elements' pass, exact in time). " // &
-         & ".false.: no second pass and no estimate (docs/accuracy.md)")
+         & "with tolerance = 0, every speed's error is estimated from more passes: where " // &
+         & "the pad stood on 4 elements in contact or more, one at half the step (substeps " // &
+         & "doubled; about twice the run's cost), three times its change; where it stood on " // &
+         & "fewer, the elements are halved (elements_per_sample doubled, the step with them) " // &
+         & "until it stands on 4, at most 4 times, then one more pass, and the estimate is " // &
+         & "the change the refinement made plus three times that pass's (up to hundreds of " // &
+         & "times the run's cost); speeds the exact integrator ran get the passes that halve " // &
+         & "the elements, exact too. Recorded as mu_error_estimate, with a warning where it " // &
+         & "exceeds 5 % of mu (and 0.001) naming what to refine. " // &
+         & ".false.: no passes and no estimate (docs/accuracy.md)")
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
          & "'auto': 'exact' where it applies (the Kelvin-Voigt rubber on a dry road, " // &
          & "position_stride = 1, friction_scheme = 'energy'), else 'extrapolated', with no " // &

@@ -126,11 +126,12 @@ contains
    pure function numerics_outputs() result(t)
       type(output_var_type) :: t(n_numerics_outputs)
       t(1) = output_var("numerics", "mu_error_estimate", "1", "estimated error of mu from " // &
-         & "the time step (the pad's step along the road) and, where the pad stood on few " // &
-         & "elements, their resolution. At tolerance = 0 (&numerics error_estimate): three " // &
-         & "times the change of mu at half the step (and half the elements where " // &
-         & "estimate_elements_per_sample says so), 0 where the exact integrator ran on 4 " // &
-         & "elements or more. " // &
+         & "the time step (the pad's step along the road) and the pad's elements. At " // &
+         & "tolerance = 0 (&numerics error_estimate): three times the change of mu at half " // &
+         & "the step where the pad stood on 4 elements in contact or more; where it stood on " // &
+         & "fewer, the change of mu as the elements were halved until it stood on 4 (at most " // &
+         & "4 times) plus three times the change of one more halving; speeds the exact " // &
+         & "integrator ran: from halving the elements. " // &
          & "With &numerics tolerance: twice the larger of its last " // &
          & "two changes as the step was halved, or where mu is extrapolated, the larger of " // &
          & "the extrapolated value's change and the last change", when=when_error_estimate)
@@ -146,12 +147,11 @@ contains
          & "= 'auto' or 'exact': a Kelvin-Voigt rubber with memory on a road " // &
          & "without a film), else backward Euler", out_flag)
       t(5) = output_var("numerics", "estimate_elements_per_sample", "1", &
-         & "elements_per_sample of the pass mu_error_estimate was made from: the run's " // &
-         & "where the pass halved the time step only (substeps doubled), twice the run's " // &
-         & "where the pad stood on fewer than 4 elements in contact on average and the " // &
-         & "pass halved the elements too (their resolution then dominates the error); " // &
-         & "with &numerics tolerance the run's (the tolerance refines the time step only)", &
-         & out_int64, when=when_error_estimate)
+         & "elements_per_sample of the finest pass mu_error_estimate was made from: the " // &
+         & "run's where it halved the time step only (substeps doubled), more where the " // &
+         & "pad's elements were halved (the pad stood on fewer than 4 elements in contact, " // &
+         & "or the exact integrator ran); with &numerics tolerance the run's (the tolerance " // &
+         & "refines the time step only)", out_int64, when=when_error_estimate)
    end function numerics_outputs
 
    !> Variable k's declaration: from `table` (output_table(), when the

@@ -89,6 +89,11 @@ module pavefric_results
       !> of its pass (twice the run's where the pad stood on few elements
       !> and the pass refined them too); else the run's.
       integer, allocatable :: estimate_elements_per_sample(:)
+      !> With the error estimate at tolerance = 0, where the pad stood on few
+      !> elements: the elements_per_sample at which its levels stopped, the
+      !> elements in contact and mu there (the run's own elsewhere).
+      integer, allocatable :: refined_elements_per_sample(:)
+      real(wp), allocatable :: refined_mu(:), refined_contacts(:)
       !> Whether mu is the Richardson value of the last two passes (per speed).
       logical, allocatable :: extrapolated(:)
       !> Mean local friction over the contacts (force-weighted) with a

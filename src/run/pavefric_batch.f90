@@ -16,7 +16,7 @@ module pavefric_batch
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, stat_memory
+   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, add_warnings, stat_memory
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
@@ -934,7 +934,7 @@ contains
             blk%viscous = blk%viscous .or. any(res%viscous_memory_ran)
             ! a film ran: one that carried load or one that changed the friction
             blk%bearing = blk%bearing .or. any(res%bearing_ran) .or. any(res%friction_film_ran)
-            if (len(res%warnings) > 0) call add_warning(warnings, res%warnings)
+            if (len(res%warnings) > 0) call add_warnings(warnings, res%warnings)
             call result_warnings(scene, res, has_texture, tex%mpd, " and water depth " // &
                & to_str(batch%depths(d)) // " m", warnings)
             do s = 1, batch%n_speeds

@@ -19,7 +19,7 @@ module pavefric_run
    use pavefric_texture, only: texture_metrics
    use pavefric_ifi, only: ifi_from_sweep
    use pavefric_model, only: parameter_table, parameters_namelist_text
-   use pavefric_error, only: add_warning
+   use pavefric_error, only: add_warning, add_warnings
    implicit none
    private
 
@@ -305,7 +305,7 @@ contains
             & groups="surface preprocess pad rubber water operation numerics output")
       end if
       meta%warnings = scene%warnings
-      if (len(res%warnings) > 0) call add_warning(meta%warnings, res%warnings)
+      if (len(res%warnings) > 0) call add_warnings(meta%warnings, res%warnings)
       ! Texture metrics: reported when the profile holds a whole valid segment.
       if (allocated(clean%dropout_fraction)) then
          call texture_metrics(clean%z, clean%dx, scene%closed, 0.1_wp, .true., meta%texture, &

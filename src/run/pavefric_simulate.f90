@@ -100,6 +100,11 @@ module pavefric_simulate
    !> paper's rubber stands on 4 to 15, where the elements change mu by a
    !> tenth of the step's error.)
    real(wp), parameter :: contacts_resolved = 4.0_wp
+   !> The error estimate halves the elements at most this many times to
+   !> bring the pad onto contacts_resolved of them (elements_per_sample up
+   !> to 16 times the run's; the levels cost up to 4 + 16 + 64 + 256 times
+   !> the run's element-steps, the last pass 2 or 4 times the last level's).
+   integer, parameter :: pad_levels = 4
    !> Round a closed profile, a negative rubber part no larger than this
    !> share of the steps' mean |work| is the stored energy's rounding (the
    !> dissipation it stands for is >= 0 by construction; a dry road's path
@@ -634,31 +639,40 @@ contains
 
    !> The error estimate of a run at tolerance = 0 (&numerics
    !> error_estimate), made on the run `res` as reported (the pad's grid
-   !> phases merged): one more pass, without series, at half the step
-   !> (substeps doubled), and three times its change of mu as the estimate
-   !> of the error of `res`'s mu (the result reported stays the run's own).
-   !> An error falling as the step to the power p is 1 / (1 - 2^-p) times
-   !> that change: 2 at first order, 3 at p = 0.59; measured orders are 0.65
-   !> to 1.3 (docs/accuracy.md), and on the reference surfaces the default
-   !> run's error was at most two thirds of the estimate at 5 to 100 km/h,
-   !> dry and wet (tests/test_error_estimate.py). The pass costs about twice
-   !> the first. A coarse pass (position_stride doubled, half the cost) was
-   !> measured and rejected: it keeps the pad stepping from sample to
-   !> sample, which is where most of the error of one step per sample lies
-   !> on a wet road: on ctm_wet at 20 km/h its change was 1/34 of the error
-   !> (docs/accuracy.md).
-   !> At the speeds where the pad stood on few elements (unresolved_contacts)
-   !> the pass doubles elements_per_sample instead: the elements halve with
-   !> the step, so its change holds the pad's resolution error too (four
-   !> times the run's element-steps; estimate_elements_per_sample records
-   !> it). Speeds the exact integrator ran have no time-step error: estimate
-   !> 0 and no pass, unless the pad stood on few elements there, where the
-   !> pass with the elements halved runs with the same integrator.
-   !> The passes' own warnings are not repeated. If the elements' pass fails
-   !> (an open profile too short for twice the elements), its speeds fall
-   !> back to the step's pass (exact speeds: 0) and a warning says so; if the
-   !> step's pass is impossible or fails, the run has no estimate and a
-   !> warning says why; warn_estimate warns where the estimate is large.
+   !> phases merged); the result reported stays the run's own.
+   !> Where the pad stood on at least `contacts_resolved` elements in
+   !> contact (Euler speeds): one more pass at half the step (substeps
+   !> doubled, without series), and three times its change of mu as the
+   !> estimate. An error falling as the step to the power p is 1 / (1 -
+   !> 2^-p) times that change: 2 at first order, 3 at p = 0.59; measured
+   !> orders are 0.65 to 1.3 (docs/accuracy.md), and on the reference
+   !> surfaces the default run's error was at most two thirds of the
+   !> estimate at 5 to 100 km/h, dry and wet (tests/test_error_estimate.py).
+   !> A coarse pass (position_stride doubled) was measured and rejected: on
+   !> ctm_wet at 20 km/h its change was 1/34 of the error (docs/accuracy.md).
+   !> Where it stood on fewer (unresolved_contacts), its friction depends on
+   !> how finely the elements resolve the contacts, and one halving of them
+   !> does not show how much: friction rises along an S as the elements
+   !> shrink, the first halving's change 2 to 24 times short of the error
+   !> on the reference surfaces with the shipped compound (docs/accuracy.md,
+   !> "The pad's resolution"). So the elements are halved (elements_per_sample
+   !> doubled at the same substeps, which halves the step too) until the pad
+   !> stands on `contacts_resolved` of them, at most `pad_levels` times
+   !> (elements_per_sample up to 16 times the run's); from that level k one
+   !> more pass at half the elements (or at half the step where it now
+   !> stands on enough), and the estimate is |mu - mu_k| + 3 |mu_k - mu_k'|:
+   !> how far the refinement took mu, plus the estimate of what is left.
+   !> Speeds the exact integrator ran have no error from the step but one
+   !> from the elements: their passes halve the elements, with the same
+   !> integrator, at any number of contacts.
+   !> estimate_elements_per_sample records the finest pass's elements;
+   !> res%refined_* what the levels found (warn_estimate names it).
+   !> The passes' own warnings are not repeated. A level that fails stops
+   !> the refinement there (a warning says so); a last pass that fails or
+   !> cannot run (the step's beyond max_substeps, the elements' beyond
+   !> max_elements_per_sample) is replaced by the other kind; if that fails
+   !> too, the run has no estimate and a warning says why; warn_estimate
+   !> warns where the estimate is large.
    subroutine estimate_step_error(m, speeds_kmh, res, runner)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: speeds_kmh(:)
@@ -676,67 +690,154 @@ contains
       type(model_type) :: mc
       type(sim_result_type) :: r
       type(error_type), allocatable :: err
-      integer, allocatable :: group(:)
-      logical, allocatable :: pad(:)
-      integer :: ns, j, k
+      integer, allocatable :: group(:), idx(:)
+      logical, allocatable :: active(:), by_elements(:), done(:), blocked(:)
+      real(wp), allocatable :: mu_k(:), pass_mu(:)
+      integer :: ns, j, k, eps, level
+      character(len=:), allocatable :: why
       ns = size(speeds_kmh)
       allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), &
-         & res%estimate_elements_per_sample(ns))
+         & res%estimate_elements_per_sample(ns), res%refined_elements_per_sample(ns), &
+         & res%refined_mu(ns), res%refined_contacts(ns))
       res%mu_error = 0.0_wp
       res%substeps_used = m%substeps
       res%extrapolated = .false.
       res%estimate_elements_per_sample = m%elements_per_sample
-      ! speeds where the pad stood on few elements: their pass halves the
-      ! elements with the step (elements_per_sample doubled at the same
-      ! substeps halves the step too), with the run's own integrator
-      pad = [(unresolved_contacts(res, j), j = 1, ns)]
-      if (2 * m%elements_per_sample > max_elements_per_sample) pad = .false.
-      group = pack([(j, j = 1, ns)], pad)
-      if (size(group) > 0) then
-         mc = m
-         mc%error_estimate = .false.
-         mc%elements_per_sample = 2 * m%elements_per_sample
+      res%refined_elements_per_sample = m%elements_per_sample
+      res%refined_mu = res%mu
+      res%refined_contacts = [(contacts_touching(res, j), j = 1, ns)]
+      idx = [(j, j = 1, ns)]
+      ! the levels: the elements halved while the pad stands on too few
+      active = [(unresolved_contacts(res, j), j = 1, ns)]
+      allocate(blocked(ns))
+      blocked = .false.
+      eps = m%elements_per_sample
+      mc = m
+      mc%error_estimate = .false.
+      do level = 1, pad_levels
+         if (.not. any(active)) exit
+         if (2 * eps > max_elements_per_sample / 2) exit
+         eps = 2 * eps
+         mc%elements_per_sample = eps
+         group = pack(idx, active)
          call runner(mc, speeds_kmh(group), r, err)
          if (allocated(err)) then
-            call add_warning(res%warnings, "&numerics error_estimate: the pass with " // &
-               & "elements_per_sample doubled (where the pad stood on fewer than " // &
-               & to_str(nint(contacts_resolved)) // " elements in contact) failed, so the " // &
-               & "estimate there covers the time step only: " // err%message)
-            pad = .false.
-         else
-            do k = 1, size(group)
-               res%mu_error(group(k)) = 3.0_wp * abs(res%mu(group(k)) - r%mu(k))
-               res%estimate_elements_per_sample(group(k)) = mc%elements_per_sample
-            end do
+            call add_warning(res%warnings, "&numerics error_estimate: the pad's elements " // &
+               & "could not be refined beyond elements_per_sample = " // to_str(eps / 2) // &
+               & " at " // to_str(speeds_kmh(group(1))) // " km/h (a run with elements_" // &
+               & "per_sample = " // to_str(eps) // " could not be made on this profile; " // &
+               & "its check said: " // err%message // "); the estimate is made from there")
+            deallocate(err)
+            blocked(group) = .true.
+            exit
          end if
-      end if
-      ! the others (not the exact integrator's): the pass at half the step
-      group = pack([(j, j = 1, ns)], .not. pad .and. .not. res%exact_integrator_ran)
-      if (size(group) == 0) return
-      if (2 * m%substeps > max_substeps) then
-         call no_estimate(" at substeps = " // to_str(m%substeps) // " (its pass at half " // &
-            & "the step would pass " // to_str(max_substeps) // ")")
+         do k = 1, size(group)
+            j = group(k)
+            res%refined_mu(j) = r%mu(k)
+            res%refined_elements_per_sample(j) = eps
+            res%refined_contacts(j) = contacts_touching(r, k)
+            active(j) = unresolved_contacts(r, k)
+         end do
+      end do
+      ! the last pass from each speed's level: half the elements where the pad
+      ! still stands on too few, or the exact integrator ran; else half the step
+      by_elements = [(res%exact_integrator_ran(j) .or. (res%refined_contacts(j) > 0.0_wp .and. &
+         & res%refined_contacts(j) < contacts_resolved), j = 1, ns)]
+      allocate(pass_mu(ns), done(ns))
+      pass_mu = 0.0_wp
+      done = .false.
+      mu_k = res%refined_mu
+      ! first choice, then the other kind for the speeds it left
+      by_elements = by_elements .and. .not. blocked
+      call last_passes(by_elements)
+      call last_passes(.not. by_elements)
+      ! exact speeds whose elements could not be halved: the refinement's
+      ! change alone (their step has no error), said
+      do j = 1, ns
+         if (done(j) .or. .not. res%exact_integrator_ran(j)) cycle
+         done(j) = .true.
+         pass_mu(j) = mu_k(j)
+         call add_warning(res%warnings, "&numerics error_estimate at " // &
+            & to_str(speeds_kmh(j)) // " km/h (the exact integrator's): no pass could " // &
+            & "halve the pad's elements, so the estimate leaves out their resolution")
+      end do
+      if (.not. all(done)) then
+         if (.not. allocated(why)) why = " (no pass could run)"
+         call no_estimate(why)
          return
       end if
-      mc = m
-      mc%time_scheme = "euler"
-      mc%error_estimate = .false.
-      mc%substeps = 2 * m%substeps
-      call runner(mc, speeds_kmh(group), r, err)
-      if (allocated(err)) then
-         call no_estimate(", its pass at half the step failed: " // err%message)
-         return
-      end if
-      do k = 1, size(group)
-         res%mu_error(group(k)) = 3.0_wp * abs(res%mu(group(k)) - r%mu(k))
+      do j = 1, ns
+         res%mu_error(j) = abs(res%mu(j) - mu_k(j)) + 3.0_wp * abs(mu_k(j) - pass_mu(j))
       end do
    contains
-      subroutine no_estimate(why)
-         character(len=*), intent(in) :: why
+      !> The last pass, for the speeds not yet done: halving the elements
+      !> where `elements_for`, else the step (not for the exact integrator's
+      !> speeds, which have none to halve), grouped by their level's
+      !> elements_per_sample. A pass that cannot run or fails leaves its
+      !> speeds to the next call (the other kind), with a warning.
+      subroutine last_passes(elements_for)
+         logical, intent(in) :: elements_for(:)
+         logical :: want(ns), elements_kind
+         integer :: q, e
+         do q = 1, 2
+            elements_kind = q == 1
+            want = .not. done .and. (elements_for .eqv. elements_kind)
+            if (.not. elements_kind) want = want .and. .not. res%exact_integrator_ran
+            if (elements_kind) want = want .and. .not. blocked
+            do while (any(want))
+               e = minval(res%refined_elements_per_sample, mask=want)
+               group = pack(idx, want .and. res%refined_elements_per_sample == e)
+               want = want .and. res%refined_elements_per_sample /= e
+               mc = m
+               mc%error_estimate = .false.
+               mc%elements_per_sample = e
+               if (elements_kind) then
+                  if (2 * e > max_elements_per_sample) then
+                     why = " (elements_per_sample = " // to_str(e) // " cannot be doubled)"
+                     cycle
+                  end if
+                  mc%elements_per_sample = 2 * e
+               else
+                  if (2 * m%substeps > max_substeps) then
+                     why = " at substeps = " // to_str(m%substeps) // " (its pass at half " // &
+                        & "the step would pass " // to_str(max_substeps) // ")"
+                     cycle
+                  end if
+                  mc%time_scheme = "euler"
+                  mc%substeps = 2 * m%substeps
+               end if
+               call runner(mc, speeds_kmh(group), r, err)
+               if (allocated(err)) then
+                  if (elements_kind) then
+                     why = ": its pass with the pad's elements halved (elements_per_sample = " &
+                        & // to_str(mc%elements_per_sample) // ") could not be made on this " &
+                        & // "profile (its check said: " // err%message // ")"
+                     blocked(group) = .true.
+                  else
+                     why = ": its pass at half the step (substeps = " // to_str(mc%substeps) // &
+                        & ") could not be made (" // err%message // ")"
+                  end if
+                  call add_warning(res%warnings, "&numerics error_estimate at " // &
+                     & to_str(speeds_kmh(group(1))) // " km/h" // why)
+                  deallocate(err)
+                  cycle
+               end if
+               do k = 1, size(group)
+                  pass_mu(group(k)) = r%mu(k)
+                  done(group(k)) = .true.
+                  res%estimate_elements_per_sample(group(k)) = mc%elements_per_sample
+               end do
+            end do
+         end do
+      end subroutine last_passes
+
+      subroutine no_estimate(text)
+         character(len=*), intent(in) :: text
          deallocate(res%mu_error, res%substeps_used, res%extrapolated, &
-            & res%estimate_elements_per_sample)
+            & res%estimate_elements_per_sample, res%refined_elements_per_sample, &
+            & res%refined_mu, res%refined_contacts)
          call add_warning(res%warnings, "&numerics error_estimate: no estimate of mu's " // &
-            & "error from the time step" // why)
+            & "error" // text)
       end subroutine no_estimate
    end subroutine estimate_step_error
 
@@ -772,7 +873,7 @@ contains
    subroutine warn_estimate(m, res)
       type(model_type), intent(in) :: m
       type(sim_result_type), intent(inout) :: res
-      integer :: worst, j
+      integer :: worst, j, e
       real(wp) :: share, worst_share
       character(len=:), allocatable :: off
       if (.not. allocated(res%mu_error)) return
@@ -811,14 +912,26 @@ contains
          & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
          & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
          & to_str(res%speed_kmh(worst)) // " km/h from the pad's "
-      if (res%estimate_elements_per_sample(worst) > m%elements_per_sample) then
-         call add_warning(res%warnings, off // "step and its elements: " // &
-            & "it stood on " // to_str(round_sig(contacts_touching(res, worst), 3)) // &
+      if (res%refined_elements_per_sample(worst) > m%elements_per_sample) then
+         e = res%refined_elements_per_sample(worst)
+         call add_warning(res%warnings, off // "elements: it stood on " // &
+            & to_str(round_sig(contacts_touching(res, worst), 3)) // &
+            & " elements in contact on average; at elements_per_sample = " // to_str(e) // &
+            & " (the elements " // to_str(e / m%elements_per_sample) // " times finer) it " // &
+            & "stood on " // to_str(round_sig(res%refined_contacts(worst), 3)) // " and " // &
+            & "gave mu = " // to_str(round_sig(res%refined_mu(worst), 4)) // &
+            & " (mu_error_estimate: that change of mu plus three times the change of one " // &
+            & "more halving): set &numerics elements_per_sample to " // to_str(e) // &
+            & " or more, and substeps, until mu settles (docs/accuracy.md, ""The pad's " // &
+            & "resolution"")")
+      else if (res%estimate_elements_per_sample(worst) > m%elements_per_sample) then
+         call add_warning(res%warnings, off // "elements: it stood on " // &
+            & to_str(round_sig(contacts_touching(res, worst), 3)) // &
             & " elements in contact on average (mu_error_estimate: three times the change " // &
-            & "at half the step and half the elements, elements_per_sample doubled): raise " // &
-            & "&numerics elements_per_sample (e.g. to " // &
-            & to_str(4 * m%elements_per_sample) // ") and substeps until mu settles " // &
-            & "(docs/accuracy.md, ""The pad's resolution"")")
+            & "with the elements halved, elements_per_sample doubled): raise &numerics " // &
+            & "elements_per_sample (e.g. to " // &
+            & to_str(min(max_elements_per_sample, 4 * m%elements_per_sample)) // &
+            & ") until mu settles (docs/accuracy.md, ""The pad's resolution"")")
       else
          call add_warning(res%warnings, off // "step along " // &
             & "the road (mu_error_estimate: three times the change at half the step, " // &

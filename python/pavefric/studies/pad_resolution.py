@@ -1,5 +1,5 @@
 """The figures of docs/accuracy.md's section "The pad's resolution", printed
-as a Markdown table:
+as two Markdown tables:
 
     python -m pavefric.studies.pad_resolution      # about a minute
 
@@ -14,9 +14,17 @@ default run's mu and its mu_error_estimate (with the elements_per_sample of
 the estimate's pass), what a pass at half the step alone would have
 estimated (three times its change: the estimate before the pad's pass), mu
 with the time step converged at one element per sample (substeps 64), the
-resolved mu (substeps 16, elements_per_sample 8) and the default's actual
+resolved mu (substeps 16, elements_per_sample 32) and the default's actual
 error against it, and the wall time of the default run with its estimate
-against one without (the best of three). Runs only the core (pavefric); nothing is fitted.
+against one without (the best of three).
+
+The second table is a test set for the estimate's rule (set on the first
+table's profile): the six surfaces of the paper's Table 2
+(inputs/surfaces/*.nml, dry) with the compound at 0 and 20 C, mu_loc = 0,
+20 km/h: the elements in contact, the default mu, its estimate, what one
+halving of the elements and the step would have estimated (three times
+its change: the rule before the levels), the resolved mu and the actual
+error. Runs only the core (pavefric); nothing is fitted.
 """
 from __future__ import annotations
 
@@ -34,7 +42,7 @@ SPEED = 20.0
 TEMPERATURES = (-15.0, 0.0, 20.0, 30.0, 40.0, 60.0, 80.0)
 #: The resolved run: time step and elements both refined until mu settles
 #: (to about 1e-4 here).
-RESOLVED = dict(substeps=16, elements_per_sample=8)
+RESOLVED = dict(substeps=16, elements_per_sample=32)
 #: The time step alone converged, at the scene's one element per sample.
 STEP_CONVERGED = dict(substeps=64)
 
@@ -85,8 +93,48 @@ def table(root: Path = Path(".")) -> list[dict]:
     return rows
 
 
+SURFACES = ("GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC")
+SURFACE_TEMPERATURES = (0.0, 20.0)
+
+
+def surface_rows(root: Path = Path(".")) -> list[dict]:
+    """The test set: each surface of the paper's Table 2, dry, the compound
+    at SURFACE_TEMPERATURES, mu_loc = 0, SPEED."""
+    rubber = {k: v for k, v in compound(root / COMPOUND).items() if k != "temperature"}
+    rows = []
+    for name in SURFACES:
+        scene = pavefric.load_scene(root / "inputs" / "surfaces" / f"{name}.nml")
+        for t in SURFACE_TEMPERATURES:
+            kw = dict(speeds_kmh=[SPEED], mu_loc=0.0, depth=0.0, temperature=t, **rubber)
+            ds = _quiet(scene.simulate, **kw)
+            one = _quiet(scene.simulate, error_estimate=False, elements_per_sample=2, **kw)
+            fine = _quiet(scene.simulate, error_estimate=False, **RESOLVED, **kw)
+            mu = float(ds["mu"][0])
+            resolved = float(fine["mu"][0])
+            rows.append(dict(label=f"{name}, {t:g} C",
+                             contacts=float(ds["contact_fraction"][0]) * ds.attrs["pad_elements"],
+                             mu=mu, estimate=float(ds["mu_error_estimate"][0]),
+                             pass_eps=int(ds["estimate_elements_per_sample"][0]),
+                             one_halving=3.0 * abs(float(one["mu"][0]) - mu),
+                             resolved=resolved, actual=abs(mu - resolved)))
+    return rows
+
+
+def surface_markdown(rows: list[dict]) -> list[str]:
+    lines = ["| surface, compound | elements in contact | default mu | its estimate (last "
+             "pass's elements_per_sample) | one halving would say | resolved mu | actual error "
+             "| estimate / actual |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        ratio = r["estimate"] / r["actual"] if r["actual"] > 0 else float("inf")
+        lines.append(f"| {r['label']} | {r['contacts']:.2f} | {r['mu']:.4f} | "
+                     f"{r['estimate']:.4f} ({r['pass_eps']}) | {r['one_halving']:.4f} | "
+                     f"{r['resolved']:.4f} | {r['actual']:.4f} | {ratio:.2f} |")
+    return lines
+
+
 def markdown(rows: list[dict]) -> list[str]:
-    lines = ["| rubber | elements in contact | default mu | its estimate (pass's "
+    lines = ["| rubber | elements in contact | default mu | its estimate (last pass's "
              "elements_per_sample) | half step alone would say | time step converged | resolved mu | "
              "actual error | estimate / actual | default run with its estimate / without |",
              "|---|---|---|---|---|---|---|---|---|---|"]
@@ -108,6 +156,8 @@ def main(argv=None) -> int:
           f"elements_per_sample {RESOLVED['elements_per_sample']}")
     print()
     print("\n".join(markdown(table(Path(args.root)))))
+    print()
+    print("\n".join(surface_markdown(surface_rows(Path(args.root)))))
     return 0
 
 
