@@ -33,9 +33,14 @@ def test_accuracy_command_writes_report(tmp_path):
     r = subprocess.run([sys.executable, "-m", "pavefric", "accuracy",
                         str(ROOT / "inputs" / "ctm_dry.nml"), "--speeds", "40",
                         "--repeats", "1", "--outdir", str(tmp_path / "out"),
-                        "--report", str(report)], capture_output=True, text=True, timeout=600)
+                        "--report", str(report)], capture_output=True, text=True, timeout=600,
+                       cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     text = report.read_text()
     assert "## Recommended settings" in text and "quick look" in text
+    # run outside the repository's root, the pad's section says where its
+    # tables come from instead of running its study (minutes; its first
+    # table is checked against the docs in test_error_estimate.py)
+    assert "run the command from the repository's root for the table" in text
     assert (tmp_path / "docs" / "figures" / "accuracy.png").stat().st_size > 10_000
     assert (tmp_path / "out" / "accuracy_ctm_dry.nc").exists()

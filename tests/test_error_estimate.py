@@ -402,7 +402,7 @@ def test_a_pad_on_one_element_is_not_estimated_from_one_halving(surface):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pavefric.PavefricWarning)
         ds = scene.simulate(**kw)
-        resolved = scene.simulate(substeps=16, elements_per_sample=32, error_estimate=False,
+        resolved = scene.simulate(substeps=8, elements_per_sample=16, error_estimate=False,
                                   **kw)["mu"].values[0]
     assert ds["contact_fraction"].values[0] * ds.attrs["pad_elements"] < 2.0
     actual = abs(ds["mu"].values[0] - resolved)

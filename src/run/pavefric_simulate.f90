@@ -94,11 +94,11 @@ module pavefric_simulate
    !> the shipped tread compound below 40 C stands on one to four of the 23
    !> default elements, and its friction then changes by up to a factor 2
    !> as the elements are refined, at any time step (docs/accuracy.md, "The
-   !> pad's resolution"). The error estimate's pass then halves the
-   !> elements with the step, and a tolerance warns. (At 4.4 contacts the
-   !> compound's time-step estimate still covers its error, 1.2 times; the
-   !> paper's rubber stands on 4 to 15, where the elements change mu by a
-   !> tenth of the step's error.)
+   !> pad's resolution"). The error estimate then halves the elements until
+   !> the pad stands on this many (estimate_step_error), and a tolerance
+   !> warns. (At 4.4 contacts the compound's time-step estimate still covers
+   !> its error, 1.2 times; the paper's rubber stands on 4 to 15, where the
+   !> elements change mu by a tenth of the step's error.)
    real(wp), parameter :: contacts_resolved = 4.0_wp
    !> The error estimate halves the elements at most this many times to
    !> bring the pad onto contacts_resolved of them (elements_per_sample up
@@ -1329,8 +1329,9 @@ contains
    !> substeps: 2 for the exact integrator (1.1 to 3.7 one pass,
    !> docs/accuracy.md), 3 with the error estimate's pass at half the step
    !> (&numerics error_estimate at tolerance = 0), else 1. (Where the pad
-   !> stands on few elements the estimate's pass halves them too, 5 passes:
-   !> known only after the run, so not counted here.)
+   !> stands on few elements the estimate halves them until it stands on 4,
+   !> up to hundreds of passes' worth, and the exact integrator's pass halves
+   !> them too, 4 more: known only after the run, so not counted here.)
    pure real(wp) function step_passes(m, n_state) result(passes)
       type(model_type), intent(in) :: m
       integer, intent(in) :: n_state
