@@ -120,31 +120,36 @@ def surface_rows(root: Path = Path(".")) -> list[dict]:
     return rows
 
 
-def surface_markdown(rows: list[dict]) -> list[str]:
-    lines = ["| surface, compound | elements in contact | default mu | its estimate (last "
-             "pass's elements_per_sample) | one halving would say | resolved mu | actual error "
-             "| estimate / actual |",
-             "|---|---|---|---|---|---|---|---|"]
+def _markdown(head: list[str], rows: list[dict], cells) -> list[str]:
+    """A Markdown table: the header cells `head`, then per row its cells
+    (`cells(row, ratio)`, the ratio estimate / actual given)."""
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         ratio = r["estimate"] / r["actual"] if r["actual"] > 0 else float("inf")
-        lines.append(f"| {r['label']} | {r['contacts']:.2f} | {r['mu']:.4f} | "
-                     f"{r['estimate']:.4f} ({r['pass_eps']}) | {r['one_halving']:.4f} | "
-                     f"{r['resolved']:.4f} | {r['actual']:.4f} | {ratio:.2f} |")
+        lines.append("| " + " | ".join(cells(r, ratio)) + " |")
     return lines
+
+
+def surface_markdown(rows: list[dict]) -> list[str]:
+    return _markdown(
+        ["surface, compound", "elements in contact", "default mu",
+         "its estimate (last pass's elements_per_sample)", "one halving would say",
+         "resolved mu", "actual error", "estimate / actual"], rows,
+        lambda r, ratio: [r["label"], f"{r['contacts']:.2f}", f"{r['mu']:.4f}",
+                          f"{r['estimate']:.4f} ({r['pass_eps']})", f"{r['one_halving']:.4f}",
+                          f"{r['resolved']:.4f}", f"{r['actual']:.4f}", f"{ratio:.2f}"])
 
 
 def markdown(rows: list[dict]) -> list[str]:
-    lines = ["| rubber | elements in contact | default mu | its estimate (last pass's "
-             "elements_per_sample) | half step alone would say | time step converged | resolved mu | "
-             "actual error | estimate / actual | default run with its estimate / without |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        ratio = r["estimate"] / r["actual"] if r["actual"] > 0 else float("inf")
-        lines.append(f"| {r['label']} | {r['contacts']:.1f} | {r['mu']:.4f} | "
-                     f"{r['estimate']:.4f} ({r['pass_eps']}) | {r['step_only']:.4f} | "
-                     f"{r['step_converged']:.4f} | {r['resolved']:.4f} | {r['actual']:.4f} | {ratio:.2f} | "
-                     f"{r['cost']:.1f}x |")
-    return lines
+    return _markdown(
+        ["rubber", "elements in contact", "default mu",
+         "its estimate (last pass's elements_per_sample)", "half step alone would say",
+         "time step converged", "resolved mu", "actual error", "estimate / actual",
+         "default run with its estimate / without"], rows,
+        lambda r, ratio: [r["label"], f"{r['contacts']:.1f}", f"{r['mu']:.4f}",
+                          f"{r['estimate']:.4f} ({r['pass_eps']})", f"{r['step_only']:.4f}",
+                          f"{r['step_converged']:.4f}", f"{r['resolved']:.4f}",
+                          f"{r['actual']:.4f}", f"{ratio:.2f}", f"{r['cost']:.1f}x"])
 
 
 def main(argv=None) -> int:
