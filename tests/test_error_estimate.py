@@ -393,8 +393,8 @@ def test_a_pad_on_few_elements_has_its_resolution_estimated(profile_m, temperatu
 def test_a_pad_on_one_element_is_not_estimated_from_one_halving(surface):
     """On the paper's surfaces the shipped compound at 0 C stands on 1.1 to
     1.3 elements: friction then rises along an S as the elements shrink,
-    and one halving's change was 2 to 24 times short of the error (GSP:
-    estimate 0.08 where mu is 0.41 off). The estimate refines the elements
+    and three times one halving's change was 0.19 to 1.66 of the error
+    (GSP: 0.08 where mu is 0.42 off). The estimate refines the elements
     until the pad stands on 4 and bounds the error on each surface (a test
     set: the rule was set on inputs/ctm_dry.nml's profile)."""
     scene = pavefric.load_scene(ROOT / "inputs" / "surfaces" / f"{surface}.nml")

@@ -653,9 +653,9 @@ contains
    !> Where it stood on fewer (unresolved_contacts), its friction depends on
    !> how finely the elements resolve the contacts, and one halving of them
    !> does not show how much: friction rises along an S as the elements
-   !> shrink, the first halving's change 2 to 24 times short of the error
-   !> on the reference surfaces with the shipped compound (docs/accuracy.md,
-   !> "The pad's resolution"). So the elements are halved (elements_per_sample
+   !> shrink, and three times the first halving's change was 0.19 to 1.66
+   !> of the error on the paper's surfaces with the shipped compound at 0
+   !> and 20 C (docs/accuracy.md, "The pad's resolution", second table). So the elements are halved (elements_per_sample
    !> doubled at the same substeps, which halves the step too) until the pad
    !> stands on `contacts_resolved` of them, at most `pad_levels` times
    !> (elements_per_sample up to 16 times the run's); from that level k one
