@@ -540,3 +540,16 @@ def test_two_warnings_of_a_run_stay_two(profile_m):
     assert not any("\\x0a" in t for t in texts), texts
     assert any("not met" in t for t in texts) and any("bounds the error" in t for t in texts)
     assert "\\x0a" not in ds.attrs["warnings"]
+
+
+def test_exact_speeds_whose_elements_cannot_be_halved_say_so(profile_m):
+    """The exact integrator on an open profile exactly one pad long: its
+    only pass (the elements halved) cannot be made, and it has no step to
+    halve; the run keeps an estimate that leaves out the elements'
+    resolution (0 here, nothing was refined), and a warning says so."""
+    kw = dict(closed=False, time_scheme="exact", element_length=0.0)
+    with pytest.warns(pavefric.PavefricWarning, match="leaves out their resolution"):
+        ds = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], **kw)
+    assert bool(ds["exact_integrator_ran"].values[0])
+    assert ds["mu_error_estimate"].values[0] == 0.0
+    assert int(ds["estimate_elements_per_sample"].values[0]) == 1

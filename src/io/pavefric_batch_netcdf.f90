@@ -170,15 +170,16 @@ contains
             & "the local friction's part of mu: mu_loc's work on the facets per unit load " // &
             & "and distance slid (mu = mu_hysteresis + mu_adhesion)", v_mua)
          call w%def("mu_error_estimate", nf90_double, [d_s, d_d, d_p], "1", &
-            & "estimated error of mu from the time step (&numerics error_estimate: three " // &
-            & "times the change at half the step, and half the elements where the pad stood " // &
-            & "on fewer than 4 elements in contact on average; or the tolerance's estimate); " // &
+            & "estimated error of mu from the time step and the pad's elements (&numerics " // &
+            & "error_estimate, as in a single scene, docs/outputs.md; or the tolerance's " // &
+            & "estimate); " // &
             & "missing where none was made", v_mue)
          call w%def("estimate_elements_per_sample", nf90_int64, [d_s, d_d, d_p], "1", &
-            & "elements_per_sample of the pass mu_error_estimate was made from: the scene's " // &
-            & "where it halved the time step only, twice the scene's where the pad stood on " // &
-            & "fewer than 4 elements in contact on average and the pass halved the elements " // &
-            & "too; missing where no estimate was made", v_eps)
+            & "elements_per_sample of the finest pass mu_error_estimate was made from (as in " // &
+            & "a single scene, docs/outputs.md): the scene's where it halved the time step " // &
+            & "only, more where the pad's elements were halved (it stood on fewer than 4 " // &
+            & "elements in contact, or the exact integrator ran); missing where no estimate " // &
+            & "was made", v_eps)
          call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
             & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
          call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &

@@ -70,9 +70,9 @@ module pavefric_batch_types
       !> mu's estimated error from the time step (&numerics error_estimate
       !> or tolerance); -1 where the run made none.
       real(wp), allocatable :: mu_error(:,:)
-      !> elements_per_sample of the pass that made mu_error (twice the
-      !> scene's where the pad stood on few elements; the scene's with a
-      !> tolerance); -1 where the run made no estimate.
+      !> elements_per_sample of the finest pass that made mu_error (more than
+      !> the scene's where the pad's elements were halved; the scene's with
+      !> a tolerance); -1 where the run made no estimate.
       real(wp), allocatable :: estimate_eps(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.

@@ -692,7 +692,7 @@ contains
       type(error_type), allocatable :: err
       integer, allocatable :: group(:), idx(:)
       logical, allocatable :: active(:), by_elements(:), done(:), blocked(:)
-      real(wp), allocatable :: mu_k(:), pass_mu(:)
+      real(wp), allocatable :: pass_mu(:)
       integer :: ns, j, k, eps, level
       character(len=:), allocatable :: why
       ns = size(speeds_kmh)
@@ -746,7 +746,6 @@ contains
       allocate(pass_mu(ns), done(ns))
       pass_mu = 0.0_wp
       done = .false.
-      mu_k = res%refined_mu
       ! first choice, then the other kind for the speeds it left
       by_elements = by_elements .and. .not. blocked
       call last_passes(by_elements)
@@ -756,7 +755,7 @@ contains
       do j = 1, ns
          if (done(j) .or. .not. res%exact_integrator_ran(j)) cycle
          done(j) = .true.
-         pass_mu(j) = mu_k(j)
+         pass_mu(j) = res%refined_mu(j)
          call add_warning(res%warnings, "&numerics error_estimate at " // &
             & to_str(speeds_kmh(j)) // " km/h (the exact integrator's): no pass could " // &
             & "halve the pad's elements, so the estimate leaves out their resolution")
@@ -767,7 +766,8 @@ contains
          return
       end if
       do j = 1, ns
-         res%mu_error(j) = abs(res%mu(j) - mu_k(j)) + 3.0_wp * abs(mu_k(j) - pass_mu(j))
+         res%mu_error(j) = abs(res%mu(j) - res%refined_mu(j)) + &
+            & 3.0_wp * abs(res%refined_mu(j) - pass_mu(j))
       end do
    contains
       !> The last pass, for the speeds not yet done: halving the elements
