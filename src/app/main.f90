@@ -96,8 +96,15 @@ program pavefric_main
    else if (.not. is_root()) then
       call parallel_finalize()       ! a single scene runs on rank 0 only
    else
-      call run_scene(scene_path, out_override, command, out_path, res, error, warnings=warnings, &
-         & announce=print_estimate)
+      ! (print_estimate reads nothing of the program's: an internal procedure
+      ! that did would need a trampoline, an executable stack)
+      if (quiet) then
+         call run_scene(scene_path, out_override, command, out_path, res, error, &
+            & warnings=warnings)
+      else
+         call run_scene(scene_path, out_override, command, out_path, res, error, &
+            & warnings=warnings, announce=print_estimate)
+      end if
       if (allocated(error)) call fail(error%message)
       call parallel_finalize()
       call report_scene()
@@ -160,7 +167,6 @@ contains
    !> results; none with --quiet).
    subroutine print_estimate(text)
       character(len=*), intent(in) :: text
-      if (quiet) return
       write(error_unit, '(a)') "pavefric: " // text
       flush(error_unit)
    end subroutine print_estimate

@@ -77,7 +77,8 @@ module pavefric_model
       enumerator :: p_wet_model, p_depth
       enumerator :: p_water_viscosity, p_speeds_kmh, p_substeps
       enumerator :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
-      enumerator :: p_error_estimate, p_time_scheme, p_friction_scheme, p_output_file
+      enumerator :: p_error_estimate, p_min_contacts, p_time_scheme, p_friction_scheme
+      enumerator :: p_output_file
       enumerator :: p_series, p_batch_profiles, p_batch_profile_list, p_batch_depths
       enumerator :: p_batch_restart, p_batch_progress_every
    end enum
@@ -86,7 +87,7 @@ module pavefric_model
    public :: p_wet_model
    public :: p_depth, p_water_viscosity, p_speeds_kmh, p_substeps
    public :: p_elements_per_sample, p_position_stride, p_wet_tolerance, p_tolerance
-   public :: p_error_estimate
+   public :: p_error_estimate, p_min_contacts
    public :: p_time_scheme, p_friction_scheme, p_output_file, p_series, p_batch_profiles
    public :: p_batch_profile_list, p_batch_depths, p_batch_restart, p_batch_progress_every
    !> Variables the scene itself declares (the last id), and all of them
@@ -171,6 +172,11 @@ module pavefric_model
       !> &numerics error_estimate: with tolerance = 0, a second pass at half
       !> the step estimates mu's error from the step (mu_error_estimate).
       logical :: error_estimate = .true.
+      !> &numerics min_contacts: 0, the pad's elements as elements_per_sample
+      !> gives them; n > 0, at each speed they are halved (elements_per_sample
+      !> doubled) until the pad stands on n elements in contact on average
+      !> (at most pad_levels times), and that run is reported.
+      integer :: min_contacts = 0
       !> How the facet friction is computed: 'energy' (the work of the facet
       !> forces balances the elements' stored energy and dissipation) or
       !> 'paper' (Eq. 10 on central-difference slopes).
@@ -319,6 +325,18 @@ contains
          & "the elements, exact too. Recorded as mu_error_estimate, with a warning where it " // &
          & "exceeds 5 % of mu (and 0.001) naming what to refine. " // &
          & ".false.: no passes and no estimate (docs/accuracy.md)")
+      s(p_min_contacts) = int_param("numerics", "min_contacts", "0", "model", &
+         & "0: the pad's elements as elements_per_sample gives them (the paper's " // &
+         & "discretisation, one element per sample). n > 0: at each speed where the pad " // &
+         & "stood on fewer than n elements in contact on average (positions the film " // &
+         & "carried alone left out), its elements are halved (elements_per_sample doubled, " // &
+         & "the step with them) until it stands on n, at most 4 times (elements_per_sample " // &
+         & "up to 16 times the value given), and that run is reported: mu, its parts and " // &
+         & "every per-speed output (elements_per_sample_used says which ran; with series " // &
+         & "every speed runs at the finest). Each halving costs about 4 times the run before " // &
+         & "it; the up-front cost estimate leaves the halvings out. 4 resolves the pad's " // &
+         & "contacts on the paper's surfaces (docs/accuracy.md, ""The pad's resolution"")", &
+         & 0, 1000)
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
          & "'auto': 'exact' where it applies (the Kelvin-Voigt rubber on a dry road, " // &
          & "position_stride = 1, friction_scheme = 'energy'), else 'extrapolated', with no " // &
@@ -1238,6 +1256,7 @@ contains
       m%wet_tolerance = set%v(p_wet_tolerance)%r
       m%tolerance = set%v(p_tolerance)%r
       m%error_estimate = set%v(p_error_estimate)%b
+      m%min_contacts = set%v(p_min_contacts)%i
       m%friction_scheme = set%v(p_friction_scheme)%t
       m%time_scheme = set%v(p_time_scheme)%t
    end function model_from_parameters

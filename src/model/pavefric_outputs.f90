@@ -32,7 +32,7 @@ module pavefric_outputs
    public :: output_condition
 
    !> The variables the pad, its balance and the numerics declare (below).
-   integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 5
+   integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 6
    !> The wet models' own (their registry entries): the squeeze film's 5,
    !> the Reynolds film's 2.
    integer, parameter :: n_wet_model_outputs = 7
@@ -48,7 +48,8 @@ module pavefric_outputs
       & "film_thickness", "local_friction", "mu_error_estimate", "substeps_used", &
       & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran", &
       & "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled", &
-      & "film_pressure_max", "water_thickness", "estimate_elements_per_sample"]
+      & "film_pressure_max", "water_thickness", "estimate_elements_per_sample", &
+      & "elements_per_sample_used"]
 
    !> What the output says besides the result variables: where the results
    !> came from, the profile, its texture, the parameters used, warnings.
@@ -152,6 +153,11 @@ contains
          & "pad's elements were halved (the pad stood on fewer than 4 elements in contact, " // &
          & "or the exact integrator ran); with &numerics tolerance the run's (the tolerance " // &
          & "refines the time step only)", out_int64, when=when_error_estimate)
+      t(6) = output_var("numerics", "elements_per_sample_used", "1", &
+         & "elements_per_sample of the run each speed's results come from: the value given, " // &
+         & "or more where &numerics min_contacts halved the pad's elements until it stood " // &
+         & "on that many in contact (the global attribute pad_elements counts the elements " // &
+         & "at the value given)", out_int64)
    end function numerics_outputs
 
    !> Variable k's declaration: from `table` (output_table(), when the
@@ -321,6 +327,8 @@ contains
          values(1:ns) = merge(1.0_wp, 0.0_wp, res%exact_integrator_ran)
       case ("estimate_elements_per_sample")
          values(1:ns) = real(res%estimate_elements_per_sample, wp)
+      case ("elements_per_sample_used")
+         values(1:ns) = real(res%elements_per_sample_used, wp)
       case ("contact_fraction")
          values(1:ns) = res%contact_fraction
       case ("film_load_share")

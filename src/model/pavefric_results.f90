@@ -94,6 +94,10 @@ module pavefric_results
       !> elements in contact and mu there (the run's own elsewhere).
       integer, allocatable :: refined_elements_per_sample(:)
       real(wp), allocatable :: refined_mu(:), refined_contacts(:)
+      !> The elements_per_sample of each speed's reported run: the value
+      !> given, or more where &numerics min_contacts refined the pad; and
+      !> the pad's elements there (n_elements at the value given).
+      integer, allocatable :: elements_per_sample_used(:), speed_n_elements(:)
       !> Whether mu is the Richardson value of the last two passes (per speed).
       logical, allocatable :: extrapolated(:)
       !> Mean local friction over the contacts (force-weighted) with a

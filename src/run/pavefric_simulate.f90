@@ -64,6 +64,7 @@ module pavefric_simulate
       end function parallel_ok
    end interface
 
+
    ! The cost model (one thread): a part per profile sample (reading,
    ! preprocessing, texture metrics, writing), a part per refined sample and
    ! pass (the geometry; the error estimate's pass counts), a part per pad
@@ -253,89 +254,90 @@ contains
       logical, intent(in) :: closed, want_series
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
-      call run_grids(m, speeds_kmh, want_series, res, error)
+      call run_grids(m, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
+      allocate(res%elements_per_sample_used(size(speeds_kmh)), &
+         & res%speed_n_elements(size(speeds_kmh)))
+      res%elements_per_sample_used = m%elements_per_sample
+      res%speed_n_elements = res%n_elements
+      if (m%min_contacts > 0) call resolve_pad(m, z, dx, closed, speeds_kmh, want_series, res)
       if (m%tolerance <= 0.0_wp .and. m%error_estimate) &
-         & call estimate_step_error(m, speeds_kmh, res, runner)
+         & call estimate_step_error(m, z, dx, closed, speeds_kmh, res)
       call warn_estimate(m, res)
-   contains
-      !> The run at `mm` for `speeds` over the pad's grid(s): the profile as
-      !> given, or resampled to &pad element_length at each phase of the
-      !> pad's grid, the phases merged (no error estimate: the caller's).
-      subroutine run_grids(mm, speeds, series, out, err)
-         type(model_type), intent(in) :: mm
-         real(wp), intent(in) :: speeds(:)
-         logical, intent(in) :: series
-         type(sim_result_type), intent(out) :: out
-         type(error_type), allocatable, intent(out) :: err
-         type(model_type) :: me
-         type(sim_result_type) :: r
-         real(wp), allocatable :: ze(:)
-         real(wp) :: dxe, phase
-         integer :: stat, k
-         if (.not. resamples(mm, dx)) then
-            call simulate_spaced(mm, z, dx, speeds, series, out, err)
+   end subroutine simulate
+
+   !> The run at `mm` for `speeds` over the pad's grid(s): the profile as
+   !> given, or resampled to &pad element_length at each phase of the pad's
+   !> grid, the phases merged (no min_contacts, no error estimate: the
+   !> caller's). The passes of min_contacts and of the error estimate are
+   !> made by it too, so that they are made as the reported run was. (A
+   !> module procedure, not one internal to simulate passed as an argument:
+   !> that needs a trampoline, an executable stack, which newer C libraries
+   !> refuse to load; tests/test_architecture.py checks.)
+   subroutine run_grids(mm, z, dx, closed, speeds, series, out, err)
+      type(model_type), intent(in) :: mm
+      real(wp), intent(in) :: z(:), dx, speeds(:)
+      logical, intent(in) :: closed, series
+      type(sim_result_type), intent(out) :: out
+      type(error_type), allocatable, intent(out) :: err
+      type(model_type) :: me
+      type(sim_result_type) :: r
+      real(wp), allocatable :: ze(:)
+      real(wp) :: dxe, phase
+      integer :: stat, k
+      if (.not. resamples(mm, dx)) then
+         call simulate_spaced(mm, z, dx, speeds, series, out, err)
+         return
+      end if
+      ! the pad's own elements: the profile filtered and resampled to them
+      call validate_model(mm, err)
+      if (allocated(err)) return
+      call check_heights(z, err)
+      if (allocated(err)) return
+      if (resampled_points(size(z), dx, closed, mm%element_length, 0.0_wp) < 1) then
+         call fatal_error(err, "&pad element_length = " // to_str(mm%element_length) // &
+            & ": the profile resampled to it would have more than 2e9 points; give a " // &
+            & "larger element_length (default 0.87e-3 m) or 0 for the profile's own " // &
+            & "spacing", stat_memory)
+         return
+      end if
+      me = mm
+      me%element_length = 0.0_wp
+      ! the pad's grid at each phase; an open profile too short for a phase
+      ! (the last start beyond its end) has fewer phases
+      do k = 0, element_phases - 1
+         phase = real(k, wp) / real(element_phases, wp)
+         if (resampled_points(size(z), dx, closed, mm%element_length, phase) < 1) exit
+         call resample_to_length(z, dx, closed, mm%element_length, phase, ze, dxe, stat)
+         if (stat /= 0) then
+            call fatal_error(err, "not enough memory to resample a profile of " // &
+               & to_str(size(z)) // " points to &pad element_length = " // &
+               & to_str(mm%element_length) // " m", stat_memory)
             return
          end if
-         ! the pad's own elements: the profile filtered and resampled to them
-         call validate_model(mm, err)
-         if (allocated(err)) return
-         call check_heights(z, err)
-         if (allocated(err)) return
-         if (resampled_points(size(z), dx, closed, mm%element_length, 0.0_wp) < 1) then
-            call fatal_error(err, "&pad element_length = " // to_str(mm%element_length) // &
-               & ": the profile resampled to it would have more than 2e9 points; give a " // &
-               & "larger element_length (default 0.87e-3 m) or 0 for the profile's own " // &
-               & "spacing", stat_memory)
-            return
-         end if
-         me = mm
-         me%element_length = 0.0_wp
-         ! the pad's grid at each phase; an open profile too short for a phase
-         ! (the last start beyond its end) has fewer phases
-         do k = 0, element_phases - 1
-            phase = real(k, wp) / real(element_phases, wp)
-            if (resampled_points(size(z), dx, closed, mm%element_length, phase) < 1) exit
-            call resample_to_length(z, dx, closed, mm%element_length, phase, ze, dxe, stat)
+         if (k == 0) then
+            call simulate_spaced(me, ze, dxe, speeds, series, out, err)
+            if (allocated(err)) return
+         else
+            call simulate_spaced(me, ze, dxe, speeds, series, r, err)
+            ! a later phase the pad does not fit (an open profile one
+            ! element long): the phases before it stand
+            if (allocated(err)) then
+               if (err%stat == stat_memory .or. err%stat == stat_internal) return
+               deallocate(err)
+               exit
+            end if
+            call merge_phase(out, r, phase * dxe, stat)
             if (stat /= 0) then
-               call fatal_error(err, "not enough memory to resample a profile of " // &
-                  & to_str(size(z)) // " points to &pad element_length = " // &
-                  & to_str(mm%element_length) // " m", stat_memory)
+               call fatal_error(err, "not enough memory to merge the series of " // &
+                  & to_str(element_phases) // " phases of the pad's element grid (" // &
+                  & to_str(out%n_positions) // " positions); run without &output " // &
+                  & "series or on a shorter profile", stat_memory)
                return
             end if
-            if (k == 0) then
-               call simulate_spaced(me, ze, dxe, speeds, series, out, err)
-               if (allocated(err)) return
-            else
-               call simulate_spaced(me, ze, dxe, speeds, series, r, err)
-               ! a later phase the pad does not fit (an open profile one
-               ! element long): the phases before it stand
-               if (allocated(err)) then
-                  if (err%stat == stat_memory .or. err%stat == stat_internal) return
-                  deallocate(err)
-                  exit
-               end if
-               call merge_phase(out, r, phase * dxe, stat)
-               if (stat /= 0) then
-                  call fatal_error(err, "not enough memory to merge the series of " // &
-                     & to_str(element_phases) // " phases of the pad's element grid (" // &
-                     & to_str(out%n_positions) // " positions); run without &output " // &
-                     & "series or on a shorter profile", stat_memory)
-                  return
-               end if
-            end if
-         end do
-      end subroutine run_grids
-
-      !> The error estimate's passes: run_grids without series.
-      subroutine runner(mm, speeds, out, err)
-         type(model_type), intent(in) :: mm
-         real(wp), intent(in) :: speeds(:)
-         type(sim_result_type), intent(out) :: out
-         type(error_type), allocatable, intent(out) :: err
-         call run_grids(mm, speeds, .false., out, err)
-      end subroutine runner
-
+         end if
+      end do
+   contains
       subroutine simulate_spaced(mm, zz, dd, speeds, series, out, err)
          type(model_type), intent(in) :: mm
          real(wp), intent(in) :: zz(:), dd, speeds(:)
@@ -349,7 +351,7 @@ contains
          end if
          out%element_spacing = dd
       end subroutine simulate_spaced
-   end subroutine simulate
+   end subroutine run_grids
 
    !> Phase `r` of the pad's grid (its positions `offset` further along)
    !> into the results `acc` of the phases before it: per-speed means
@@ -637,6 +639,96 @@ contains
       end function asymptotic
    end subroutine simulate_to_tolerance
 
+   !> &numerics min_contacts: where the pad stood on fewer than
+   !> m%min_contacts elements in contact on average at a speed
+   !> (contacts_touching: positions the film carried alone left out), the run
+   !> is repeated with the elements halved (elements_per_sample doubled), at
+   !> most pad_levels times (to 16 times the value given, and within
+   !> max_elements_per_sample), and the refined run replaces that speed's
+   !> results (copy_speed: mu, its parts and every per-speed output, with a
+   !> tolerance its accuracy record too). With series every speed runs at
+   !> each level and takes the last level's results, so that the series and
+   !> the means come from one pad. A level that fails, or a speed still short
+   !> at the last, keeps the finest run made, with a warning.
+   subroutine resolve_pad(m, z, dx, closed, speeds_kmh, want_series, res)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
+      logical, intent(in) :: closed, want_series
+      type(sim_result_type), intent(inout) :: res
+      type(model_type) :: mc
+      type(sim_result_type) :: r
+      type(error_type), allocatable :: err
+      integer, allocatable :: group(:), idx(:)
+      logical, allocatable :: active(:)
+      integer :: ns, j, k, level, eps, cap
+      real(wp) :: target
+      character(len=:), allocatable :: limit
+      ns = size(speeds_kmh)
+      target = real(m%min_contacts, wp)
+      idx = [(j, j = 1, ns)]
+      active = [(short_of(res, j), j = 1, ns)]
+      cap = min(max_elements_per_sample, m%elements_per_sample * 2**pad_levels)
+      eps = m%elements_per_sample
+      mc = m
+      mc%error_estimate = .false.
+      mc%min_contacts = 0
+      do level = 1, pad_levels
+         if (.not. any(active)) exit
+         if (2 * eps > cap) exit
+         eps = 2 * eps
+         mc%elements_per_sample = eps
+         group = pack(idx, active)
+         if (want_series) group = idx
+         call run_grids(mc, z, dx, closed, speeds_kmh(group), want_series, r, err)
+         if (allocated(err)) then
+            call add_warning(res%warnings, "&numerics min_contacts = " // &
+               & to_str(m%min_contacts) // ": the pad's elements could not be refined " // &
+               & "beyond elements_per_sample = " // to_str(eps / 2) // " at " // &
+               & to_str(speeds_kmh(group(1))) // " km/h (a run with elements_per_sample = " &
+               & // to_str(eps) // " could not be made on this profile; its check said: " // &
+               & err%message // "); the results there are those at " // to_str(eps / 2))
+            deallocate(err)
+            return
+         end if
+         do k = 1, size(group)
+            j = group(k)
+            call copy_speed(r, k, res, j)
+            res%elements_per_sample_used(j) = eps
+            res%speed_n_elements(j) = r%n_elements
+            active(j) = short_of(r, k)
+         end do
+         if (len(r%effects) > len(res%effects)) res%effects = r%effects
+         if (want_series) then
+            call move_series(r, res)
+            res%n_elements = r%n_elements
+            res%n_spinup = r%n_spinup
+         end if
+      end do
+      limit = "the largest allowed"
+      if (cap == m%elements_per_sample * 2**pad_levels) &
+         & limit = "the most it refines to: 16 times the value given"
+      do j = 1, ns
+         if (.not. active(j)) cycle
+         call add_warning(res%warnings, "&numerics min_contacts = " // &
+            & to_str(m%min_contacts) // " not reached at " // to_str(speeds_kmh(j)) // &
+            & " km/h: at elements_per_sample = " // &
+            & to_str(res%elements_per_sample_used(j)) // " (" // limit // &
+            & ") the pad stood on " // to_str(round_sig(contacts_touching(res, j), 3)) // &
+            & " elements in contact on average; give a larger elements_per_sample to " // &
+            & "start from, or a smaller min_contacts")
+      end do
+   contains
+      !> Whether the pad stood on fewer than the target at speed j of `rr`
+      !> (a pad the film carried all along has no contacts to resolve).
+      pure logical function short_of(rr, jj)
+         type(sim_result_type), intent(in) :: rr
+         integer, intent(in) :: jj
+         real(wp) :: c
+         c = contacts_touching(rr, jj)
+         short_of = c > 0.0_wp .and. c < target
+      end function short_of
+   end subroutine resolve_pad
+
    !> The error estimate of a run at tolerance = 0 (&numerics
    !> error_estimate), made on the run `res` as reported (the pad's grid
    !> phases merged); the result reported stays the run's own.
@@ -673,27 +765,18 @@ contains
    !> max_elements_per_sample) is replaced by the other kind; if that fails
    !> too, the run has no estimate and a warning says why; warn_estimate
    !> warns where the estimate is large.
-   subroutine estimate_step_error(m, speeds_kmh, res, runner)
+   subroutine estimate_step_error(m, z, dx, closed, speeds_kmh, res)
       type(model_type), intent(in) :: m
-      real(wp), intent(in) :: speeds_kmh(:)
+      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
+      logical, intent(in) :: closed
       type(sim_result_type), intent(inout) :: res
-      interface
-         !> The run at `mm` for `speeds` as the reported one was made.
-         subroutine runner(mm, speeds, out, err)
-            import :: model_type, wp, sim_result_type, error_type
-            type(model_type), intent(in) :: mm
-            real(wp), intent(in) :: speeds(:)
-            type(sim_result_type), intent(out) :: out
-            type(error_type), allocatable, intent(out) :: err
-         end subroutine runner
-      end interface
       type(model_type) :: mc
       type(sim_result_type) :: r
       type(error_type), allocatable :: err
       integer, allocatable :: group(:), idx(:)
-      logical, allocatable :: active(:), by_elements(:), done(:), blocked(:)
+      logical, allocatable :: active(:), by_elements(:), done(:), blocked(:), want(:)
       real(wp), allocatable :: pass_mu(:)
-      integer :: ns, j, k, eps, level
+      integer :: ns, j, k, e, level, cap
       character(len=:), allocatable :: why
       ns = size(speeds_kmh)
       allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), &
@@ -702,41 +785,51 @@ contains
       res%mu_error = 0.0_wp
       res%substeps_used = m%substeps
       res%extrapolated = .false.
-      res%estimate_elements_per_sample = m%elements_per_sample
-      res%refined_elements_per_sample = m%elements_per_sample
+      res%estimate_elements_per_sample = res%elements_per_sample_used
+      res%refined_elements_per_sample = res%elements_per_sample_used
       res%refined_mu = res%mu
       res%refined_contacts = [(contacts_touching(res, j), j = 1, ns)]
       idx = [(j, j = 1, ns)]
-      ! the levels: the elements halved while the pad stands on too few
+      ! the levels: the elements halved while the pad stands on too few, each
+      ! speed from its run's elements (min_contacts may have refined them),
+      ! to at most pad_levels halvings of the value given in all
       active = [(unresolved_contacts(res, j), j = 1, ns)]
-      allocate(blocked(ns))
+      allocate(blocked(ns), want(ns))
       blocked = .false.
-      eps = m%elements_per_sample
+      cap = min(max_elements_per_sample / 2, m%elements_per_sample * 2**pad_levels)
       mc = m
       mc%error_estimate = .false.
+      mc%min_contacts = 0
       do level = 1, pad_levels
-         if (.not. any(active)) exit
-         if (2 * eps > max_elements_per_sample / 2) exit
-         eps = 2 * eps
-         mc%elements_per_sample = eps
-         group = pack(idx, active)
-         call runner(mc, speeds_kmh(group), r, err)
-         if (allocated(err)) then
-            call add_warning(res%warnings, "&numerics error_estimate: the pad's elements " // &
-               & "could not be refined beyond elements_per_sample = " // to_str(eps / 2) // &
-               & " at " // to_str(speeds_kmh(group(1))) // " km/h (a run with elements_" // &
-               & "per_sample = " // to_str(eps) // " could not be made on this profile; " // &
-               & "its check said: " // err%message // "); the estimate is made from there")
-            deallocate(err)
-            blocked(group) = .true.
-            exit
-         end if
-         do k = 1, size(group)
-            j = group(k)
-            res%refined_mu(j) = r%mu(k)
-            res%refined_elements_per_sample(j) = eps
-            res%refined_contacts(j) = contacts_touching(r, k)
-            active(j) = unresolved_contacts(r, k)
+         want = active
+         do while (any(want))
+            e = minval(res%refined_elements_per_sample, mask=want)
+            group = pack(idx, want .and. res%refined_elements_per_sample == e)
+            want = want .and. res%refined_elements_per_sample /= e
+            if (2 * e > cap) then
+               active(group) = .false.
+               cycle
+            end if
+            mc%elements_per_sample = 2 * e
+            call run_grids(mc, z, dx, closed, speeds_kmh(group), .false., r, err)
+            if (allocated(err)) then
+               call add_warning(res%warnings, "&numerics error_estimate: the pad's elements " &
+                  & // "could not be refined beyond elements_per_sample = " // to_str(e) // &
+                  & " at " // to_str(speeds_kmh(group(1))) // " km/h (a run with elements_" // &
+                  & "per_sample = " // to_str(2 * e) // " could not be made on this profile; " &
+                  & // "its check said: " // err%message // "); the estimate is made from there")
+               deallocate(err)
+               blocked(group) = .true.
+               active(group) = .false.
+               cycle
+            end if
+            do k = 1, size(group)
+               j = group(k)
+               res%refined_mu(j) = r%mu(k)
+               res%refined_elements_per_sample(j) = 2 * e
+               res%refined_contacts(j) = contacts_touching(r, k)
+               active(j) = unresolved_contacts(r, k)
+            end do
          end do
       end do
       ! the last pass from each speed's level: half the elements where the pad
@@ -790,6 +883,7 @@ contains
                want = want .and. res%refined_elements_per_sample /= e
                mc = m
                mc%error_estimate = .false.
+               mc%min_contacts = 0
                mc%elements_per_sample = e
                if (elements_kind) then
                   if (2 * e > max_elements_per_sample) then
@@ -806,7 +900,7 @@ contains
                   mc%time_scheme = "euler"
                   mc%substeps = 2 * m%substeps
                end if
-               call runner(mc, speeds_kmh(group), r, err)
+               call run_grids(mc, z, dx, closed, speeds_kmh(group), .false., r, err)
                if (allocated(err)) then
                   if (elements_kind) then
                      why = ": its pass with the pad's elements halved (elements_per_sample = " &
@@ -858,9 +952,12 @@ contains
    pure real(wp) function contacts_touching(res, j) result(contacts)
       type(sim_result_type), intent(in) :: res
       integer, intent(in) :: j
+      integer :: n
       contacts = 0.0_wp
       if (res%hydroplaning_fraction(j) >= 1.0_wp) return
-      contacts = res%contact_fraction(j) * real(res%n_elements, wp) / &
+      n = res%n_elements
+      if (allocated(res%speed_n_elements)) n = res%speed_n_elements(j)
+      contacts = res%contact_fraction(j) * real(n, wp) / &
          & (1.0_wp - res%hydroplaning_fraction(j))
    end function contacts_touching
 
@@ -873,7 +970,7 @@ contains
    subroutine warn_estimate(m, res)
       type(model_type), intent(in) :: m
       type(sim_result_type), intent(inout) :: res
-      integer :: worst, j, e
+      integer :: worst, j, e, used
       real(wp) :: share, worst_share
       character(len=:), allocatable :: off
       if (.not. allocated(res%mu_error)) return
@@ -888,9 +985,10 @@ contains
                & " elements in contact on average (fewer than " // &
                & to_str(nint(contacts_resolved)) // "), where mu also depends on how " // &
                & "finely the elements resolve the contacts, which the tolerance does not " // &
-               & "refine: raise &numerics elements_per_sample (from " // &
-               & to_str(m%elements_per_sample) // ") until mu settles (docs/accuracy.md, " // &
-               & """The pad's resolution"")")
+               & "refine: set &numerics min_contacts = " // to_str(nint(contacts_resolved)) // &
+               & ", or raise elements_per_sample (from " // &
+               & to_str(res%elements_per_sample_used(j)) // ") until mu settles " // &
+               & "(docs/accuracy.md, ""The pad's resolution"")")
             exit
          end do
          return
@@ -912,25 +1010,27 @@ contains
          & // " (" // to_str(round_sig(100.0_wp * min(worst_share, 1.0e6_wp), 2)) // &
          & " % of mu " // to_str(round_sig(res%mu(worst), 3)) // ") at " // &
          & to_str(res%speed_kmh(worst)) // " km/h from the pad's "
-      if (res%refined_elements_per_sample(worst) > m%elements_per_sample) then
+      used = res%elements_per_sample_used(worst)
+      if (res%refined_elements_per_sample(worst) > used) then
          e = res%refined_elements_per_sample(worst)
          call add_warning(res%warnings, off // "elements: it stood on " // &
             & to_str(round_sig(contacts_touching(res, worst), 3)) // &
             & " elements in contact on average; at elements_per_sample = " // to_str(e) // &
-            & " (the elements " // to_str(e / m%elements_per_sample) // " times finer) it " // &
+            & " (the elements " // to_str(e / used) // " times finer) it " // &
             & "stood on " // to_str(round_sig(res%refined_contacts(worst), 3)) // " and " // &
             & "gave mu = " // to_str(round_sig(res%refined_mu(worst), 4)) // &
             & " (mu_error_estimate: that change of mu plus three times the change of one " // &
-            & "more halving): set &numerics elements_per_sample to " // to_str(e) // &
+            & "more halving): set &numerics min_contacts = " // to_str(nint(contacts_resolved)) &
+            & // " to report the refined pad, or elements_per_sample to " // to_str(e) // &
             & " or more, and substeps, until mu settles (docs/accuracy.md, ""The pad's " // &
             & "resolution"")")
-      else if (res%estimate_elements_per_sample(worst) > m%elements_per_sample) then
+      else if (res%estimate_elements_per_sample(worst) > used) then
          call add_warning(res%warnings, off // "elements: it stood on " // &
             & to_str(round_sig(contacts_touching(res, worst), 3)) // &
             & " elements in contact on average (mu_error_estimate: three times the change " // &
             & "with the elements halved, elements_per_sample doubled): raise &numerics " // &
             & "elements_per_sample (e.g. to " // &
-            & to_str(min(max_elements_per_sample, 4 * m%elements_per_sample)) // &
+            & to_str(min(max_elements_per_sample, 4 * used)) // &
             & ") until mu settles (docs/accuracy.md, ""The pad's resolution"")")
       else
          call add_warning(res%warnings, off // "step along " // &
@@ -967,6 +1067,13 @@ contains
       to%film_load_share(j) = from%film_load_share(k)
       to%mean_water_thickness(j) = from%mean_water_thickness(k)
       to%film_unsettled(j) = from%film_unsettled(k)
+      ! a tolerance's own accuracy record, where both runs have one
+      if (allocated(from%mu_error) .and. allocated(to%mu_error)) then
+         to%mu_error(j) = from%mu_error(k)
+         to%substeps_used(j) = from%substeps_used(k)
+         to%extrapolated(j) = from%extrapolated(k)
+         to%estimate_elements_per_sample(j) = from%estimate_elements_per_sample(k)
+      end if
    end subroutine copy_speed
 
    !> The series of the last level (every speed refined together).
