@@ -126,6 +126,46 @@ def test_pavefric_config_points_at_the_installed_library(pc_env):
         assert lib in needed, lib
 
 
+def _stack_flags(path: Path) -> int | None:
+    """The flags of an ELF file's PT_GNU_STACK program header (None if it
+    has none: the stack is then executable on most targets)."""
+    import struct
+
+    data = path.read_bytes()
+    assert data[:4] == b"\x7fELF", path
+    wide, order = data[4] == 2, "<" if data[5] == 1 else ">"
+    if wide:
+        phoff, = struct.unpack_from(order + "Q", data, 0x20)
+        phentsize, phnum = struct.unpack_from(order + "HH", data, 0x36)
+    else:
+        phoff, = struct.unpack_from(order + "I", data, 0x1C)
+        phentsize, phnum = struct.unpack_from(order + "HH", data, 0x2A)
+    for k in range(phnum):
+        at = phoff + k * phentsize
+        p_type, = struct.unpack_from(order + "I", data, at)
+        if p_type == 0x6474E551:                      # PT_GNU_STACK
+            return struct.unpack_from(order + "I", data, at + (4 if wide else 24))[0]
+    return None
+
+
+def test_nothing_installed_needs_an_executable_stack(pc_env):
+    """The extension, the library and the program ask for a stack that is not
+    executable. An internal procedure passed as an argument that reads its
+    host's variables needs a trampoline, which marks the object as needing
+    an executable stack; glibc 2.41 and later then refuse to load the
+    library ("cannot enable executable stack"), so `import pavefric` failed
+    on newer distributions (0.1.x: pavefric_simulate's error-estimate runner
+    and the program's announce callback). The build now stops at one
+    (-Werror=trampolines)."""
+    libdir = Path(pkg_config(pc_env, "--variable=libdir")[0]).resolve()
+    from pavefric import _core
+    program = Path(pavefric.__file__).parent / "bin" / "pavefric"
+    for path in (Path(_core.__file__), libdir / "libpavefric.so", program):
+        flags = _stack_flags(path.resolve())
+        assert flags is not None, f"{path}: no PT_GNU_STACK header"
+        assert not flags & 0x1, f"{path}: needs an executable stack (flags {flags:#x})"
+
+
 # --- must-show 2: C and Fortran outside the tree reproduce the program ----------
 
 @pytest.mark.parametrize("scene", [WET, CAPTIF], ids=["ctm_wet", "captif_station0"])

@@ -45,7 +45,7 @@ contains
       type(nc_writer_type) :: w
       integer :: stat, d_p, d_d, d_s, d_name, d_msg, d_warn, np, nd, ns, lname, lmsg, lwarn, i, k
       integer :: v_warn, v_nwarn
-      integer :: v_muh, v_mua, v_mue, v_eps
+      integer :: v_muh, v_mua, v_mue, v_eps, v_used
       integer :: v_num, v_name, v_depth, v_speed, v_kmh, v_mu, v_wet, v_hyd, v_res, v_ncl, v_mpd, v_rh
       integer :: v_rs, v_status, v_err, v_chain, v_pre(10)
       real(wp), allocatable :: a(:,:,:), t(:)
@@ -180,6 +180,11 @@ contains
             & "only, more where the pad's elements were halved (it stood on fewer than 4 " // &
             & "elements in contact, or the exact integrator ran); missing where no estimate " // &
             & "was made", v_eps)
+         call w%def("elements_per_sample_used", nf90_int64, [d_s, d_d, d_p], "1", &
+            & "elements_per_sample of the run the results come from (as in a single scene, " // &
+            & "docs/outputs.md): the scene's, or more where &numerics min_contacts halved " // &
+            & "the pad's elements until it stood on that many in contact; missing where the " // &
+            & "profile failed", v_used)
          call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
             & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
          call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
@@ -253,14 +258,16 @@ contains
          end do
          if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_ncl, 0, i8fill), &
             & "fill value")
+         if (any_failed) call w%check(nf90_def_var_fill(w%ncid, v_used, 0, i8fill), &
+            & "fill value")
          ! missing wherever no estimate was made, not only where a profile failed
          call w%check(nf90_def_var_fill(w%ncid, v_eps, 0, i8fill), "fill value")
          do k = 1, 10
             call fillatt([v_mu, v_muh, v_mua, v_mue, v_wet, v_hyd, v_res, v_mpd, v_rh, v_rs], k)
          end do
-         do k = 1, 9
-            call coordatt([v_mu, v_muh, v_mua, v_mue, v_eps, v_wet, v_hyd, v_res, v_ncl], k, &
-               & result_coords)
+         do k = 1, 10
+            call coordatt([v_mu, v_muh, v_mua, v_mue, v_eps, v_used, v_wet, v_hyd, v_res, &
+               & v_ncl], k, result_coords)
          end do
          do k = 1, 5
             call coordatt([v_mpd, v_rh, v_rs, v_status, v_err], k, profile_coords)
@@ -325,6 +332,10 @@ contains
                & ok(i) .and. blocks(i)%estimate_eps >= 1.0_wp)
          end do
          call w%check(nf90_put_var(w%ncid, v_eps, c), "estimate_elements_per_sample")
+         do i = 1, np
+            c(:, :, i) = merge(nint(blocks(i)%eps_used, i8), i8fill, ok(i))
+         end do
+         call w%check(nf90_put_var(w%ncid, v_used, c), "elements_per_sample_used")
          do i = 1, np
             a(:, :, i) = merge(blocks(i)%wet, fill, ok(i))
          end do

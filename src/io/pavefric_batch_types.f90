@@ -9,7 +9,7 @@ module pavefric_batch_types
    private
 
    public :: batch_type, block_type, string_type, block_pack, block_unpack, block_values
-   public :: block_allocate, n_head, status_computed, status_failed, printable_utf8
+   public :: block_allocate, block_clear, n_head, status_computed, status_failed, printable_utf8
 
    !> Profile status: not computed yet, computed, failed (message says why).
    integer, parameter :: status_computed = 1, status_failed = 2
@@ -74,6 +74,10 @@ module pavefric_batch_types
       !> the scene's where the pad's elements were halved; the scene's with
       !> a tolerance); -1 where the run made no estimate.
       real(wp), allocatable :: estimate_eps(:,:)
+      !> elements_per_sample of the run the results come from (more than the
+      !> scene's where &numerics min_contacts refined the pad); 0 where the
+      !> profile failed.
+      real(wp), allocatable :: eps_used(:,:)
       real(wp), allocatable :: n_clamped(:,:)
       logical :: viscous = .false., bearing = .false.
       !> Warnings about the profile and its results (those a single scene of
@@ -89,7 +93,7 @@ contains
    !> Number of reals in a packed block.
    pure integer function block_values(batch)
       type(batch_type), intent(in) :: batch
-      block_values = n_head + 9 * batch%n_speeds * batch%n_depths
+      block_values = n_head + 10 * batch%n_speeds * batch%n_depths
    end function block_values
 
    !> Result arrays of the batch's shape, zero.
@@ -104,12 +108,23 @@ contains
       if (allocated(blk%mu_hysteresis)) deallocate(blk%mu_hysteresis, blk%mu_adhesion)
       if (allocated(blk%mu_error)) deallocate(blk%mu_error)
       if (allocated(blk%estimate_eps)) deallocate(blk%estimate_eps)
+      if (allocated(blk%eps_used)) deallocate(blk%eps_used)
       allocate(blk%mu(ns, nd), blk%wet(ns, nd), blk%hydroplaning(ns, nd), blk%residual(ns, nd), &
          & blk%n_clamped(ns, nd), blk%mu_hysteresis(ns, nd), blk%mu_adhesion(ns, nd), &
-         & blk%mu_error(ns, nd), blk%estimate_eps(ns, nd))
+         & blk%mu_error(ns, nd), blk%estimate_eps(ns, nd), blk%eps_used(ns, nd))
+      call block_clear(blk)
+   end subroutine block_allocate
+
+   !> A block's results as before any run (a failed profile's): zero, and
+   !> -1 where "none was made" differs from 0.
+   pure subroutine block_clear(blk)
+      type(block_type), intent(inout) :: blk
       blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
       blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1; blk%estimate_eps = -1
-   end subroutine block_allocate
+      blk%eps_used = 0
+      blk%viscous = .false.
+      blk%bearing = .false.
+   end subroutine block_clear
 
    !> A block as reals (for the journal and for MPI); the digest and the
    !> message travel beside them as text.
@@ -134,7 +149,8 @@ contains
       values(k+1:k+m) = reshape(blk%mu_hysteresis, [m]); k = k + m
       values(k+1:k+m) = reshape(blk%mu_adhesion, [m]);   k = k + m
       values(k+1:k+m) = reshape(blk%mu_error, [m]);     k = k + m
-      values(k+1:k+m) = reshape(blk%estimate_eps, [m])
+      values(k+1:k+m) = reshape(blk%estimate_eps, [m]); k = k + m
+      values(k+1:k+m) = reshape(blk%eps_used, [m])
    contains
       pure real(wp) function flag(yes)
          logical, intent(in) :: yes
@@ -192,7 +208,8 @@ contains
       blk%mu_hysteresis = reshape(values(k+1:k+m), [ns, nd]); k = k + m
       blk%mu_adhesion = reshape(values(k+1:k+m), [ns, nd]);   k = k + m
       blk%mu_error = reshape(values(k+1:k+m), [ns, nd]);     k = k + m
-      blk%estimate_eps = reshape(values(k+1:k+m), [ns, nd])
+      blk%estimate_eps = reshape(values(k+1:k+m), [ns, nd]); k = k + m
+      blk%eps_used = reshape(values(k+1:k+m), [ns, nd])
       if (.not. allocated(blk%message)) blk%message = ""
    contains
       !> Whether v is a whole number in [lo, hi] (NaN is not).

@@ -30,7 +30,8 @@ module pavefric_batch
    use pavefric_fsys, only: output_guard_type, check_output_path, os_message
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
-      & block_unpack, block_values, block_allocate, status_computed, status_failed, printable_utf8
+      & block_unpack, block_values, block_allocate, block_clear, status_computed, status_failed, &
+      & printable_utf8
    implicit none
    private
 
@@ -700,6 +701,7 @@ contains
       call move_alloc(from%mu_adhesion, to%mu_adhesion)
       call move_alloc(from%mu_error, to%mu_error)
       call move_alloc(from%estimate_eps, to%estimate_eps)
+      call move_alloc(from%eps_used, to%eps_used)
       call move_alloc(from%message, to%message)
    end subroutine move_alloc_block
 
@@ -927,6 +929,7 @@ contains
                blk%mu_error(:, d) = res%mu_error
                blk%estimate_eps(:, d) = real(res%estimate_elements_per_sample, wp)
             end if
+            blk%eps_used(:, d) = real(res%elements_per_sample_used, wp)
             blk%wet(:, d) = res%wet_fraction
             blk%hydroplaning(:, d) = res%hydroplaning_fraction
             blk%residual(:, d) = res%max_balance_residual
@@ -953,10 +956,7 @@ contains
       if (allocated(error)) then
          blk%status = status_failed
          blk%message = printable_utf8(error%message)
-         blk%mu = 0; blk%wet = 0; blk%hydroplaning = 0; blk%residual = 0; blk%n_clamped = 0
-         blk%mu_hysteresis = 0; blk%mu_adhesion = 0; blk%mu_error = -1; blk%estimate_eps = -1
-         blk%viscous = .false.
-         blk%bearing = .false.
+         call block_clear(blk)
          return
       end if
       blk%status = status_computed

@@ -372,7 +372,8 @@ def _pad_resolution_section() -> list[str]:
         "to 340 times the run), then makes one more pass (half the elements again where it "
         "still stands on fewer, else half the step), and reports the change the refinement made "
         "plus three times that pass's change. Its warning gives the refined pad's mu and the "
-        "`elements_per_sample` to set; the reported mu stays the run's own. A run with "
+        "`elements_per_sample` to set; the reported mu stays the run's own unless "
+        "`&numerics min_contacts` asks for the refined pad (below). A run with "
         "`&numerics tolerance` (which refines the time step only) warns that its tolerance "
         "does not cover the pad there. Speeds the exact integrator ran (a dry Kelvin–Voigt "
         "pad, `time_scheme = 'auto'` or `'exact'`) have no error from the step but one from "
@@ -390,13 +391,31 @@ def _pad_resolution_section() -> list[str]:
     ]
     if not (Path(pad_resolution.SCENE).exists() and Path(pad_resolution.COMPOUND).exists()):
         return lines + ["(run the command from the repository's root for the table)", ""]
-    return (lines + pad_resolution.markdown(pad_resolution.table()) + [
+    rows = pad_resolution.table()
+    surfaces = pad_resolution.surface_rows()
+    return (lines + pad_resolution.markdown(rows) + [
         "",
         f"The test set: the paper's surfaces (`inputs/surfaces/*.nml`, dry), the compound at "
         f"{' and '.join(f'{t:g}' for t in pad_resolution.SURFACE_TEMPERATURES)} °C, mu_loc = 0, "
         f"{pad_resolution.SPEED:g} km/h, resolved as above:",
         "",
-        *pad_resolution.surface_markdown(pad_resolution.surface_rows()), ""])
+        *pad_resolution.surface_markdown(surfaces), "",
+        f"### `&numerics min_contacts = {pad_resolution.MIN_CONTACTS}`: the resolved pad "
+        "reported",
+        "",
+        "The default reports the paper's discretisation, one element per sample, and says "
+        "how far off it is. `&numerics min_contacts = n` reports the refined pad instead: at "
+        "each speed where the pad stood on fewer than n elements in contact, the elements are "
+        "halved until it stands on n (at most 4 times; `elements_per_sample_used` records "
+        "where each speed ended), and that run's mu, its parts and every per-speed output "
+        "are reported, with an estimate of its own error (three times the change at half the "
+        "step, or at half the elements where it still stands on fewer). The levels are the "
+        "ones the default's estimate runs anyway, so with the estimate on it costs about what "
+        "the default run costs. A pad on enough elements is not touched (the paper's rubber "
+        "row: the same bits). On the rows of both tables above (time: the best of three, "
+        "both with their estimates):",
+        "",
+        *pad_resolution.min_contacts_markdown(rows + surfaces), ""])
 
 
 def _span(values, scale=1e-6, fmt="{:.0f}") -> str:

@@ -1,0 +1,217 @@
+"""&numerics min_contacts (issues 20 and 23): a pad that stands on one or two
+of its elements gives a friction set by the elements' size, not the road's
+(docs/accuracy.md, "The pad's resolution"); with min_contacts = n each speed
+where it stood on fewer than n elements in contact is rerun with the
+elements halved until it stands on n (at most 4 times), and that run is
+reported, its elements_per_sample in elements_per_sample_used. 0, the
+default, is the paper's discretisation."""
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pavefric
+from conftest import ROOT, run_program, write_scene
+
+SPEEDS = [5.0, 20.0, 80.0]
+
+
+def _compound():
+    from pavefric.rubber import compound
+    return {k: v for k, v in compound(ROOT / "inputs" / "rubber" / "tread_compound.nml").items()
+            if k != "temperature"}
+
+
+def _quiet(*args, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pavefric.PavefricWarning)
+        return pavefric.simulate(*args, **kw)
+
+
+def _contacts(ds, k):
+    """Elements in contact at speed k of a run made at one elements_per_sample."""
+    return float(ds["contact_fraction"].values[k]) * ds.attrs["pad_elements"]
+
+
+@pytest.fixture(scope="module")
+def cold(profile_m):
+    """The shipped compound at 0 C, mu_loc = 0: the pad on 1.2 to 1.5 of
+    its 23 elements (the issue-20 reproducer's regime)."""
+    return dict(mu_loc=0.0, temperature=0.0, **_compound())
+
+
+def test_each_speed_is_the_run_at_the_elements_it_names(profile_m, cold):
+    """Every per-speed output at speed j is the one of a plain run at
+    elements_per_sample_used[j]; there the pad stands on at least 4
+    elements, at half of it on fewer (so no more refinement than needed)."""
+    ds = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4, **cold)
+    used = ds["elements_per_sample_used"].values
+    assert used.dtype.kind == "i"
+    assert np.all(used >= 2) and np.all(used <= 16)
+    for k, speed in enumerate(SPEEDS):
+        own = _quiet(profile_m, 0.87e-3, [speed], elements_per_sample=int(used[k]),
+                     error_estimate=False, **cold)
+        half = _quiet(profile_m, 0.87e-3, [speed], elements_per_sample=int(used[k]) // 2,
+                      error_estimate=False, **cold)
+        for name in ("mu", "mu_hysteresis", "mu_adhesion", "contact_fraction",
+                     "max_compression", "max_balance_residual", "memory_updates"):
+            assert ds[name].values[k] == own[name].values[0], (name, speed)
+        assert _contacts(own, 0) >= 4.0 > _contacts(half, 0), speed
+    # the parts still add up, and mu_loc = 0 leaves no adhesion
+    assert np.allclose(ds["mu_hysteresis"] + ds["mu_adhesion"], ds["mu"], rtol=0, atol=1e-12)
+    assert np.all(ds["mu_adhesion"].values == 0.0)
+
+
+def test_the_paper_discretisation_stays_the_default(profile_m, cold):
+    """min_contacts = 0 (the default) runs the elements as given: the same
+    numbers as naming it, elements_per_sample_used the value given, and a
+    friction far below the resolved one on this pad (the reason for the
+    knob: 0.011 against 0.043 at 20 km/h)."""
+    default = _quiet(profile_m, 0.87e-3, SPEEDS, **cold)
+    named = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=0, **cold)
+    resolved = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4, **cold)
+    xr.testing.assert_identical(default.drop_attrs(), named.drop_attrs())
+    assert np.all(default["elements_per_sample_used"].values == 1)
+    assert np.all(default["mu"].values < 0.5 * resolved["mu"].values)
+    assert np.all(resolved["elements_per_sample_used"].values >= 2)
+
+
+def test_speeds_on_enough_elements_are_left_alone(profile_m):
+    """The paper's rubber stands on 4 to 15 elements: min_contacts = 4
+    changes nothing there, not a bit."""
+    plain = _quiet(profile_m, 0.87e-3, SPEEDS)
+    asked = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4)
+    assert all(_contacts(plain, k) >= 4.0 for k in range(len(SPEEDS)))
+    for name in ("mu", "mu_hysteresis", "mu_error_estimate", "estimate_elements_per_sample"):
+        np.testing.assert_array_equal(plain[name].values, asked[name].values)
+    assert np.all(asked["elements_per_sample_used"].values == 1)
+
+
+def test_the_estimate_is_the_refined_runs_own(profile_m, cold):
+    """mu_error_estimate is the error of the reported (refined) mu: on 4
+    contacts or more, three times its change at half the step; it is no
+    larger than the unrefined run's estimate, which carried the elements'
+    error; and the refined mu is the one the default run's warning named."""
+    with pytest.warns(pavefric.PavefricWarning, match=r"gave mu = (\d\.\d+)") as said:
+        default = pavefric.simulate(profile_m, 0.87e-3, [20.0], **cold)
+    named = [w for w in said if "gave mu" in str(w.message)][0]
+    ds = _quiet(profile_m, 0.87e-3, [20.0], min_contacts=4, **cold)
+    used = int(ds["elements_per_sample_used"].values[0])
+    half_step = _quiet(profile_m, 0.87e-3, [20.0], elements_per_sample=used, substeps=2,
+                       time_scheme="euler", error_estimate=False, **cold)
+    mu = ds["mu"].values[0]
+    assert ds["mu_error_estimate"].values[0] == pytest.approx(
+        3.0 * abs(mu - half_step["mu"].values[0]), rel=1e-12, abs=1e-15)
+    assert int(ds["estimate_elements_per_sample"].values[0]) == used
+    assert ds["mu_error_estimate"].values[0] < default["mu_error_estimate"].values[0]
+    assert f"gave mu = {mu:.4g}" in str(named.message)
+    assert f"elements_per_sample = {used}" in str(named.message)
+    assert "min_contacts" in str(named.message)      # the warning names the knob
+
+
+def test_series_come_from_one_pad(profile_m, cold):
+    """With series every speed runs at the finest elements any needed, so
+    that each speed's series and its mean come from the same pad."""
+    ds = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4, series=True, **cold)
+    used = ds["elements_per_sample_used"].values
+    assert np.all(used == used.max()) and used.max() >= 2
+    own = _quiet(profile_m, 0.87e-3, SPEEDS, elements_per_sample=int(used.max()), series=True,
+                 error_estimate=False, **cold)
+    np.testing.assert_array_equal(ds["mu"].values, own["mu"].values)
+    np.testing.assert_array_equal(ds["mu_inst"].values, own["mu_inst"].values)
+    assert ds.attrs["pad_elements"] == own.attrs["pad_elements"]
+
+
+def test_a_target_out_of_reach_says_so(profile_m, cold):
+    """A pad of 23 elements cannot stand on 1000: the elements are refined
+    4 times (elements_per_sample 16), the results are that run's, finite,
+    and a warning names the speed, what was reached and what to change."""
+    with pytest.warns(pavefric.PavefricWarning,
+                      match=r"min_contacts = 1000 not reached at 20 km/h.*elements_per_sample "
+                            r"= 16.*stood on"):
+        ds = pavefric.simulate(profile_m, 0.87e-3, [20.0], min_contacts=1000,
+                               error_estimate=False, **cold)
+    assert int(ds["elements_per_sample_used"].values[0]) == 16
+    assert np.isfinite(ds["mu"].values[0])
+    assert "min_contacts = 1000 not reached" in ds.attrs["warnings"]
+
+
+def test_with_a_tolerance_the_refined_pad_is_converged_in_time(profile_m, cold):
+    """min_contacts and tolerance together: the pad refined, then the step
+    halved at that pad until the tolerance is met; the tolerance's warning
+    that it does not cover a pad on few elements is gone."""
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always", pavefric.PavefricWarning)
+        ds = pavefric.simulate(profile_m, 0.87e-3, [20.0], min_contacts=4, tolerance=1e-3,
+                               **cold)
+    assert not any("bounds the error from the time step only" in str(w.message) for w in said)
+    used = int(ds["elements_per_sample_used"].values[0])
+    own = _quiet(profile_m, 0.87e-3, [20.0], elements_per_sample=used, tolerance=1e-3, **cold)
+    assert ds["mu"].values[0] == own["mu"].values[0]
+    assert ds["mu_error_estimate"].values[0] <= 1e-3
+    assert ds["substeps_used"].values[0] == own["substeps_used"].values[0]
+
+
+@pytest.mark.parametrize("value", ["-1", "1001", "2.5", "'four'"])
+def test_a_bad_value_names_the_variable(tmp_path, value):
+    """Bad input: a clear error naming the group, the variable and the value,
+    no output written."""
+    path = write_scene(tmp_path, groups={"numerics": f"min_contacts = {value}"})
+    proc = run_program(path, "-o", tmp_path / "out.nc")
+    assert proc.returncode != 0
+    assert "&numerics" in proc.stderr and "min_contacts" in proc.stderr, proc.stderr
+    assert not list(tmp_path.glob("*.nc"))
+
+
+def test_the_program_and_the_batch_record_it(tmp_path, profile_m):
+    """The program's output and a batch's carry elements_per_sample_used
+    per speed (per depth and profile in a batch), equal to the single runs';
+    a batch without min_contacts records the value given."""
+    import re
+
+    from pavefric.surfaces import write_profile
+
+    d = tmp_path / "p"
+    d.mkdir()
+    write_profile(str(d / "a.txt"), profile_m[:512])
+    write_profile(str(d / "b.txt"), profile_m[512:])
+    rubber = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
+    rubber = re.sub(r"^(\s*)temperature = 20\b", r"\1temperature = 0", rubber, flags=re.M)
+    assert "  temperature = 0" in rubber
+    for label, numerics in (("resolved", "&numerics min_contacts = 4 /\n"), ("paper", "")):
+        scene = tmp_path / f"{label}.nml"
+        scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
+                         "&surface height_unit = 'mm', mu_loc = 0.0 /\n"
+                         "&operation speeds_kmh = 20, 60 /\n" + numerics + rubber)
+        out = tmp_path / f"{label}.nc"
+        r = run_program(str(scene), "-o", str(out))
+        assert r.returncode == 0, r.stderr
+        with xr.open_dataset(out) as ds:
+            used = ds["elements_per_sample_used"].transpose(
+                "profile", "water_depth", "speed_kmh").values
+            mu = ds["mu"].transpose("profile", "water_depth", "speed_kmh").values
+            names = [str(n) for n in ds["profile_name"].values]
+        if label == "paper":
+            assert np.all(used == 1)
+            continue
+        assert np.all(used >= 2), used
+        for i, name in enumerate(names):
+            one = pavefric.read_profile(d / f"{name.split('/')[-1]}.txt")
+            single = _quiet(one.heights, one.dx, [20.0, 60.0], mu_loc=0.0, temperature=0.0,
+                            min_contacts=4, **_compound())
+            np.testing.assert_array_equal(used[i, 0], single["elements_per_sample_used"].values)
+            np.testing.assert_array_equal(mu[i, 0], single["mu"].values)
+
+
+def test_the_program_writes_it(tmp_path):
+    """A scene's NetCDF output has elements_per_sample_used, with its
+    meaning, on the speed dimension."""
+    path = write_scene(tmp_path, groups={"numerics": "min_contacts = 4"})
+    r = run_program(path, "-o", tmp_path / "out.nc")
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(tmp_path / "out.nc") as ds:
+        var = ds["elements_per_sample_used"]
+        assert var.dims == ds["mu"].dims
+        assert "min_contacts" in var.attrs["long_name"]
+        assert np.all(var.values >= 1)
