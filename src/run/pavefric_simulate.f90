@@ -64,7 +64,6 @@ module pavefric_simulate
       end function parallel_ok
    end interface
 
-
    ! The cost model (one thread): a part per profile sample (reading,
    ! preprocessing, texture metrics, writing), a part per refined sample and
    ! pass (the geometry; the error estimate's pass counts), a part per pad
@@ -247,7 +246,10 @@ contains
    !> Run the friction model on heights `z` (m) at spacing `dx` (m) for each
    !> speed in `speeds_kmh`. With &numerics tolerance > 0 the time step is
    !> refined until the estimated error of every speed's friction meets it
-   !> (simulate_to_tolerance); otherwise the knobs are taken as given.
+   !> (simulate_to_tolerance); otherwise the knobs are taken as given. With
+   !> &numerics min_contacts the pad's elements are then refined speed by
+   !> speed (resolve_pad); at tolerance = 0 the error estimate follows
+   !> (estimate_step_error), made on the results as reported.
    subroutine simulate(m, z, dx, closed, speeds_kmh, want_series, res, error)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
@@ -273,7 +275,7 @@ contains
    !> made by it too, so that they are made as the reported run was. (A
    !> module procedure, not one internal to simulate passed as an argument:
    !> that needs a trampoline, an executable stack, which newer C libraries
-   !> refuse to load; tests/test_architecture.py checks.)
+   !> refuse to load; tests/test_api.py checks the installed files.)
    subroutine run_grids(mm, z, dx, closed, speeds, series, out, err)
       type(model_type), intent(in) :: mm
       real(wp), intent(in) :: z(:), dx, speeds(:)

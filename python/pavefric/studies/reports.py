@@ -412,8 +412,13 @@ def _pad_resolution_section() -> list[str]:
         "step, or at half the elements where it still stands on fewer). The levels are the "
         "ones the default's estimate runs anyway, so with the estimate on it costs about what "
         "the default run costs. A pad on enough elements is not touched (the paper's rubber "
-        "row: the same bits). On the rows of both tables above (time: the best of three, "
-        "both with their estimates):",
+        "row: the same bits). On the test set, the six surfaces, its actual error was 2.2 "
+        "to 10.6 times smaller than the default's (0.007–0.091 against 0.026–0.48), its "
+        "estimate 1.11–1.80 times its actual error, its time 0.97–1.01 times the default "
+        "run's. What is left (up to a third of mu: VTAC at 20 °C) is the refined pad's own "
+        "error, from its time step and from what its elements still miss; its estimate "
+        "bounds it on every row, and `tolerance` refines the step. On the rows of both "
+        "tables above (time: the best of three, both with their estimates):",
         "",
         *pad_resolution.min_contacts_markdown(rows + surfaces), ""])
 
