@@ -75,6 +75,24 @@ def short_profile_m() -> np.ndarray:
     return read_heights("synthetic_200.txt")
 
 
+def cold_compound_batch(tmp_path: Path, profile_m: np.ndarray) -> str:
+    """Two profiles for a batch (tmp_path/p/a.txt, b.txt: the halves of
+    `profile_m`) and the shipped tread compound's &rubber group at 0 C (the
+    text returned): a pad that stands on one or two of its elements."""
+    import re
+
+    from pavefric.surfaces import write_profile
+
+    d = tmp_path / "p"
+    d.mkdir()
+    write_profile(str(d / "a.txt"), profile_m[:512])
+    write_profile(str(d / "b.txt"), profile_m[512:])
+    rubber = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
+    rubber = re.sub(r"^(\s*)temperature = 20\b", r"\1temperature = 0", rubber, flags=re.M)
+    assert "reference_temperature = 20" in rubber and "  temperature = 0" in rubber
+    return rubber
+
+
 def write_scene(directory: Path, name: str = "scene", *, profile: np.ndarray | None = None,
                 groups: dict[str, str] | None = None, profile_text: str | None = None) -> Path:
     """A scene file in `directory`; `groups` maps group name -> body text,

@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 
 import pavefric
-from conftest import ROOT, run_program, write_scene
+from conftest import ROOT, cold_compound_batch, run_program, write_scene
 
 SURFACES = ["GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"]
 
@@ -225,17 +225,8 @@ def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
     compound stood on fewer than 4 elements (0 C) and the estimate refined
     them, 1 where the pass halved the time step only (the paper's rubber);
     missing where no estimate was made (error_estimate = .false.)."""
-    import re
-
-    from pavefric.surfaces import write_profile
-
+    rubber = cold_compound_batch(tmp_path, profile_m)
     d = tmp_path / "p"
-    d.mkdir()
-    write_profile(str(d / "a.txt"), profile_m[:512])
-    write_profile(str(d / "b.txt"), profile_m[512:])
-    rubber = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
-    rubber = re.sub(r"^(\s*)temperature = 20\b", r"\1temperature = 0", rubber, flags=re.M)
-    assert "reference_temperature = 20" in rubber and "  temperature = 0" in rubber
     for label, groups, expected in (("compound", rubber, (2, 4, 8)), ("paper", "", (1,))):
         scene = tmp_path / f"{label}.nml"
         scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"

@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 
 import pavefric
-from conftest import ROOT, run_program, write_scene
+from conftest import ROOT, cold_compound_batch, run_program, write_scene
 
 SPEEDS = [5.0, 20.0, 80.0]
 
@@ -168,17 +168,8 @@ def test_the_program_and_the_batch_record_it(tmp_path, profile_m):
     """The program's output and a batch's carry elements_per_sample_used
     per speed (per depth and profile in a batch), equal to the single runs';
     a batch without min_contacts records the value given."""
-    import re
-
-    from pavefric.surfaces import write_profile
-
+    rubber = cold_compound_batch(tmp_path, profile_m)
     d = tmp_path / "p"
-    d.mkdir()
-    write_profile(str(d / "a.txt"), profile_m[:512])
-    write_profile(str(d / "b.txt"), profile_m[512:])
-    rubber = (ROOT / "inputs" / "rubber" / "tread_compound.nml").read_text()
-    rubber = re.sub(r"^(\s*)temperature = 20\b", r"\1temperature = 0", rubber, flags=re.M)
-    assert "  temperature = 0" in rubber
     for label, numerics in (("resolved", "&numerics min_contacts = 4 /\n"), ("paper", "")):
         scene = tmp_path / f"{label}.nml"
         scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
