@@ -96,11 +96,13 @@ program pavefric_main
    else if (.not. is_root()) then
       call parallel_finalize()       ! a single scene runs on rank 0 only
    else
-      ! (print_estimate reads nothing of the program's: an internal procedure
-      ! that did would need a trampoline, an executable stack)
+      ! (print_estimate and print_nothing read nothing of the program's: an
+      ! internal procedure passed as an argument that did would need a
+      ! trampoline, an executable stack; with --quiet the estimate is still
+      ! made, and checked, but not printed)
       if (quiet) then
          call run_scene(scene_path, out_override, command, out_path, res, error, &
-            & warnings=warnings)
+            & warnings=warnings, announce=print_nothing)
       else
          call run_scene(scene_path, out_override, command, out_path, res, error, &
             & warnings=warnings, announce=print_estimate)
@@ -170,6 +172,13 @@ contains
       write(error_unit, '(a)') "pavefric: " // text
       flush(error_unit)
    end subroutine print_estimate
+
+   !> The cost estimate with --quiet: made and checked, not printed.
+   subroutine print_nothing(text)
+      character(len=*), intent(in) :: text
+      ! (never true: it only uses `text`, which -Wall would call unused)
+      if (len(text) < 0) write(error_unit, '(a)') text
+   end subroutine print_nothing
 
    !> Each warning line on stderr (they are also in the output's `warnings`).
    subroutine print_warnings(text)
