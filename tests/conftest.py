@@ -93,6 +93,20 @@ def cold_compound_batch(tmp_path: Path, profile_m: np.ndarray) -> str:
     return rubber
 
 
+def run_cold_batch(tmp_path: Path, label: str, groups: str) -> Path:
+    """The program's batch over cold_compound_batch's profiles (tmp_path/p),
+    dry, mu_loc = 0, at 20 and 60 km/h, with the namelist groups `groups`
+    added; checks it succeeded and returns its output (tmp_path/label.nc)."""
+    scene = tmp_path / f"{label}.nml"
+    scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
+                     "&surface height_unit = 'mm', mu_loc = 0.0 /\n"
+                     "&operation speeds_kmh = 20, 60 /\n" + groups)
+    out = tmp_path / f"{label}.nc"
+    r = run_program(str(scene), "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    return out
+
+
 def write_scene(directory: Path, name: str = "scene", *, profile: np.ndarray | None = None,
                 groups: dict[str, str] | None = None, profile_text: str | None = None) -> Path:
     """A scene file in `directory`; `groups` maps group name -> body text,

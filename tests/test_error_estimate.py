@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 
 import pavefric
-from conftest import ROOT, cold_compound_batch, run_program, write_scene
+from conftest import ROOT, cold_compound_batch, run_cold_batch, run_program, write_scene
 
 SURFACES = ["GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"]
 
@@ -228,14 +228,7 @@ def test_batch_records_which_pass_made_the_estimate(tmp_path, profile_m):
     rubber = cold_compound_batch(tmp_path, profile_m)
     d = tmp_path / "p"
     for label, groups, expected in (("compound", rubber, (2, 4, 8)), ("paper", "", (1,))):
-        scene = tmp_path / f"{label}.nml"
-        scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
-                         "&surface height_unit = 'mm', mu_loc = 0.0 /\n"
-                         "&operation speeds_kmh = 20, 60 /\n" + groups)
-        out = tmp_path / f"{label}.nc"
-        r = run_program(str(scene), "-o", str(out))
-        assert r.returncode == 0, r.stderr
-        with xr.open_dataset(out) as ds:
+        with xr.open_dataset(run_cold_batch(tmp_path, label, groups)) as ds:
             eps = ds["estimate_elements_per_sample"].transpose(
                 "profile", "water_depth", "speed_kmh").values
             names = [str(n) for n in ds["profile_name"].values]

@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 
 import pavefric
-from conftest import ROOT, cold_compound_batch, run_program, write_scene
+from conftest import ROOT, cold_compound_batch, run_cold_batch, run_program, write_scene
 
 SPEEDS = [5.0, 20.0, 80.0]
 
@@ -171,14 +171,7 @@ def test_the_program_and_the_batch_record_it(tmp_path, profile_m):
     rubber = cold_compound_batch(tmp_path, profile_m)
     d = tmp_path / "p"
     for label, numerics in (("resolved", "&numerics min_contacts = 4 /\n"), ("paper", "")):
-        scene = tmp_path / f"{label}.nml"
-        scene.write_text("&batch profiles = 'p/*.txt', depths = 0.0 /\n"
-                         "&surface height_unit = 'mm', mu_loc = 0.0 /\n"
-                         "&operation speeds_kmh = 20, 60 /\n" + numerics + rubber)
-        out = tmp_path / f"{label}.nc"
-        r = run_program(str(scene), "-o", str(out))
-        assert r.returncode == 0, r.stderr
-        with xr.open_dataset(out) as ds:
+        with xr.open_dataset(run_cold_batch(tmp_path, label, numerics + rubber)) as ds:
             used = ds["elements_per_sample_used"].transpose(
                 "profile", "water_depth", "speed_kmh").values
             mu = ds["mu"].transpose("profile", "water_depth", "speed_kmh").values
