@@ -69,9 +69,11 @@ SCENE_VARS = ["speed", "speed_kmh", "mu", "n_clamped", "hydroplaning_fraction", 
 BATCH_VARS = ["depth", "speed", "speed_kmh", "mu", "wet_fraction", "hydroplaning_fraction",
               "max_balance_residual", "n_clamped", "mpd", "rms_height", "rms_slope", "status",
               "mu_hysteresis", "mu_adhesion"]
-# 0.1.0 computed the paper's scheme on the profile's own spacing; the same
-# settings now reproduce it (tests/test_regression.py's 0.1.0 comparisons)
-PAPER = {"numerics": ("friction_scheme", "'paper'"), "pad": ("element_length", "0.0")}
+# 0.1.0 computed the paper's scheme on the profile's own spacing, one
+# element a sample; the same settings now reproduce it
+# (tests/test_regression.py's 0.1.0 comparisons)
+PAPER = {"numerics": [("friction_scheme", "'paper'"), ("min_contacts", "0")],
+         "pad": [("element_length", "0.0")]}
 # ... and the bearing's alpha calibrated then (the default and the scenes'
 # value until it was refitted in 2026-11-26 to 12.0, docs/validation.md)
 PAPER_ALPHA = "11.8"
@@ -225,12 +227,13 @@ def paper_scene(scene: Path, directory: Path) -> Path:
     elif re.search(r"^\s*&water\b", text, re.M | re.I):
         text = re.sub(r"^(\s*&water\b[^\n]*)$", rf"\1\n  alpha = {PAPER_ALPHA}", text,
                       count=1, flags=re.M | re.I)
-    for group, (name, value) in PAPER.items():
+    for group, settings in PAPER.items():
+        lines = "".join(f"\n  {name} = {value}" for name, value in settings)
         pattern = re.compile(rf"^(\s*&{group}\b[^\n]*)$", re.M | re.I)
         if pattern.search(text):
-            text = pattern.sub(lambda m: f"{m.group(1)}\n  {name} = {value}", text, count=1)
+            text = pattern.sub(lambda m: f"{m.group(1)}{lines}", text, count=1)
         else:
-            text += f"\n&{group}\n  {name} = {value}\n/\n"
+            text += f"\n&{group}{lines}\n/\n"
     copy = directory / scene.name
     copy.write_text(text, encoding="utf-8")
     return copy
@@ -266,7 +269,7 @@ def run_case(case, paper: bool = False) -> dict:
     name, z, dx, speeds, kw = case
     kw = dict(kw)
     if paper:
-        kw.update(friction_scheme="paper", element_length=0.0)
+        kw.update(friction_scheme="paper", element_length=0.0, min_contacts=0)
         if kw.get("depth", 0.0) > 0.0:
             kw.setdefault("alpha", float(PAPER_ALPHA))
     closed = kw.pop("closed", True)

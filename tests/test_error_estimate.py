@@ -347,8 +347,10 @@ def test_a_pad_on_few_elements_has_its_resolution_estimated(profile_m, temperatu
     estimate was 0.016 and 0.029; at 0 C, substeps 64 give 0.025). The
     estimate refines the elements until the pad stands on 4 and bounds the
     error; the warning names elements_per_sample and what the refined pad
-    gave."""
-    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=temperature, **_compound())
+    gave. (At min_contacts = 0, the paper's discretisation: the default
+    refines the pad itself, test_min_contacts.)"""
+    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=temperature, min_contacts=0,
+              **_compound())
     with pytest.warns(pavefric.PavefricWarning, match=r"elements_per_sample") as said:
         ds = pavefric.simulate(profile_m, 0.87e-3, **kw)
     assert any("stood on" in str(w.message) and "gave mu" in str(w.message) for w in said)
@@ -380,9 +382,11 @@ def test_a_pad_on_one_element_is_not_estimated_from_one_halving(surface):
     and three times one halving's change was 0.19 to 1.66 of the error
     (GSP: 0.08 where mu is 0.42 off). The estimate refines the elements
     until the pad stands on 4 and bounds the error on each surface (a test
-    set: the rule was set on inputs/ctm_dry.nml's profile)."""
+    set: the rule was set on inputs/ctm_dry.nml's profile). At
+    min_contacts = 0, the paper's discretisation."""
     scene = pavefric.load_scene(ROOT / "inputs" / "surfaces" / f"{surface}.nml")
-    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=0.0, depth=0.0, **_compound())
+    kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=0.0, depth=0.0, min_contacts=0,
+              **_compound())
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pavefric.PavefricWarning)
         ds = scene.simulate(**kw)
@@ -397,15 +401,17 @@ def test_a_pad_on_one_element_is_not_estimated_from_one_halving(surface):
 def test_a_tolerance_says_it_does_not_cover_a_pad_on_few_elements(profile_m):
     """&numerics tolerance refines the time step only: on the compound at
     0 C it reports 0.026 within 1e-3, half the resolved 0.052; it now warns
-    that the pad stood on 1.3 elements and names elements_per_sample. The
-    paper's rubber (15 contacts) gives no such warning."""
+    that the pad stood on 1.3 elements and names elements_per_sample (at
+    min_contacts = 0: the default refines the pad first, and then the
+    tolerance covers it, test_min_contacts). The paper's rubber (15
+    contacts) gives no such warning."""
     from pavefric.rubber import compound
     rubber = {k: v for k, v in compound(ROOT / "inputs" / "rubber" / "tread_compound.nml").items()
               if k != "temperature"}
     with pytest.warns(pavefric.PavefricWarning, match=r"tolerance = 0\.001 bounds the error "
                       r"from the time step only.*stood on 1\.3\d elements.*elements_per_sample"):
         ds = pavefric.simulate(profile_m, 0.87e-3, [20.0], mu_loc=0.0, temperature=0.0,
-                               tolerance=1e-3, **rubber)
+                               tolerance=1e-3, min_contacts=0, **rubber)
     assert ds["mu_error_estimate"].values[0] <= 1e-3
     assert int(ds["estimate_elements_per_sample"].values[0]) == 1
     assert "elements_per_sample" in ds.attrs["warnings"]
@@ -500,8 +506,9 @@ def test_a_failed_elements_pass_falls_back_to_the_step(profile_m):
     elements: that pass fails, and the speed keeps the estimate of the pass
     at half the step, with a warning saying so in its own words (the pass's
     input check, quoted, had advised a longer profile for "the pad's 46
-    elements": review reproducer)."""
-    kw = dict(mu_loc=0.0, temperature=0.0, closed=False, **_compound())
+    elements": review reproducer). At min_contacts = 0: the default's own
+    refinement fails there first, and says so in its words."""
+    kw = dict(mu_loc=0.0, temperature=0.0, closed=False, min_contacts=0, **_compound())
     with pytest.warns(pavefric.PavefricWarning,
                       match="could not be refined beyond elements_per_sample = 1") as said:
         ds = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], **kw)
@@ -520,7 +527,7 @@ def test_two_warnings_of_a_run_stay_two(profile_m):
     newline (review reproducer: Python received '...\\x0a&numerics ...')."""
     with pytest.warns(pavefric.PavefricWarning) as said:
         ds = pavefric.simulate(profile_m[:48], 0.87e-3, [20.0], mu_loc=0.0, temperature=0.0,
-                               tolerance=1e-12, closed=False, **_compound())
+                               tolerance=1e-12, closed=False, min_contacts=0, **_compound())
     texts = [str(w.message) for w in said]
     assert not any("\\x0a" in t for t in texts), texts
     assert any("not met" in t for t in texts) and any("bounds the error" in t for t in texts)

@@ -3,8 +3,8 @@ of its elements gives a friction set by the elements' size, not the road's
 (docs/accuracy.md, "The pad's resolution"); with min_contacts = n each speed
 where it stood on fewer than n elements in contact is rerun with the
 elements halved until it stands on n (at most 4 times), and that run is
-reported, its elements_per_sample in elements_per_sample_used. 0, the
-default, is the paper's discretisation."""
+reported, its elements_per_sample in elements_per_sample_used. 4 is the
+default; 0 is the paper's discretisation."""
 import warnings
 
 import numpy as np
@@ -51,9 +51,9 @@ def test_each_speed_is_the_run_at_the_elements_it_names(profile_m, cold):
     assert np.all(used >= 2) and np.all(used <= 16)
     for k, speed in enumerate(SPEEDS):
         own = _quiet(profile_m, 0.87e-3, [speed], elements_per_sample=int(used[k]),
-                     error_estimate=False, **cold)
+                     error_estimate=False, min_contacts=0, **cold)
         half = _quiet(profile_m, 0.87e-3, [speed], elements_per_sample=int(used[k]) // 2,
-                      error_estimate=False, **cold)
+                      error_estimate=False, min_contacts=0, **cold)
         for name in ("mu", "mu_hysteresis", "mu_adhesion", "contact_fraction",
                      "max_compression", "max_balance_residual", "memory_updates"):
             assert ds[name].values[k] == own[name].values[0], (name, speed)
@@ -63,24 +63,29 @@ def test_each_speed_is_the_run_at_the_elements_it_names(profile_m, cold):
     assert np.all(ds["mu_adhesion"].values == 0.0)
 
 
-def test_the_paper_discretisation_stays_the_default(profile_m, cold):
-    """min_contacts = 0 (the default) runs the elements as given: the same
-    numbers as naming it, elements_per_sample_used the value given, and a
-    friction far below the resolved one on this pad (the reason for the
-    knob: 0.011 against 0.043 at 20 km/h)."""
+def test_the_refined_pad_is_the_default(profile_m, cold):
+    """min_contacts = 4 is the default: the same numbers as naming it.
+    min_contacts = 0 runs the elements as given (the paper's
+    discretisation): elements_per_sample_used the value given, and a
+    friction far below the refined one on this pad (the reason for the
+    default: 0.011 against 0.043 at 20 km/h)."""
     default = _quiet(profile_m, 0.87e-3, SPEEDS, **cold)
-    named = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=0, **cold)
-    resolved = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4, **cold)
+    named = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4, **cold)
+    paper = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=0, **cold)
     xr.testing.assert_identical(default.drop_attrs(), named.drop_attrs())
-    assert np.all(default["elements_per_sample_used"].values == 1)
-    assert np.all(default["mu"].values < 0.5 * resolved["mu"].values)
-    assert np.all(resolved["elements_per_sample_used"].values >= 2)
+    assert np.all(paper["elements_per_sample_used"].values == 1)
+    assert np.all(paper["mu"].values < 0.5 * default["mu"].values)
+    assert np.all(default["elements_per_sample_used"].values >= 2)
+    # the default costs no more passes: its levels are the ones the
+    # estimate at min_contacts = 0 runs (the same elements_per_sample at last)
+    assert np.all(paper["estimate_elements_per_sample"].values
+                  >= default["elements_per_sample_used"].values)
 
 
 def test_speeds_on_enough_elements_are_left_alone(profile_m):
     """The paper's rubber stands on 4 to 15 elements: min_contacts = 4
     changes nothing there, not a bit."""
-    plain = _quiet(profile_m, 0.87e-3, SPEEDS)
+    plain = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=0)
     asked = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4)
     assert all(_contacts(plain, k) >= 4.0 for k in range(len(SPEEDS)))
     for name in ("mu", "mu_hysteresis", "mu_error_estimate", "estimate_elements_per_sample"):
@@ -92,14 +97,15 @@ def test_the_estimate_is_the_refined_runs_own(profile_m, cold):
     """mu_error_estimate is the error of the reported (refined) mu: on 4
     contacts or more, three times its change at half the step; it is no
     larger than the unrefined run's estimate, which carried the elements'
-    error; and the refined mu is the one the default run's warning named."""
+    error; and the refined mu is the one the warning of a run at
+    min_contacts = 0 named."""
     with pytest.warns(pavefric.PavefricWarning, match=r"gave mu = (\d\.\d+)") as said:
-        default = pavefric.simulate(profile_m, 0.87e-3, [20.0], **cold)
+        default = pavefric.simulate(profile_m, 0.87e-3, [20.0], min_contacts=0, **cold)
     named = [w for w in said if "gave mu" in str(w.message)][0]
     ds = _quiet(profile_m, 0.87e-3, [20.0], min_contacts=4, **cold)
     used = int(ds["elements_per_sample_used"].values[0])
     half_step = _quiet(profile_m, 0.87e-3, [20.0], elements_per_sample=used, substeps=2,
-                       time_scheme="euler", error_estimate=False, **cold)
+                       time_scheme="euler", error_estimate=False, min_contacts=0, **cold)
     mu = ds["mu"].values[0]
     assert ds["mu_error_estimate"].values[0] == pytest.approx(
         3.0 * abs(mu - half_step["mu"].values[0]), rel=1e-12, abs=1e-15)
@@ -117,7 +123,7 @@ def test_series_come_from_one_pad(profile_m, cold):
     used = ds["elements_per_sample_used"].values
     assert np.all(used == used.max()) and used.max() >= 2
     own = _quiet(profile_m, 0.87e-3, SPEEDS, elements_per_sample=int(used.max()), series=True,
-                 error_estimate=False, **cold)
+                 error_estimate=False, min_contacts=0, **cold)
     np.testing.assert_array_equal(ds["mu"].values, own["mu"].values)
     np.testing.assert_array_equal(ds["mu_inst"].values, own["mu_inst"].values)
     assert ds.attrs["pad_elements"] == own.attrs["pad_elements"]
@@ -137,6 +143,22 @@ def test_a_target_out_of_reach_says_so(profile_m, cold):
     assert "min_contacts = 1000 not reached" in ds.attrs["warnings"]
 
 
+def test_a_profile_too_short_to_refine_keeps_its_elements_and_says_so(profile_m, cold):
+    """An open profile one pad long has no room for twice the elements: the
+    default's refinement cannot be made, the results are those of the
+    elements given (bit for bit the run at min_contacts = 0), and a warning
+    names min_contacts, the speed and the input check that refused it."""
+    kw = dict(closed=False, error_estimate=False, **cold)
+    with pytest.warns(pavefric.PavefricWarning,
+                      match=r"&numerics min_contacts = 4: the pad's elements could not be "
+                            r"refined beyond elements_per_sample = 1 at 20 km/h.*its check said"):
+        ds = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], **kw)
+    paper = _quiet(profile_m[:23], 0.87e-3, [20.0], min_contacts=0, **kw)
+    assert int(ds["elements_per_sample_used"].values[0]) == 1
+    assert ds["mu"].values[0] == paper["mu"].values[0]
+    assert "min_contacts = 4" in ds.attrs["warnings"]
+
+
 def test_with_a_tolerance_the_refined_pad_is_converged_in_time(profile_m, cold):
     """min_contacts and tolerance together: the pad refined, then the step
     halved at that pad until the tolerance is met; the tolerance's warning
@@ -147,7 +169,8 @@ def test_with_a_tolerance_the_refined_pad_is_converged_in_time(profile_m, cold):
                                **cold)
     assert not any("bounds the error from the time step only" in str(w.message) for w in said)
     used = int(ds["elements_per_sample_used"].values[0])
-    own = _quiet(profile_m, 0.87e-3, [20.0], elements_per_sample=used, tolerance=1e-3, **cold)
+    own = _quiet(profile_m, 0.87e-3, [20.0], elements_per_sample=used, tolerance=1e-3,
+                 min_contacts=0, **cold)
     assert ds["mu"].values[0] == own["mu"].values[0]
     assert ds["mu_error_estimate"].values[0] <= 1e-3
     assert ds["substeps_used"].values[0] == own["substeps_used"].values[0]
@@ -167,10 +190,10 @@ def test_a_bad_value_names_the_variable(tmp_path, value):
 def test_the_program_and_the_batch_record_it(tmp_path, profile_m):
     """The program's output and a batch's carry elements_per_sample_used
     per speed (per depth and profile in a batch), equal to the single runs';
-    a batch without min_contacts records the value given."""
+    a batch at min_contacts = 0 records the value given."""
     rubber = cold_compound_batch(tmp_path, profile_m)
     d = tmp_path / "p"
-    for label, numerics in (("resolved", "&numerics min_contacts = 4 /\n"), ("paper", "")):
+    for label, numerics in (("resolved", ""), ("paper", "&numerics min_contacts = 0 /\n")):
         with xr.open_dataset(run_cold_batch(tmp_path, label, numerics + rubber)) as ds:
             used = ds["elements_per_sample_used"].transpose(
                 "profile", "water_depth", "speed_kmh").values
@@ -205,15 +228,15 @@ def test_the_program_writes_it(tmp_path):
 def test_on_the_paper_surfaces_the_refined_pad_is_closer_and_bounded(surface):
     """The test set of docs/accuracy.md's third table ("The pad's
     resolution"): the shipped compound at 0 C on the paper's surfaces stands
-    on 1.1 to 1.3 elements; with min_contacts = 4 its mu is at least 3
-    times closer to the resolved one than the default's (4.7 to 10.6 times
-    in the table), and its estimate bounds its error."""
+    on 1.1 to 1.3 elements; with min_contacts = 4 (the default) its mu is at
+    least 3 times closer to the resolved one than at min_contacts = 0 (4.7
+    to 10.6 times in the table), and its estimate bounds its error."""
     scene = pavefric.load_scene(ROOT / "inputs" / "surfaces" / f"{surface}.nml")
     kw = dict(speeds_kmh=[20.0], mu_loc=0.0, temperature=0.0, depth=0.0, **_compound())
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pavefric.PavefricWarning)
-        default = scene.simulate(**kw)
-        ds = scene.simulate(min_contacts=4, **kw)
+        default = scene.simulate(min_contacts=0, **kw)
+        ds = scene.simulate(**kw)
         resolved = scene.simulate(substeps=8, elements_per_sample=16, error_estimate=False,
                                   **kw)["mu"].values[0]
     actual = abs(ds["mu"].values[0] - resolved)

@@ -176,7 +176,7 @@ module pavefric_model
       !> gives them; n > 0, at each speed they are halved (elements_per_sample
       !> doubled) until the pad stands on n elements in contact on average
       !> (at most pad_levels times), and that run is reported.
-      integer :: min_contacts = 0
+      integer :: min_contacts = 4
       !> How the facet friction is computed: 'energy' (the work of the facet
       !> forces balances the elements' stored energy and dissipation) or
       !> 'paper' (Eq. 10 on central-difference slopes).
@@ -325,16 +325,19 @@ contains
          & "the elements, exact too. Recorded as mu_error_estimate, with a warning where it " // &
          & "exceeds 5 % of mu (and 0.001) naming what to refine. " // &
          & ".false.: no passes and no estimate (docs/accuracy.md)")
-      s(p_min_contacts) = int_param("numerics", "min_contacts", "0", "model", &
+      s(p_min_contacts) = int_param("numerics", "min_contacts", "4", "model", &
          & "0: the pad's elements as elements_per_sample gives them (the paper's " // &
-         & "discretisation, one element per sample). n > 0: at each speed where the pad " // &
+         & "discretisation, one element per sample). n > 0 (the default 4): at each speed " // &
+         & "where the pad " // &
          & "stood on fewer than n elements in contact on average (positions the film " // &
          & "carried alone left out), its elements are halved (elements_per_sample doubled, " // &
          & "the step with them) until it stands on n, at most 4 times (elements_per_sample " // &
          & "up to 16 times the value given), and that run is reported: mu, its parts and " // &
          & "every per-speed output (elements_per_sample_used says which ran; with series " // &
          & "every speed runs at the finest). Each halving costs about 4 times the run before " // &
-         & "it; the up-front cost estimate leaves the halvings out. 4 resolves the pad's " // &
+         & "it; they are the passes the error estimate would run otherwise, so with it " // &
+         & "the default costs about what the paper's discretisation does; the up-front " // &
+         & "cost estimate leaves the halvings out. 4 resolves the pad's " // &
          & "contacts on the paper's surfaces (docs/accuracy.md, ""The pad's resolution"")", &
          & 0, 1000)
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &

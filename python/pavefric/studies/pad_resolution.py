@@ -1,36 +1,41 @@
 """The figures of docs/accuracy.md's section "The pad's resolution", printed
-as two Markdown tables:
+as three Markdown tables:
 
     python -m pavefric.studies.pad_resolution      # about a minute
 
 A stiff rubber stands on few of the pad's elements, and its friction then
 depends on how finely the elements resolve the contacts, at any time step.
-This study runs the default scene's profile (inputs/ctm_dry.nml, run from
-the repository's root) with the shipped tread compound
+The first two tables are the paper's discretisation (&numerics
+min_contacts = 0, the default until 2026-11-27); the third is the default,
+min_contacts = 4.
+
+The first table runs the default scene's profile (inputs/ctm_dry.nml, run
+from the repository's root) with the shipped tread compound
 (inputs/rubber/tread_compound.nml, mu_loc = 0: the rubber's hysteresis
 alone) at 20 km/h and each temperature, and the scene's own rubber, and
-prints per row: the elements in contact (averaged over positions), the
-default run's mu and its mu_error_estimate (with the elements_per_sample of
-the estimate's pass), what a pass at half the step alone would have
-estimated (three times its change: the estimate before the pad's pass), mu
-with the time step converged at one element per sample (substeps 64), the
-resolved mu (substeps 16, elements_per_sample 32) and the default's actual
-error against it, and the wall time of the default run with its estimate
+prints per row: the elements in contact (averaged over positions), the run's
+mu at min_contacts = 0 and its mu_error_estimate (with the
+elements_per_sample of the estimate's pass), what a pass at half the step
+alone would have estimated (three times its change: the estimate before the
+pad's pass), mu with the time step converged at one element per sample
+(substeps 64), the resolved mu (substeps 16, elements_per_sample 32) and the
+actual error against it, and the wall time of that run with its estimate
 against one without (the best of three).
 
 The second table is a test set for the estimate's rule (set on the first
 table's profile): the six surfaces of the paper's Table 2
 (inputs/surfaces/*.nml, dry) with the compound at 0 and 20 C, mu_loc = 0,
-20 km/h: the elements in contact, the default mu, its estimate, what one
-halving of the elements and the step would have estimated (three times
-its change: the rule before the levels), the resolved mu and the actual
-error. Runs only the core (pavefric); nothing is fitted.
+20 km/h: the elements in contact, mu at min_contacts = 0, its estimate,
+what one halving of the elements and the step would have estimated (three
+times its change: the rule before the levels), the resolved mu and the
+actual error. Runs only the core (pavefric); nothing is fitted.
 
-The third table, on the rows of both: the run with &numerics
+The third table, on the rows of both: the default run, &numerics
 min_contacts = 4 (the pad's elements halved at each speed until it stands
 on 4, that run reported): its mu, the elements_per_sample it ran at, its
 estimate, its actual error against the resolved mu, and its wall time
-against the default run's (both with their estimates; the best of three).
+against the run at min_contacts = 0 (both with their estimates; the best of
+three).
 """
 from __future__ import annotations
 
@@ -71,15 +76,18 @@ def _best(scene, repeats: int = 3, **kw) -> float:
 
 
 def row(scene, label: str, **kw) -> dict:
-    """One row of the table for the scene with keywords kw."""
-    ds = _quiet(scene.simulate, speeds_kmh=[SPEED], **kw)
-    t_default = _best(scene, **kw)
-    t_run = _best(scene, error_estimate=False, **kw)
+    """One row of the table for the scene with keywords kw (the columns
+    before min_contacts' at the paper's discretisation, min_contacts = 0)."""
+    paper = dict(kw, min_contacts=0)
+    ds = _quiet(scene.simulate, speeds_kmh=[SPEED], **paper)
+    t_default = _best(scene, **paper)
+    t_run = _best(scene, error_estimate=False, **paper)
     half = _quiet(scene.simulate, speeds_kmh=[SPEED], error_estimate=False, substeps=2,
-                  time_scheme="euler", **kw)
-    fine = _quiet(scene.simulate, speeds_kmh=[SPEED], error_estimate=False, **RESOLVED, **kw)
+                  time_scheme="euler", **paper)
+    fine = _quiet(scene.simulate, speeds_kmh=[SPEED], error_estimate=False, **RESOLVED,
+                  **paper)
     step = _quiet(scene.simulate, speeds_kmh=[SPEED], error_estimate=False, **STEP_CONVERGED,
-                  **kw)
+                  **paper)
     mu = float(ds["mu"][0])
     resolved = float(fine["mu"][0])
     return dict(label=label, contacts=float(ds["contact_fraction"][0]) * ds.attrs["pad_elements"],
@@ -97,7 +105,7 @@ MIN_CONTACTS = 4
 
 def _min_contacts(scene, resolved: float, t_default: float, **kw) -> dict:
     """The run with min_contacts = MIN_CONTACTS at SPEED against the
-    resolved mu and the default run's time `t_default`."""
+    resolved mu and the time `t_default` of the run at min_contacts = 0."""
     ds = _quiet(scene.simulate, speeds_kmh=[SPEED], min_contacts=MIN_CONTACTS, **kw)
     mu = float(ds["mu"][0])
     return dict(mc_mu=mu, mc_eps=int(ds["elements_per_sample_used"][0]),
@@ -127,14 +135,16 @@ def surface_rows(root: Path = Path(".")) -> list[dict]:
         scene = pavefric.load_scene(root / "inputs" / "surfaces" / f"{name}.nml")
         for t in SURFACE_TEMPERATURES:
             kw = dict(speeds_kmh=[SPEED], mu_loc=0.0, depth=0.0, temperature=t, **rubber)
-            ds = _quiet(scene.simulate, **kw)
-            one = _quiet(scene.simulate, error_estimate=False, elements_per_sample=2, **kw)
-            fine = _quiet(scene.simulate, error_estimate=False, **RESOLVED, **kw)
+            paper = dict(kw, min_contacts=0)
+            ds = _quiet(scene.simulate, **paper)
+            one = _quiet(scene.simulate, error_estimate=False, elements_per_sample=2, **paper)
+            fine = _quiet(scene.simulate, error_estimate=False, **RESOLVED, **paper)
             mu = float(ds["mu"][0])
             resolved = float(fine["mu"][0])
             kw.pop("speeds_kmh")
+            paper.pop("speeds_kmh")
             rows.append(dict(label=f"{name}, {t:g} C",
-                             **_min_contacts(scene, resolved, _best(scene, **kw), **kw),
+                             **_min_contacts(scene, resolved, _best(scene, **paper), **kw),
                              contacts=float(ds["contact_fraction"][0]) * ds.attrs["pad_elements"],
                              mu=mu, estimate=float(ds["mu_error_estimate"][0]),
                              pass_eps=int(ds["estimate_elements_per_sample"][0]),
@@ -155,7 +165,7 @@ def _markdown(head: list[str], rows: list[dict], cells) -> list[str]:
 
 def surface_markdown(rows: list[dict]) -> list[str]:
     return _markdown(
-        ["surface, compound", "elements in contact", "default mu",
+        ["surface, compound", "elements in contact", "mu, min_contacts = 0",
          "its estimate (last pass's elements_per_sample)", "one halving would say",
          "resolved mu", "actual error", "estimate / actual"], rows,
         lambda r, ratio: [r["label"], f"{r['contacts']:.2f}", f"{r['mu']:.4f}",
@@ -165,8 +175,8 @@ def surface_markdown(rows: list[dict]) -> list[str]:
 
 def min_contacts_markdown(rows: list[dict]) -> list[str]:
     return _markdown(
-        ["row", f"mu, min_contacts = {MIN_CONTACTS}", "elements_per_sample used",
-         "its estimate", "actual error", "estimate / actual", "time / the default run's"],
+        ["row", f"mu, min_contacts = {MIN_CONTACTS} (the default)", "elements_per_sample used",
+         "its estimate", "actual error", "estimate / actual", "time / min_contacts = 0's"],
         [dict(r, estimate=r["mc_estimate"], actual=r["mc_actual"]) for r in rows],
         lambda r, ratio: [r["label"], f"{r['mc_mu']:.4f}", f"{r['mc_eps']}",
                           f"{r['mc_estimate']:.4f}", f"{r['mc_actual']:.4f}", f"{ratio:.2f}",
@@ -175,10 +185,10 @@ def min_contacts_markdown(rows: list[dict]) -> list[str]:
 
 def markdown(rows: list[dict]) -> list[str]:
     return _markdown(
-        ["rubber", "elements in contact", "default mu",
+        ["rubber", "elements in contact", "mu, min_contacts = 0",
          "its estimate (last pass's elements_per_sample)", "half step alone would say",
          "time step converged", "resolved mu", "actual error", "estimate / actual",
-         "default run with its estimate / without"], rows,
+         "min_contacts = 0 with its estimate / without"], rows,
         lambda r, ratio: [r["label"], f"{r['contacts']:.1f}", f"{r['mu']:.4f}",
                           f"{r['estimate']:.4f} ({r['pass_eps']})", f"{r['step_only']:.4f}",
                           f"{r['step_converged']:.4f}", f"{r['resolved']:.4f}",

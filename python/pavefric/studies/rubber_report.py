@@ -94,9 +94,12 @@ def _scene_parameters(name: str):
 
 
 def _base(scene, rubber: dict, numerics: dict) -> dict:
-    """The scene's keywords without the rubber's, with ``numerics``."""
+    """The scene's keywords without the rubber's, with ``numerics`` as given:
+    the pad not refined beyond them (&numerics min_contacts = 0), so that each
+    row is the resolution it names."""
     base = {k: v for k, v in scene.parameters.items() if k not in rubber and k != "temperature"}
     base.update(numerics)
+    base.setdefault("min_contacts", 0)
     return base
 
 
@@ -399,9 +402,10 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "80 km/h: it is effectively elastic, its dry friction flat in speed, and it has no "
         "temperature. `&rubber model = 'maxwell'` replaces it by a generalised Maxwell (Prony) "
         "element whose relaxation times follow the temperature through the WLF equation. The "
-        "default (`model = 'kelvin_voigt'`, `temperature = reference_temperature`) gives the "
-        "paper's model as 0.1.0 computed it: dry bit for bit, wet to rounding "
-        "(tests/test_regression.py).",
+        "default (`model = 'kelvin_voigt'`, `temperature = reference_temperature`) with the "
+        "paper's discretisation (`friction_scheme = 'paper'`, `element_length = 0`, "
+        "`min_contacts = 0`) gives the paper's model as 0.1.0 computed it: dry bit for bit, "
+        "wet to rounding (tests/test_regression.py).",
         "",
         "## The element",
         "",
@@ -576,13 +580,13 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "water, 1 mm with the paper's bearing at the calibrated α), dry and wet, with the "
         f"example compound at {_fmt_list(temperatures, '{:g}')} °C, beside the paper's "
         "Kelvin–Voigt rubber (dashed), all at `&numerics substeps = "
-        f"{NUMERICS['substeps']}, elements_per_sample = {NUMERICS['elements_per_sample']}` "
-        "(below: why).",
+        f"{NUMERICS['substeps']}, elements_per_sample = {NUMERICS['elements_per_sample']}, "
+        "min_contacts = 0` (below: why).",
         "",
         "**Resolution.** The compound is far stiffer than the paper's rubber at texture "
         "frequencies, and a stiff element that gains or loses contact within a step is "
-        "placed by the step's end only: at the default numerics (one step and one element "
-        "per sample) the compound's friction is far from converged, while the paper's rubber "
+        "placed by the step's end only: at the paper's numerics (one step and one element "
+        "per sample, `min_contacts = 0`) the compound's friction is far from converged, while the paper's rubber "
         "is within a few hundredths (docs/accuracy.md). μ at 20 km/h, dry, the compound at "
         f"{tref:g} °C (the paper's rubber in brackets), against `(substeps, "
         "elements_per_sample)`:",
@@ -594,6 +598,9 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "",
         "The Maxwell step is exact for a compression linear in time, so what converges here "
         "is the contact's timing and the pad's discretisation, not the rubber's integration. "
+        "The rows are at the `(substeps, elements_per_sample)` they name, `min_contacts = 0`; "
+        "the default `min_contacts = 4` refines the elements where the pad stands on fewer "
+        "than 4 (docs/accuracy.md, \"The pad's resolution\"). "
         "Use `substeps` ≥ 16 and `elements_per_sample` ≥ 4 with a compound of this "
         "stiffness, and check the convergence on your own profiles (`python -m pavefric "
         "accuracy`).",
@@ -666,8 +673,8 @@ def _write_report(path: Path, rubber, fit, same_fit, curves, temperatures, tts, 
         "(the elastic columns): what the compound's columns show is its dissipation. The "
         "paper's scheme (Eq. 10 on central-difference slopes) gave the stiff elastic pad "
         "(K = 1e10 N m⁻³, about the compound's k_eff at 20 °C) up to "
-        f"{max(abs(r['paper elastic 1e+10']) for r in hysteresis.values()):.2f} (at the "
-        "default numerics up to "
+        f"{max(abs(r['paper elastic 1e+10']) for r in hysteresis.values()):.2f} (at one "
+        "step and one element per sample up to "
         f"{max(abs(r['paper elastic 1e+10, default numerics']) for r in hysteresis.values()):.2f}"
         "): its facet forces do not do the work the elements store.",
         "",
