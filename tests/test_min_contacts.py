@@ -116,17 +116,37 @@ def test_the_estimate_is_the_refined_runs_own(profile_m, cold):
     assert "min_contacts" in str(named.message)      # the warning names the knob
 
 
-def test_series_come_from_one_pad(profile_m, cold):
-    """With series every speed runs at the finest elements any needed, so
-    that each speed's series and its mean come from the same pad."""
-    ds = _quiet(profile_m, 0.87e-3, SPEEDS, min_contacts=4, series=True, **cold)
+def test_series_are_each_speeds_own_held_on_the_finest_positions(profile_m, cold):
+    """With series each speed's means are its own run's, as without (asking
+    for series changes no mean), and its series are its own run's, each
+    value held over the positions of the finest run (closed profile: 2^k of
+    them), so their mean is its own run's too."""
+    speeds = [5.0, 20.0, 80.0]
+    plain = _quiet(profile_m, 0.87e-3, speeds, temperature=30.0,
+                   **{k: v for k, v in cold.items() if k != "temperature"})
+    ds = _quiet(profile_m, 0.87e-3, speeds, series=True, temperature=30.0,
+                **{k: v for k, v in cold.items() if k != "temperature"})
     used = ds["elements_per_sample_used"].values
-    assert np.all(used == used.max()) and used.max() >= 2
-    own = _quiet(profile_m, 0.87e-3, SPEEDS, elements_per_sample=int(used.max()), series=True,
-                 error_estimate=False, min_contacts=0, **cold)
-    np.testing.assert_array_equal(ds["mu"].values, own["mu"].values)
-    np.testing.assert_array_equal(ds["mu_inst"].values, own["mu_inst"].values)
-    assert ds.attrs["pad_elements"] == own.attrs["pad_elements"]
+    assert used.min() < used.max()                    # levels differ between speeds
+    np.testing.assert_array_equal(ds["mu"].values, plain["mu"].values)
+    np.testing.assert_array_equal(used, plain["elements_per_sample_used"].values)
+    n_fine = ds.sizes["position"]
+    for k, speed in enumerate(speeds):
+        own = _quiet(profile_m, 0.87e-3, [speed], elements_per_sample=int(used[k]),
+                     series=True, error_estimate=False, min_contacts=0, temperature=30.0,
+                     **{q: v for q, v in cold.items() if q != "temperature"})
+        factor = n_fine // own.sizes["position"]
+        assert factor * own.sizes["position"] == n_fine and factor == used.max() // used[k]
+        for name in ("mu_inst", "hydro_load", "penetration", "contact_elements"):
+            held = ds[name].isel(speed_kmh=k).values.reshape(-1, factor)
+            assert np.all(held == held[:, :1]), name
+            np.testing.assert_array_equal(held[:, 0], own[name].isel(speed_kmh=0).values)
+        np.testing.assert_allclose(ds["mu_inst"].isel(speed_kmh=k).values.mean(),
+                                   ds["mu"].values[k], rtol=1e-12)
+    finest = _quiet(profile_m, 0.87e-3, [5.0], elements_per_sample=int(used.max()),
+                    series=True, error_estimate=False, min_contacts=0, **cold)
+    np.testing.assert_array_equal(ds["position"].values, finest["position"].values)
+    assert ds.attrs["pad_elements"] == finest.attrs["pad_elements"]
 
 
 def test_a_target_out_of_reach_says_so(profile_m, cold):

@@ -334,7 +334,8 @@ contains
          & "the step with them) until it stands on n, at most 4 times (elements_per_sample " // &
          & "up to 16 times the value given), and that run is reported: mu, its parts and " // &
          & "every per-speed output (elements_per_sample_used says which ran; with series " // &
-         & "every speed runs at the finest). Each halving costs about 4 times the run before " // &
+         & "each speed's series are its own run's, held on the finest run's positions). " // &
+         & "Each halving costs about 4 times the run before " // &
          & "it; they are the passes the error estimate would run otherwise, so with it " // &
          & "the default costs about what the paper's discretisation does; the up-front " // &
          & "cost estimate leaves the halvings out. 4 resolves the pad's " // &

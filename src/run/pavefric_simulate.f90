@@ -648,10 +648,11 @@ contains
    !> most pad_levels times (to 16 times the value given, and within
    !> max_elements_per_sample), and the refined run replaces that speed's
    !> results (copy_speed: mu, its parts and every per-speed output, with a
-   !> tolerance its accuracy record too). With series every speed runs at
-   !> each level and takes the last level's results, so that the series and
-   !> the means come from one pad. A level that fails, or a speed still short
-   !> at the last, keeps the finest run made, with a warning.
+   !> tolerance its accuracy record too). With series each speed's series
+   !> are its own run's (so that asking for them changes no mean), held on
+   !> the finest run's positions (hold_series). A level that fails, or a
+   !> speed still short at the last, keeps the finest run made, with a
+   !> warning.
    subroutine resolve_pad(m, z, dx, closed, speeds_kmh, want_series, res)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
@@ -659,16 +660,24 @@ contains
       type(sim_result_type), intent(inout) :: res
       type(model_type) :: mc
       type(sim_result_type) :: r
+      !> With series: each level's run, and the level and column of each
+      !> speed's own run (level 0: the run given).
+      type(sim_result_type) :: runs(pad_levels)
+      integer, allocatable :: level_of(:), col_of(:)
       type(error_type), allocatable :: err
       integer, allocatable :: group(:), idx(:)
       logical, allocatable :: active(:)
       integer :: ns, j, k, level, eps, cap
+      logical :: failed
       real(wp) :: target
       character(len=:), allocatable :: limit
       ns = size(speeds_kmh)
       target = real(m%min_contacts, wp)
       idx = [(j, j = 1, ns)]
       active = [(short_of(res, j), j = 1, ns)]
+      level_of = [(0, j = 1, ns)]
+      col_of = idx
+      failed = .false.
       cap = min(max_elements_per_sample, m%elements_per_sample * 2**pad_levels)
       eps = m%elements_per_sample
       mc = m
@@ -680,7 +689,6 @@ contains
          eps = 2 * eps
          mc%elements_per_sample = eps
          group = pack(idx, active)
-         if (want_series) group = idx
          call run_grids(mc, z, dx, closed, speeds_kmh(group), want_series, r, err)
          if (allocated(err)) then
             call add_warning(res%warnings, "&numerics min_contacts = " // &
@@ -690,7 +698,8 @@ contains
                & // to_str(eps) // " could not be made on this profile; its check said: " // &
                & err%message // "); the results there are those at " // to_str(eps / 2))
             deallocate(err)
-            return
+            failed = .true.
+            exit
          end if
          do k = 1, size(group)
             j = group(k)
@@ -698,14 +707,14 @@ contains
             res%elements_per_sample_used(j) = eps
             res%speed_n_elements(j) = r%n_elements
             active(j) = short_of(r, k)
+            level_of(j) = level
+            col_of(j) = k
          end do
          if (len(r%effects) > len(res%effects)) res%effects = r%effects
-         if (want_series) then
-            call move_series(r, res)
-            res%n_elements = r%n_elements
-            res%n_spinup = r%n_spinup
-         end if
+         if (want_series) call move_series_whole(r, runs(level))
       end do
+      if (want_series) call hold_series(res, runs, level_of, col_of)
+      if (failed) return
       limit = "the largest allowed"
       if (cap == m%elements_per_sample * 2**pad_levels) &
          & limit = "the most it refines to: 16 times the value given"
@@ -1096,6 +1105,86 @@ contains
       end if
       to%n_positions = from%n_positions
    end subroutine move_series
+
+   !> move_series, and the pad's element count and spin-up the series were
+   !> made with.
+   pure subroutine move_series_whole(from, to)
+      type(sim_result_type), intent(inout) :: from, to
+      call move_series(from, to)
+      to%n_elements = from%n_elements
+      to%n_spinup = from%n_spinup
+   end subroutine move_series_whole
+
+   !> The series of a run whose speeds &numerics min_contacts refined to
+   !> different levels: each speed's own run's series (runs(level_of(j)),
+   !> its column col_of(j); level 0: res's own), held on the positions of
+   !> the finest level's run, whose positions, element count and spin-up res
+   !> then reports. At each of those positions a speed's series has the
+   !> value of its own run's last position at or before it: a closed
+   !> profile's coarser run has every 2^k-th position of the finer, so each
+   !> value is held 2^k times and the series' mean is its own run's.
+   subroutine hold_series(res, runs, level_of, col_of)
+      type(sim_result_type), intent(inout) :: res
+      type(sim_result_type), intent(in) :: runs(:)
+      integer, intent(in) :: level_of(:), col_of(:)
+      type(sim_result_type) :: fine
+      integer, allocatable :: at(:)
+      integer :: top, j, n, ns
+      logical :: films, reports
+      top = maxval(level_of)
+      if (top == 0) return
+      n = size(runs(top)%position)
+      ns = size(level_of)
+      films = allocated(runs(top)%film_thickness)
+      reports = allocated(runs(top)%film_pressure_max)
+      allocate(fine%mu_inst(n, ns), fine%hydro_load(n, ns), fine%penetration(n, ns), &
+         & fine%contact_elements(n, ns))
+      if (films) allocate(fine%film_thickness(n, ns), fine%local_friction(n, ns))
+      if (reports) allocate(fine%film_pressure_max(n, ns), fine%water_thickness(n, ns))
+      allocate(at(n))
+      do j = 1, ns
+         if (level_of(j) == 0) then
+            call take(res, col_of(j), j)
+         else
+            call take(runs(level_of(j)), col_of(j), j)
+         end if
+      end do
+      fine%position = runs(top)%position
+      fine%n_positions = n
+      call move_series(fine, res)
+      res%n_elements = runs(top)%n_elements
+      res%n_spinup = runs(top)%n_spinup
+   contains
+      !> Column c of `src`'s series, held on the finest positions, as speed j.
+      subroutine take(src, c, j)
+         type(sim_result_type), intent(in) :: src
+         integer, intent(in) :: c, j
+         integer :: i, q, nc
+         real(wp) :: slack
+         nc = size(src%position)
+         slack = 1.0e-9_wp * (src%position(min(2, nc)) - src%position(1))
+         q = 1
+         do i = 1, n
+            do while (q < nc)
+               if (src%position(q + 1) > runs(top)%position(i) + slack) exit
+               q = q + 1
+            end do
+            at(i) = q
+         end do
+         fine%mu_inst(:, j) = src%mu_inst(at, c)
+         fine%hydro_load(:, j) = src%hydro_load(at, c)
+         fine%penetration(:, j) = src%penetration(at, c)
+         fine%contact_elements(:, j) = src%contact_elements(at, c)
+         if (films .and. allocated(src%film_thickness)) then
+            fine%film_thickness(:, j) = src%film_thickness(at, c)
+            fine%local_friction(:, j) = src%local_friction(at, c)
+         end if
+         if (reports .and. allocated(src%film_pressure_max)) then
+            fine%film_pressure_max(:, j) = src%film_pressure_max(at, c)
+            fine%water_thickness(:, j) = src%water_thickness(at, c)
+         end if
+      end subroutine take
+   end subroutine hold_series
 
    !> The friction model at the knobs given.
    subroutine simulate_fixed(m, z, dx, closed, speeds_kmh, want_series, res, error)
