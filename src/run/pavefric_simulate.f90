@@ -1129,7 +1129,7 @@ contains
       integer, intent(in) :: level_of(:), col_of(:)
       type(sim_result_type) :: fine
       integer, allocatable :: at(:)
-      integer :: top, j, n, ns
+      integer :: top, j, n, ns, stat
       logical :: films, reports
       top = maxval(level_of)
       if (top == 0) return
@@ -1138,10 +1138,18 @@ contains
       films = allocated(runs(top)%film_thickness)
       reports = allocated(runs(top)%film_pressure_max)
       allocate(fine%mu_inst(n, ns), fine%hydro_load(n, ns), fine%penetration(n, ns), &
-         & fine%contact_elements(n, ns))
-      if (films) allocate(fine%film_thickness(n, ns), fine%local_friction(n, ns))
-      if (reports) allocate(fine%film_pressure_max(n, ns), fine%water_thickness(n, ns))
-      allocate(at(n))
+         & fine%contact_elements(n, ns), fine%position(n), at(n), stat=stat)
+      if (stat == 0 .and. films) allocate(fine%film_thickness(n, ns), &
+         & fine%local_friction(n, ns), stat=stat)
+      if (stat == 0 .and. reports) allocate(fine%film_pressure_max(n, ns), &
+         & fine%water_thickness(n, ns), stat=stat)
+      if (stat /= 0) then
+         call add_warning(res%warnings, "&numerics min_contacts: no memory for the series " // &
+            & "on the refined pad's " // to_str(n) // " positions; the series are the run's " // &
+            & "at the elements_per_sample given, the means the refined runs' " // &
+            & "(elements_per_sample_used)")
+         return
+      end if
       do j = 1, ns
          if (level_of(j) == 0) then
             call take(res, col_of(j), j)
@@ -1149,7 +1157,7 @@ contains
             call take(runs(level_of(j)), col_of(j), j)
          end if
       end do
-      fine%position = runs(top)%position
+      fine%position(:) = runs(top)%position
       fine%n_positions = n
       call move_series(fine, res)
       res%n_elements = runs(top)%n_elements
