@@ -6,7 +6,8 @@
 #                        bearing), outputs/ctm_squeeze.nc (drainage),
 #                        outputs/ctm_reynolds.nc (the Reynolds film) and
 #                        outputs/ctm_mu_speed.png
-#   bash setup.sh test   set up and run the whole test suite
+#   bash setup.sh test   set up and run the whole test suite (on up to 4 processes;
+#                        bash setup.sh test -n 0: serially)
 #   bash setup.sh        set up only
 #
 # System packages come from apt-get when run as root (or with passwordless
@@ -82,7 +83,7 @@ install_python() {
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
     "numpy>=1.26" "meson>=1.1" "meson-python>=0.17" ninja \
     "xarray>=2023.1" "netCDF4>=1.6" "matplotlib>=3.6" \
-    "pytest>=7" "hypothesis>=6" "pandas>=2.2" scipy "pydantic>=2,<3" psutil click parse unsync \
+    "pytest>=7" "pytest-xdist>=3" "hypothesis>=6" "pandas>=2.2" scipy "pydantic>=2,<3" psutil click parse unsync \
     compliance-checker pyyaml jsonschema build
   # captif-slp (an established ISO 13473-1 implementation, a test reference)
   # and its reader pyrsona 1.x pin pandas<2.2 and numpy<2, which would break
@@ -93,6 +94,15 @@ install_python() {
   log "building and installing pavefric (Fortran core, program, Python extension)"
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-build-isolation \
     --force-reinstall --no-deps .
+}
+
+# the test suite's processes: the cores, at most 4 (each test may run
+# threads of its own)
+test_workers() {
+  local n
+  n=$(nproc 2>/dev/null || echo 1)
+  [ "$n" -gt 4 ] && n=4
+  echo "$n"
 }
 
 install_system
@@ -111,7 +121,10 @@ case "${1:-}" in
     ;;
   test)
     shift
-    "$VENV/bin/python" -m pytest -q tests "$@"
+    # the suite on one process per core, at most 4 (pytest-xdist), each test
+    # file whole on one of them (its module fixtures computed once); a
+    # pytest option given after `test` (-n 0: serially) overrides
+    "$VENV/bin/python" -m pytest -q -n "$(test_workers)" --dist loadfile tests "$@"
     ;;
   "")
     log "ready: $VENV/bin/pavefric and $VENV/bin/python -m pavefric"
