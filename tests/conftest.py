@@ -146,18 +146,3 @@ def pytest_sessionfinish(session, exitstatus):
                             "run whole", red=True)
         session.exitstatus = 1
 
-
-# The files that take longest (a minute to several: the ThreadSanitizer
-# build and run, the README's report commands, the rubber report, the speed
-# gradient study, the pad-resolution table), first: with the suite on
-# several processes (setup.sh test: pytest-xdist, a file per process) a long
-# file started last would run alone at the end while the other processes
-# stand idle. Within a file, and among the rest, the order is unchanged.
-SLOW_FIRST = ("test_threads.py", "test_readme.py", "test_rubber.py",
-              "test_error_estimate.py", "test_speed_gradient.py", "test_calibration.py",
-              "test_hard_cases.py")
-
-
-def pytest_collection_modifyitems(session, config, items):
-    rank = {name: k for k, name in enumerate(SLOW_FIRST)}
-    items.sort(key=lambda item: rank.get(item.path.name, len(SLOW_FIRST)))
