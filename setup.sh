@@ -96,15 +96,6 @@ install_python() {
     --force-reinstall --no-deps .
 }
 
-# the test suite's processes: the cores, at most 4 (each test may run
-# threads of its own)
-test_workers() {
-  local n
-  n=$(nproc 2>/dev/null || echo 1)
-  [ "$n" -gt 4 ] && n=4
-  echo "$n"
-}
-
 install_system
 install_python
 
@@ -124,7 +115,8 @@ case "${1:-}" in
     # the suite on one process per core, at most 4 (pytest-xdist), each test
     # file whole on one of them (its module fixtures computed once); a
     # pytest option given after `test` (-n 0: serially) overrides
-    "$VENV/bin/python" -m pytest -q -n "$(test_workers)" --dist loadfile tests "$@"
+    "$VENV/bin/python" -m pytest -q -n "$(bash tools/test_workers.sh)" --dist loadfile \
+      tests "$@"
     ;;
   "")
     log "ready: $VENV/bin/pavefric and $VENV/bin/python -m pavefric"

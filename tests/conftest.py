@@ -145,4 +145,3 @@ def pytest_sessionfinish(session, exitstatus):
         reporter.write_line(f"PAVEFRIC_NO_SKIP: {skipped} test(s) skipped; the suite must "
                             "run whole", red=True)
         session.exitstatus = 1
-

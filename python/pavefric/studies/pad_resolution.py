@@ -123,16 +123,14 @@ def _min_contacts(scene, resolved: float, t_default: float, timing: bool = True,
 SCENE_RUBBER = "the scene's rubber (paper's Table 1), mu_loc = 0.6"
 
 
-def table(root: Path = Path("."), temperatures=TEMPERATURES, scene_rubber: bool = True,
-          timing: bool = True) -> list[dict]:
-    """The first table: the compound at each of `temperatures`, then (with
-    scene_rubber) the scene's own rubber; without timing, no wall times."""
+def table(root: Path = Path("."), temperatures=TEMPERATURES, timing: bool = True) -> list[dict]:
+    """The first table: the compound at each of `temperatures`, then the
+    scene's own rubber; without timing, no wall times."""
     scene = pavefric.load_scene(root / SCENE)
     rubber = {k: v for k, v in compound(root / COMPOUND).items() if k != "temperature"}
     rows = [row(scene, f"compound, {t:g} C", timing, mu_loc=0.0, temperature=t, **rubber)
             for t in temperatures]
-    if scene_rubber:
-        rows.append(row(scene, SCENE_RUBBER, timing))
+    rows.append(row(scene, SCENE_RUBBER, timing))
     return rows
 
 
