@@ -7,6 +7,7 @@
 #                        outputs/ctm_reynolds.nc (the Reynolds film) and
 #                        outputs/ctm_mu_speed.png
 #   bash setup.sh test   set up and run the whole test suite (on up to 4 processes;
+#                        bash setup.sh test tests/test_x.py: that file alone;
 #                        bash setup.sh test -n 0: serially)
 #   bash setup.sh        set up only
 #
@@ -114,9 +115,18 @@ case "${1:-}" in
     shift
     # the suite on one process per core, at most 4 (pytest-xdist), each test
     # file whole on one of them (its module fixtures computed once); a
-    # pytest option given after `test` (-n 0: serially) overrides
+    # pytest option given after `test` (-n 0: serially) overrides. Test
+    # paths under tests/ given after `test` (tests/test_energy.py,
+    # tests/test_x.py::test_y) run alone; without any, the whole suite runs.
+    where=tests
+    for arg in "$@"; do
+      case "$arg" in -*) continue ;; esac
+      case "$(realpath -m -- "${arg%%::*}")" in
+        "$PWD"/tests|"$PWD"/tests/*) where= ; break ;;
+      esac
+    done
     "$VENV/bin/python" -m pytest -q -n "$(bash tools/test_workers.sh)" --dist loadfile \
-      tests "$@"
+      $where "$@"
     ;;
   "")
     log "ready: $VENV/bin/pavefric and $VENV/bin/python -m pavefric"
