@@ -294,7 +294,7 @@ def test_c_api_bad_input_sets_the_error_and_goes_on(tmp_path, pc_env):
     assert msg["unknown_group"].startswith("&sea: unknown namelist group")
     assert "one variable" in msg["two_assignments"]
     assert msg["not_a_number"].startswith("&rubber stiffness = 1.4e8x: not a number (write one "
-                                          "such as 0.5, 1e-3 or 2.5d3); must be finite and > 0")
+                                          "such as 0.5, 1e-3 or 2.5d3); must be finite and >= 1")
     assert msg["radius_too_small"] == "&pad radius = 0.001: must exceed half the pad length (0.01 m)"
     assert msg["infinite_dx"].startswith("&surface dx = Infinity: must be finite and > 0")
     assert "depth_unchanged: 0.001" in proc.stdout          # a failed set changes nothing

@@ -277,7 +277,7 @@ def test_a_memory_longer_than_the_spin_up_is_warned_of(short_profile_m):
 
 @pytest.mark.parametrize("model", ["reynolds", "kane2017"])
 def test_the_negative_hysteresis_of_a_pad_that_never_repeats_is_named(model):
-    """A very soft rubber under a water film (K = 1e-3 N m-3, the pad sinks
+    """A very soft rubber under a water film (K = 1 N m-3, the least allowed; the pad sinks
     metres and creeps through the whole run) gave mu = -5.1 with the Reynolds
     film and -0.23 with the paper's bearing, silently: the rubber cannot
     dissipate less than nothing. The run says so, naming mu_hysteresis, and
@@ -287,7 +287,7 @@ def test_the_negative_hysteresis_of_a_pad_that_never_repeats_is_named(model):
     z = spectral_profile(256, DX, rms=0.5e-3, seed=3)
     with pytest.warns(pavefric.PavefricWarning, match=r"mu_hysteresis = .* < 0 at 20"):
         ds = pavefric.simulate(z, DX, [20.0, 60.0], wet_model=model, depth=1e-3,
-                               stiffness=1e-3)
+                               stiffness=1.0)
     assert np.all(np.isfinite(ds["mu"].values))
     assert float(ds["mu_hysteresis"][0]) < -1e-6
     assert "mu_hysteresis" in ds.attrs["warnings"]

@@ -70,8 +70,9 @@ contains
       s(2) = real_param("rubber", "stiffness", "1.4e8", "N m-3", "model", &
          & "spring modulus per unit length K (paper, Table 1); with model = 'maxwell' the " // &
          & "equilibrium (long-time) spring K_inf. A layer of thickness h and Young's " // &
-         & "modulus E gives about E / h.", lower=0.0_wp, &
-         & lower_strict=.true., upper=1.0e15_wp, plausible_lower=1.0e5_wp, &
+         & "modulus E gives about E / h. At least 1 N m-3: below, the load over a " // &
+         & "spring of one element overflows the static balance.", lower=1.0_wp, &
+         & upper=1.0e15_wp, plausible_lower=1.0e5_wp, &
          & plausible_upper=1.0e11_wp, plausible_note="tread rubber gives about 1e7 to 1e9")
       s(3) = real_param("rubber", "temperature", "20", "degC", "model", &
          & "rubber temperature T: every relaxation time (and the Kelvin-Voigt C) is " // &

@@ -90,7 +90,7 @@ def inputs_markdown() -> str:
         "group, the variable and the value (and the file and line), e.g.",
         "",
         "```",
-        "pavefric: error: &rubber stiffness = -1e8: must be finite and > 0 and <= 1e15 N m-3",
+        "pavefric: error: &rubber stiffness = -1e8: must be finite and >= 1 and <= 1e15 N m-3",
         "pavefric: error: &pad lenght = 0.02: unknown variable at scene.nml:4 (known: length "
         "width thickness load shape radius)",
         "pavefric: error: &water: given twice at scene.nml:9 and at scene.nml:14; merge the "
