@@ -79,6 +79,19 @@ def test_missing_profile_file(tmp_path):
     assert_rejected(tmp_path, scene, "&surface profile_file", "nowhere.txt")
 
 
+def test_one_point_profile_names_the_pad_not_the_plates(tmp_path):
+    """An attack found a one-point profile blamed on trimming reference
+    plates, which trimmed nothing; with trim_plates off it was (and is) the
+    pad's message."""
+    (tmp_path / "one.txt").write_text("0.0\n")
+    for preprocess in ("trim_plates = .true.", "trim_plates = .false."):
+        scene = write_scene(tmp_path, groups={"surface": "profile_file = 'one.txt'",
+                                              "preprocess": preprocess})
+        line = assert_rejected(tmp_path, scene, "&surface profile_file", "has 1 points",
+                               "fewer than the pad's")
+        assert "plates" not in line
+
+
 def test_empty_profile_file(tmp_path):
     scene = write_scene(tmp_path, profile_text="")
     assert_rejected(tmp_path, scene, "&surface profile_file", "holds no heights")

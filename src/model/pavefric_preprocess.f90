@@ -231,7 +231,8 @@ contains
             end if
             clean%report%trimmed_start = i0 - 1
             clean%report%trimmed_end = n - i1
-            if (i1 - i0 + 1 < 2) then
+            ! (with nothing trimmed, a profile too short is the pad's check's to name)
+            if (i1 - i0 + 1 < 2 .and. (i0 > 1 .or. i1 < n)) then
                call fatal_error(error, raw%path // ": nothing is left of the profile after " // &
                   & "trimming reference plates; set &preprocess trim_plates = .false. or a " // &
                   & "larger plate_threshold, and check the heights' unit (&surface height_unit)")
