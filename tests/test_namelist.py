@@ -385,3 +385,14 @@ def test_the_echo_writes_each_number_in_its_fewest_digits():
     for text, value in zip(written, values):
         assert float(text) == value, (text, value)
         assert _significant_digits(text) == _significant_digits(repr(value)), (text, repr(value))
+
+
+@pytest.mark.parametrize("count", ["99999999999", "1000000000"])
+def test_a_huge_repeat_count_is_named_as_too_large(tmp_path, count):
+    """An attack found `speeds_kmh = 99999999999*20` told that a repeat count
+    needs a whole number >= 1, which it is: it is too large."""
+    scene = write_scene(tmp_path, groups={"operation": f"speeds_kmh = {count}*20"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1
+    assert "&operation speeds_kmh" in r.stderr and "more than 9 digits" in r.stderr
+    assert "at most 100000 values" in r.stderr and not (tmp_path / "o.nc").exists()

@@ -215,7 +215,12 @@ contains
          ! a value, possibly with a repeat count
          r = 1
          call repeat_count(text, c, r, stat)
-         if (stat /= 0) then
+         if (stat == 2) then
+            call fatal_error(error, at(path, c%line) // "&" // group // " " // &
+               & item%name // ": '" // visible(text, c%pos) // "': a repeat count of more " // &
+               & "than 9 digits; a list holds at most 100000 values")
+            return
+         else if (stat /= 0) then
             call fatal_error(error, at(path, c%line) // "&" // group // " " // &
                & item%name // ": '" // visible(text, c%pos) // "': a repeat count r*value " // &
                & "needs a whole number r >= 1 and a value")
@@ -292,7 +297,8 @@ contains
    end subroutine item_start
 
    !> `r*` before a value: r (>= 1) and stat 0; no repeat: r = 1, stat 0;
-   !> a malformed one (`0*1`, `3*` with no value): stat 1.
+   !> a malformed one (`0*1`, `3*` with no value): stat 1; one of more than 9
+   !> digits: stat 2.
    pure subroutine repeat_count(text, c, r, stat)
       character(len=*), intent(in) :: text
       type(cursor_type), intent(inout) :: c
@@ -308,7 +314,7 @@ contains
       if (k == c%pos .or. k > len(text)) return
       if (text(k:k) /= "*") return
       if (k - c%pos > 9) then
-         stat = 1
+         stat = 2                        ! a whole number, but too large to hold
          return
       end if
       read(text(c%pos:k-1), *) r
