@@ -251,8 +251,8 @@ EXTREMES = [
     dict(prony_stiffness=[1e8], prony_times=[5e-324 * 1e16]),
     dict(prony_stiffness=[1e-300], prony_times=[1e-4]),
     dict(stiffness=1e15, prony_stiffness=[1e15], prony_times=[1e-4]),
-    dict(stiffness=1e-3, prony_stiffness=[1e15], prony_times=[1e-4]),
-    dict(stiffness=1e-3, prony_stiffness=[1e-3], prony_times=[1e30]),
+    dict(stiffness=1.0, prony_stiffness=[1e15], prony_times=[1e-4]),    # the least K allowed
+    dict(stiffness=1.0, prony_stiffness=[1e-3], prony_times=[1e30]),
     dict(prony_stiffness=[1e8] * 100, prony_times=list(np.logspace(-300, 30, 100))),
     # WLF at the edge of its domain: a_T = 1e+-100 on every arm
     dict(prony_stiffness=[1e9], prony_times=[1e30], temperature=-81.0, wlf_c1=0.5881),

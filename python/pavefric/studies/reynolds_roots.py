@@ -78,11 +78,11 @@ def depth_rise() -> list[tuple]:
 
 
 def creeping_pad(z) -> list[tuple]:
-    """A rubber of stiffness 1e-3 N m^-3 in 1 mm of water: the pad sinks and
-    creeps through the whole run (mu_hysteresis < 0, a warning says so)."""
+    """A rubber of stiffness 1 N m^-3 (the least allowed) in 1 mm of water: the
+    pad sinks and creeps through the whole run (mu_hysteresis < 0, a warning says so)."""
     rows = []
     for model in ("reynolds", "kane2017"):
-        ds = _run(z, [20.0], wet_model=model, depth=DEPTH, stiffness=1e-3)
+        ds = _run(z, [20.0], wet_model=model, depth=DEPTH, stiffness=1.0)
         rows.append((model, float(ds["mu"][0]), float(ds["mu_hysteresis"][0])))
     return rows
 
@@ -112,7 +112,7 @@ def main(argv: list[str] | None = None) -> None:
           f"{SPEED:g} km/h, Reynolds, default numerics:")
     for d, mu in depth_rise():
         print(f"  depth {d * 1e3:.2f} mm: mu {mu:.4f}")
-    print("A pad that creeps (stiffness = 1e-3, 1 mm of water, 20 km/h, the first profile):")
+    print("A pad that creeps (stiffness = 1, 1 mm of water, 20 km/h, the first profile):")
     for model, mu, hyst in creeping_pad(z):
         print(f"  {model:9s} mu {mu:8.3f}  mu_hysteresis {hyst:8.3f}")
 
