@@ -66,11 +66,11 @@ def test_no_profile_file(tmp_path):
     ("&water depth = 1-3 /", ["&water depth = 1-3: not a number (write one such as 0.5, 1e-3",
                               "must be finite and >= 0 and <= 100 m", "s.nml:3"]),
     # a NaN or an Infinity written out is a number, out of range: the range alone
-    ("&rubber stiffness = nan /", ["&rubber stiffness = nan: must be finite and > 0"]),
+    ("&rubber stiffness = nan /", ["&rubber stiffness = nan: must be finite and >= 1"]),
     ("&rubber stiffness = -Infinity /", ["&rubber stiffness = -Infinity: must be finite"]),
     # an overflow is named as such, with the value as written
     ("&rubber stiffness = 1e400 /", ["&rubber stiffness = 1e400: too large for double precision",
-                                     "(it would be read as Infinity)", "must be finite and > 0"]),
+                                     "(it would be read as Infinity)", "must be finite and >= 1"]),
     ("&numerics substeps = 2.5 /", ["&numerics substeps = 2.5: must be a whole number from 1 to"]),
     ("&operation speeds_kmh(1) = 10, speeds_kmh(3) = 20 /",
      ["&operation speeds_kmh: element 2 is not given", "give speeds_kmh(2) too",
