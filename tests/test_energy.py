@@ -137,37 +137,32 @@ def test_temperature_sweep_is_one_bell(profile_m):
     assert np.all(np.diff(warm) < 0), warm
 
 
-
 def test_the_default_passes_extrapolated_are_the_documented_bell():
     """docs/model.md ("Temperature, with the energy scheme"): on
     inputs/profiles/ctm_medium.txt at 20 km/h, the default's two passes at
     the pad min_contacts chose, extrapolated as 2 mu(2) - mu(1), are one bell
     with its maximum at 30 C, close to the resolved curve, with the values
     the paragraph quotes (python -m pavefric.studies.energy_report)."""
-    from pavefric.studies.energy_report import compound as shipped, medium_profile
+    from pavefric.studies.energy_report import compound as shipped, default_passes, \
+        medium_profile
 
     z, rubber = medium_profile(), shipped()
     text = " ".join((ROOT / "docs" / "model.md").read_text().split())
     quoted = [0.0456, 0.0552, 0.0580, 0.0587, 0.0521, 0.0485, 0.0427]
     assert "`2 mu(2) − mu(1)` is " + ", ".join(f"{v:.4f}" for v in quoted[:-1]) in text
-    extrapolated, resolved = [], []
-    for t in (0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0):
-        level = int(run(z, [20.0], mu_loc=0.0, temperature=t, error_estimate=False,
-                        **rubber)["elements_per_sample_used"].values[0])
-        one, two = (run(z, [20.0], mu_loc=0.0, temperature=t, substeps=s,
-                        elements_per_sample=level, min_contacts=0, error_estimate=False,
-                        **rubber)["mu"].values[0] for s in (1, 2))
-        extrapolated.append(2.0 * two - one)
-        resolved.append(run(z, [20.0], mu_loc=0.0, temperature=t, substeps=16,
-                            elements_per_sample=4, min_contacts=0, error_estimate=False,
-                            **rubber)["mu"].values[0])
-    extrapolated, resolved = np.array(extrapolated), np.array(resolved)
+    temps = (0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
+    extrapolated = np.array([2.0 * two - one for _, _, one, two in
+                             default_passes(z, rubber, temps)])
+    resolved = np.array([run(z, [20.0], mu_loc=0.0, temperature=t, substeps=16,
+                             elements_per_sample=4, min_contacts=0, error_estimate=False,
+                             **rubber)["mu"].values[0] for t in temps])
     assert np.allclose(extrapolated, quoted, atol=2e-4), extrapolated
     peak = int(np.argmax(extrapolated))
     assert peak == 3
     assert np.all(np.diff(extrapolated[:peak + 1]) > 0)
     assert np.all(np.diff(extrapolated[peak:]) < 0)
     assert np.max(np.abs(extrapolated - resolved)) < 0.004
+
 
 def captif_heights():
     profile = pavefric.read_profile(CAPTIF / "20211011_aylesbury_dec_station_0.dat",

@@ -218,7 +218,7 @@ contains
          if (stat == 2) then
             call fatal_error(error, at(path, c%line) // "&" // group // " " // &
                & item%name // ": '" // visible(text, c%pos) // "': a repeat count of more " // &
-               & "than 9 digits; a list holds at most 100000 values")
+               & "than 9 digits, more values than any list holds")
             return
          else if (stat /= 0) then
             call fatal_error(error, at(path, c%line) // "&" // group // " " // &

@@ -43,6 +43,21 @@ def medium_profile() -> np.ndarray:
     return np.array([float(v) for v in lines if v and not v.startswith(("#", "h"))]) * 1e-3
 
 
+def default_passes(z, rubber: dict, temperatures, speed: float = 20.0) -> list[tuple]:
+    """Per temperature, mu_loc = 0, dry: the pad's elements_per_sample the
+    default (min_contacts = 4) chose, and mu of the default's two passes at
+    that pad, substeps 1 (the one reported) and 2 (the error estimate's)."""
+    rows = []
+    for t in temperatures:
+        kw = dict(mu_loc=0.0, temperature=float(t), error_estimate=False, **rubber)
+        level = int(pavefric.simulate(z, DX, [speed], **kw)
+                    ["elements_per_sample_used"].values[0])
+        one, two = (pavefric.simulate(z, DX, [speed], substeps=s, elements_per_sample=level,
+                                      min_contacts=0, **kw)["mu"].values[0] for s in (1, 2))
+        rows.append((t, level, one, two))
+    return rows
+
+
 def main() -> None:
     warnings.simplefilter("ignore", pavefric.PavefricWarning)
     z = medium_profile()
@@ -88,14 +103,7 @@ def main() -> None:
     print("The default's two passes (substeps 1, and 2 for its error estimate, at the pad "
           "min_contacts = 4 chose), 20 km/h: the first (reported), the second, and "
           "2 mu(2) - mu(1) (Richardson, not what the default reports)")
-    for t in (0, 10, 20, 30, 40, 50, 60):
-        level = int(pavefric.simulate(z, DX, [20.0], mu_loc=0.0, temperature=float(t),
-                                      error_estimate=False, **rubber)
-                    ["elements_per_sample_used"].values[0])
-        one, two = (pavefric.simulate(z, DX, [20.0], mu_loc=0.0, temperature=float(t),
-                                      substeps=s, elements_per_sample=level, min_contacts=0,
-                                      error_estimate=False, **rubber)["mu"].values[0]
-                    for s in (1, 2))
+    for t, level, one, two in default_passes(z, rubber, (0, 10, 20, 30, 40, 50, 60)):
         print(f"  {t:4d} C (elements_per_sample {level}): {one:.4f}, {two:.4f}, "
               f"{2 * two - one:.4f}")
     print("The same at substeps 16, elements_per_sample 4, min_contacts = 0 (the tests' "
