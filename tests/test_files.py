@@ -8,6 +8,7 @@ import subprocess
 import time
 from pathlib import Path
 
+import netCDF4
 import pytest
 
 import pavefric
@@ -107,6 +108,56 @@ def test_a_good_output_still_written(scene):
     # an existing regular output is replaced, as before
     r = run_program(scene.name, "-o", "out.nc", cwd=scene.parent)
     assert r.returncode == 0, r.stderr
+
+
+# ---- an existing file pavefric did not write ------------------------------------------
+# (attack, 2026-11-28: `pavefric scene.nml -o notes.txt` replaced the user's notes by a
+# NetCDF file without a word)
+
+def test_output_over_a_text_file_is_refused(scene):
+    notes = scene.parent / "notes.txt"
+    notes.write_text("my field notes\n")
+    before = snapshot(notes)
+    r = run_program(scene.name, "-o", "notes.txt", cwd=scene.parent)
+    assert_refused(r, "-o 'notes.txt'", "not a NetCDF file", "pavefric replaces only its own outputs")
+    assert_intact(before)
+    assert not list(scene.parent.glob("*.tmp*"))
+
+
+def test_output_over_another_tools_netcdf_is_refused(scene):
+    other = scene.parent / "survey.nc"
+    with netCDF4.Dataset(other, "w") as nc:
+        nc.createDimension("x", 2)
+    before = snapshot(other)
+    r = run_program(scene.name, "-o", "survey.nc", cwd=scene.parent)
+    assert_refused(r, "-o 'survey.nc'", "NetCDF file pavefric did not write",
+                   "no global attribute source")
+    assert_intact(before)
+    # the namelist's &output file and Python's run are held to the same rule
+    with pytest.raises(pavefric.PavefricError, match="pavefric did not write"):
+        pavefric.run(scene, output=other)
+    assert_intact(before)
+
+
+def test_output_over_an_empty_file_or_an_earlier_output_is_written(scene):
+    d = scene.parent
+    (d / "reserved.nc").write_bytes(b"")              # mktemp's empty file holds nothing
+    r = run_program(scene.name, "-o", "reserved.nc", cwd=d)
+    assert r.returncode == 0, r.stderr
+    assert (d / "reserved.nc").read_bytes()[:4] == b"\x89HDF"
+    r = run_program(scene.name, "-o", "reserved.nc", cwd=d)    # now pavefric's own
+    assert r.returncode == 0, r.stderr
+
+
+def test_batch_output_over_a_text_file_is_refused(tmp_path):
+    scene = make_batch(tmp_path)
+    notes = tmp_path / "notes.txt"
+    notes.write_text("my field notes\n")
+    before = snapshot(notes)
+    r = run_program(scene, "-o", "notes.txt", cwd=tmp_path)
+    assert_refused(r, "-o 'notes.txt'", "not a NetCDF file")
+    assert_intact(before)
+    assert not list(tmp_path.rglob("*.journal"))
 
 
 # ---- an output that is not a regular file ---------------------------------------------
@@ -227,7 +278,9 @@ def wait_stopped(proc, timeout=120.0):
 def test_signal_while_writing_leaves_no_temp_file(scene, point, sig):
     d = scene.parent
     out = d / "out.nc"
-    out.write_bytes(b"the previous output")
+    r = run_program(scene.name, "-o", "out.nc", cwd=d)   # the previous output
+    assert r.returncode == 0, r.stderr
+    previous = out.read_bytes()
     env = {**os.environ, "PAVEFRIC_TEST_PAUSE": point}
     proc = subprocess.Popen([program(), scene.name, "-o", "out.nc"], cwd=d, env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -239,7 +292,7 @@ def test_signal_while_writing_leaves_no_temp_file(scene, point, sig):
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == -sig, err   # killed by that signal, as without a handler
     assert not list(d.glob("out.nc.tmp*"))
-    assert out.read_bytes() == b"the previous output"
+    assert out.read_bytes() == previous
 
 
 def test_signal_while_writing_a_batch(tmp_path):

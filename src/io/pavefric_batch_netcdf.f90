@@ -6,7 +6,7 @@ module pavefric_batch_netcdf
    use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
    use pavefric_batch_types, only: batch_type, block_type, status_computed, status_failed, &
       & printable_utf8
-   use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary
+   use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary, check_replaceable
    implicit none
    private
 
@@ -23,6 +23,10 @@ contains
       type(block_type), intent(in) :: blocks(:)
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
+      ! checked before the run too (check_batch_outputs); again in case a
+      ! file appeared there while the batch ran
+      call check_replaceable(path, "&output file", error)
+      if (allocated(error)) return
       call temporary_name(path, tmp)
       call write_batch_file(tmp, batch, blocks, history, film_effect, error)
       call commit_temporary(tmp, path, error)

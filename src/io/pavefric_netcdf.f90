@@ -9,7 +9,7 @@ module pavefric_netcdf
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use netcdf
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
+   use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory, stat_input
    use pavefric_results, only: sim_result_type
    use pavefric_outputs, only: output_metadata_type, output_var_type, output_table, &
       & output_present, output_values, n_outputs, out_double, out_int64, out_int, out_flag, &
@@ -18,12 +18,12 @@ module pavefric_netcdf
       & kind_integer, kind_logical, kind_text, kind_real_list
    use pavefric_fsys, only: rename_file, remove_file, process_id, register_temporary, &
       & release_temporary, test_pause, output_guard_type, check_output_path, &
-      & remove_stale_temporaries
+      & remove_stale_temporaries, setting
    use pavefric_format, only: to_str
    implicit none
    private
 
-   public :: write_results, temporary_name, commit_temporary
+   public :: write_results, temporary_name, commit_temporary, check_replaceable
    public :: nc_writer_type
 
    !> A NetCDF file being written and the first error met: every call goes
@@ -252,10 +252,55 @@ contains
          call guard%check_input(meta%profile_file, "the profile (&surface profile_file)", error)
          if (allocated(error)) return
       end if
+      call check_replaceable(path, "&output file", error)
+      if (allocated(error)) return
       call temporary_name(path, tmp)
       call write_file(tmp, res, meta, error)
       call commit_temporary(tmp, path, error)
    end subroutine write_results
+
+   !> Refuse to replace an existing file at `path` that pavefric did not
+   !> write: a non-empty file is replaced only if it is a NetCDF file whose
+   !> global attribute `source` names pavefric (an earlier run's output); an
+   !> empty file (from touch or mktemp) holds nothing to lose. `what` names
+   !> the setting that gave the path ("-o", "&output file"). The user's notes,
+   !> a profile of another run or another tool's NetCDF named by mistake stay
+   !> as they are. Opens the file with netCDF: callers that may run on
+   !> several threads hold the files lock (pavefric_files_lock.c).
+   subroutine check_replaceable(path, what, error)
+      character(len=*), intent(in) :: path, what
+      type(error_type), allocatable, intent(out) :: error
+      integer :: ncid, status, n, xtype
+      integer(i8) :: size
+      logical :: exists
+      character(len=:), allocatable :: source
+      character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
+         & "remove or rename the file, or choose another path"
+      inquire(file=path, exist=exists, size=size)
+      if (.not. exists .or. size == 0) return
+      status = nf90_open(path, nf90_nowrite, ncid)
+      if (status /= nf90_noerr) then
+         call fatal_error(error, setting(what, path) // ": exists and is not a NetCDF file (" // &
+            & trim(nf90_strerror(status)) // ")" // advice, stat_input)
+         return
+      end if
+      status = nf90_inquire_attribute(ncid, nf90_global, "source", xtype=xtype, len=n)
+      if (status == nf90_noerr .and. xtype == nf90_char .and. n > 0 .and. n < 4096) then
+         allocate(character(len=n) :: source)
+         if (nf90_get_att(ncid, nf90_global, "source", source) /= nf90_noerr) source = ""
+      else
+         source = ""
+      end if
+      status = nf90_close(ncid)
+      if (index(source, "pavefric") == 1) return
+      if (len(source) == 0) then
+         source = "it has no global attribute source"
+      else
+         source = "its global attribute source is '" // source // "', not 'pavefric ...'"
+      end if
+      call fatal_error(error, setting(what, path) // ": exists and is a NetCDF file " // &
+         & "pavefric did not write (" // source // ")" // advice, stat_input)
+   end subroutine check_replaceable
 
    !> Rename a finished temporary file onto `path`; remove it when writing
    !> failed (`error` allocated on entry) or the rename fails. An existing

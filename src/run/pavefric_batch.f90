@@ -28,6 +28,7 @@ module pavefric_batch
    use pavefric_texture, only: texture_type, texture_metrics
    use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
    use pavefric_fsys, only: output_guard_type, check_output_path, os_message
+   use pavefric_netcdf, only: check_replaceable
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
       & block_unpack, block_values, block_allocate, block_clear, status_computed, status_failed, &
@@ -1035,6 +1036,9 @@ contains
             if (allocated(error)) return
          end do
       end do
+      ! an input is named as such first; any other file there must be an
+      ! earlier pavefric output (or empty)
+      call check_replaceable(batch%output, what, error)
    end subroutine check_batch_outputs
 
    !> The error of a batch whose `n` somethings do not fit in memory.

@@ -13,7 +13,7 @@ module pavefric_run
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
    use pavefric_outputs, only: output_metadata_type
-   use pavefric_netcdf, only: write_results, temporary_name
+   use pavefric_netcdf, only: write_results, temporary_name, check_replaceable
    use pavefric_fsys, only: make_directory, dir_name, remove_file, output_guard_type, &
       & check_output_path, release_temporary, setting
    use pavefric_texture, only: texture_metrics
@@ -244,6 +244,8 @@ contains
       call guard%check_input(path, "the scene file", error)
       if (allocated(error)) return
       call guard%check_input(scene%profile_file, "the profile (&surface profile_file)", error)
+      if (allocated(error)) return
+      call check_replaceable(out_path, out_what, error)
       if (allocated(error)) return
       call check_writable(out_path, out_what, error)
       if (allocated(error)) return
