@@ -142,9 +142,26 @@ def test_list_syntax(tmp_path, profile_m):
                     groups={"operation": "speeds_kmh = 2*20 60"})
     c = write_scene(tmp_path / "c", profile=profile_m,
                     groups={"operation": "speeds_kmh(3) = 60, speeds_kmh(1) = 2*20"})
-    mus = [mu_of(tmp_path, s)[0] for s in (a, b, c)]
+    mus_r = [mu_of(tmp_path, s) for s in (a, b, c)]
+    mus = [m[0] for m in mus_r]
+    mus_r = [m[2] for m in mus_r]
     np.testing.assert_array_equal(mus[0], mus[1])
     np.testing.assert_array_equal(mus[0], mus[2])
+    # a speed given twice runs (the list syntax allows it) but is named
+    # (attack, 2026-11-28: the output's speed_kmh coordinate repeated 20 without a word)
+    for r in (mus_r[0], mus_r[1]):
+        assert ("pavefric: warning: &operation speeds_kmh(2) = 20 repeats speeds_kmh(1): "
+                "each is computed again") in r.stderr, r.stderr
+    assert "speeds_kmh(2) = 20 repeats speeds_kmh(1)" in mus_r[2].stderr
+    many = write_scene(tmp_path / "e", profile=profile_m,
+                       groups={"operation": "speeds_kmh = 60, 40, 3*20, 40"})
+    _, _, r = mu_of(tmp_path, many)
+    assert ("&operation speeds_kmh(4) = 20 repeats speeds_kmh(3) (3 repeated values in all)"
+            in r.stderr), r.stderr
+    with xr.open_dataset(tmp_path / "scene.nc") as ds:   # mu_of writes <stem>.nc
+        assert "speeds_kmh(4) = 20 repeats" in ds.attrs["warnings"]
+    once = write_scene(tmp_path / "f", profile=profile_m, groups={"operation": "speeds_kmh = 20, 60"})
+    assert "repeats" not in mu_of(tmp_path, once)[2].stderr
     gap = write_scene(tmp_path / "d", groups={"operation": "speeds_kmh(1) = 20, "
                                                            "speeds_kmh(3) = 60"})
     r = run_program(gap, "-o", tmp_path / "o.nc")

@@ -1537,6 +1537,8 @@ contains
             end do
          end select
       end do
+      if (set%v(p_speeds_kmh)%set .and. allocated(set%v(p_speeds_kmh)%list)) &
+         & call repeated_speed_warning(set%v(p_speeds_kmh)%list, warnings)
       ! variables given that the chosen rubber law or wet model does not
       ! use (another law's or model's own)
       laws = rubber_models()
@@ -1559,6 +1561,93 @@ contains
             & "microtexture)")
       end if
    end subroutine plausibility_warnings
+
+   !> A warning where &operation speeds_kmh gives a speed more than once
+   !> (speeds_kmh = 20, 20, 60 or 3*20): each is computed again and the
+   !> output's speed_kmh coordinate repeats the value, which xarray's
+   !> ds.sel(speed_kmh=20) then returns twice. Names the first repeat and how
+   !> many there are; sorting keeps it O(n log n) for the longest lists.
+   pure subroutine repeated_speed_warning(speeds, warnings)
+      real(wp), intent(in) :: speeds(:)
+      character(len=:), allocatable, intent(inout) :: warnings
+      real(wp), allocatable :: v(:)
+      integer, allocatable :: at(:)
+      integer :: n, j, k, lo, low, second, first, earlier, repeats
+      character(len=:), allocatable :: count
+      n = size(speeds)
+      if (n < 2) return
+      v = speeds
+      at = [(j, j = 1, n)]
+      call sort_with_index(v, at)
+      repeats = 0
+      first = n + 1
+      earlier = 0
+      lo = 1
+      ! each run of equal values (in any order of index): its smallest index
+      ! is the speed given, the second smallest its first repeat
+      do j = 2, n + 1
+         if (j <= n) then
+            if (v(j) == v(j - 1)) cycle
+         end if
+         if (j - lo > 1) then
+            repeats = repeats + (j - lo - 1)
+            low = minloc(at(lo:j-1), dim=1) + lo - 1
+            second = huge(1)
+            do k = lo, j - 1
+               if (k /= low) second = min(second, at(k))
+            end do
+            if (second < first) then
+               first = second
+               earlier = at(low)
+            end if
+         end if
+         lo = j
+      end do
+      if (repeats == 0) return
+      count = ""
+      if (repeats > 1) count = " (" // to_str(repeats) // " repeated values in all)"
+      call add_warning(warnings, "&operation speeds_kmh(" // to_str(first) // ") = " // &
+         & to_str(speeds(first)) // " repeats speeds_kmh(" // to_str(earlier) // ")" // &
+         & count // ": each is computed again and the output's speed_kmh " // &
+         & "coordinate holds the value more than once; give each speed once")
+   end subroutine repeated_speed_warning
+
+   !> Heap sort of `v` ascending, `at` permuted alongside (ties in any order).
+   pure subroutine sort_with_index(v, at)
+      real(wp), intent(inout) :: v(:)
+      integer, intent(inout) :: at(:)
+      integer :: n, k, m
+      real(wp) :: t
+      n = size(v)
+      do k = n / 2, 1, -1
+         call sift_down(v, at, k, n)
+      end do
+      do k = n, 2, -1
+         t = v(1); v(1) = v(k); v(k) = t
+         m = at(1); at(1) = at(k); at(k) = m
+         call sift_down(v, at, 1, k - 1)
+      end do
+   end subroutine sort_with_index
+
+   !> Restore the heap below `start` in v(1:last) (sort_with_index).
+   pure subroutine sift_down(v, at, start, last)
+      real(wp), intent(inout) :: v(:)
+      integer, intent(inout) :: at(:)
+      integer, intent(in) :: start, last
+      integer :: root, child, m
+      real(wp) :: t
+      root = start
+      do while (2 * root <= last)
+         child = 2 * root
+         if (child < last) then
+            if (v(child + 1) > v(child)) child = child + 1
+         end if
+         if (v(root) >= v(child)) return
+         t = v(root); v(root) = v(child); v(child) = t
+         m = at(root); at(root) = at(child); at(child) = m
+         root = child
+      end do
+   end subroutine sift_down
 
    !> A warning for each variable of a component that is not the chosen
    !> one (`own`: its declarations; `owner` its name, `key` the variable
