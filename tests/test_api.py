@@ -255,6 +255,11 @@ def test_c_typed_setters_give_the_programs_numbers(tmp_path, pc_env):
         "bool_two": "&numerics error_estimate = 2: must be 1 (.true.) or 0 (.false.)",
         "negative_speed": "&operation speeds_kmh(2) = -5: must be finite and >= 0",
         "negative_count": "pavefric_set_parameter_doubles: n = -1: must be >= 0",
+        # attack 2026-11-28: an emptied list was "not given in 'scene.nml'", and a
+        # scene given as text without speeds named a file ''
+        "empty_speeds": "&operation speeds_kmh: an empty list (0 values), but the variable is "
+                        "required",
+        "text_without_speeds": "&operation speeds_kmh: not given in the scene text",
         "unknown_variable": "&water no_such: unknown variable",
         "null_group": "pavefric_set_parameter_double: the group is NULL",
         "across_variables": "&numerics substeps = 4096 with tolerance = 0.001",

@@ -226,8 +226,8 @@ contains
          return
       end if
       if (.not. scene%parameters%v(p_speeds_kmh)%set) then
-         call fatal_error(error, "&operation speeds_kmh: not given in '" // path // &
-            & "' (a list of sliding speeds in km/h is required)")
+         call fatal_error(error, "&operation speeds_kmh: not given in " // source_name(path) // &
+            & " (a list of sliding speeds in km/h is required)")
          return
       end if
       if (from_arrays) then
@@ -238,7 +238,7 @@ contains
       else if (scene%is_batch) then
          if (len(scene%batch_profiles) == 0 .eqv. len(scene%batch_profile_list) == 0) then
             call fatal_error(error, "&batch: give exactly one of profiles (a pattern or " // &
-               & "directory) and profile_list (a file) in '" // path // "'")
+               & "directory) and profile_list (a file) in " // source_name(path))
             return
          end if
          if (len(scene%batch_profiles) > 0) scene%batch_profiles = &
@@ -247,8 +247,8 @@ contains
             & join_path(dir_name(path), scene%batch_profile_list)
       else
          if (len(scene%profile_file) == 0) then
-            call fatal_error(error, "&surface profile_file: not given in '" // path // &
-               & "'; give the profile, e.g. &surface profile_file = 'profile.txt' " // &
+            call fatal_error(error, "&surface profile_file: not given in " // source_name(path) // &
+               & "; give the profile, e.g. &surface profile_file = 'profile.txt' " // &
                & "(relative to the scene's directory), or a &batch group to run many profiles")
             return
          end if
@@ -256,6 +256,19 @@ contains
       end if
       call plausibility_warnings(specs, scene%parameters, scene%warnings)
    end subroutine scene_from_parameters
+
+   !> How a message names where the scene came from: its file, quoted, or
+   !> "the scene text" for a scene given as text (pavefric_new_scene, Python's
+   !> keywords), which has no file.
+   pure function source_name(path) result(name)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: name
+      if (len(path) == 0) then
+         name = "the scene text"
+      else
+         name = "'" // path // "'"
+      end if
+   end function source_name
 
    !> The scene's fields from its parameter values.
    pure subroutine lay_out(scene, specs)

@@ -824,6 +824,11 @@ contains
          if (allocated(error)) return
          new%t = t
       case (kind_real_list)
+         if (size(x) == 0 .and. spec%required) then
+            call fatal_error(error, "&" // spec%group // " " // spec%name // ": an empty " // &
+               & "list (0 values), but the variable is required: give at least one value")
+            return
+         end if
          if (size(x) > spec%max_values) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // ": more than " // &
                & to_str(spec%max_values) // " values (" // to_str(size(x)) // " given)")

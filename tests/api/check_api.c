@@ -516,6 +516,11 @@ static int typed(char **argv)
     report("negative_speed", error);
     pavefric_set_parameter_doubles(error, by_type, "operation", "speeds_kmh", -1, too_many);
     report("negative_count", error);
+    pavefric_set_parameter_doubles(error, by_type, "operation", "speeds_kmh", 0, too_many);
+    report("empty_speeds", error);
+    pavefric_scene no_speeds = pavefric_new_scene(error, "&surface dx = 1e-3 /");
+    report("text_without_speeds", error);
+    pavefric_delete_scene(&no_speeds);
     pavefric_set_parameter_double(error, by_type, "water", "no_such", 1.0);
     report("unknown_variable", error);
     pavefric_set_parameter_double(error, by_type, NULL, "depth", 1.0);
