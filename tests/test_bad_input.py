@@ -119,6 +119,21 @@ def test_non_numeric_text(tmp_path):
     assert_rejected(tmp_path, scene, "scene_profile.txt:4", "'abc' is not a number")
 
 
+def test_decimal_commas_are_named_where_distances_stop_increasing(tmp_path):
+    # attack, 2026-11-28: '0,0993' reads as a distance 0 and a height 993; the
+    # message said only that the distances do not increase
+    text = "".join(f"0,{k:04d}\n" for k in range(0, 5000, 97))
+    scene = write_scene(tmp_path, profile_text=text)
+    assert_rejected(tmp_path, scene, "scene_profile.txt:2: distances do not increase",
+                    "decimals with a comma", "write decimal points")
+    # real distances that repeat: no such hint
+    text = "".join(f"{0.5 * k:.1f} 0.1\n" for k in range(60)) + "29.5 0.2\n"
+    scene = write_scene(tmp_path / "b", profile_text=text)
+    r = run_program(scene, "-o", tmp_path / "b.nc")
+    assert r.returncode == 1 and "distances do not increase" in r.stderr, r.stderr
+    assert "decimals with a comma" not in r.stderr
+
+
 def test_fewer_points_than_elements(tmp_path):
     scene = write_scene(tmp_path, profile=np.zeros(10))
     assert_rejected(tmp_path, scene, "&surface profile_file", "10 points", "23 elements")

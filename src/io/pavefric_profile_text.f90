@@ -712,6 +712,7 @@ contains
       type(raw_profile_type), intent(inout) :: raw
       type(error_type), allocatable, intent(out) :: error
       integer :: st, k
+      character(len=:), allocatable :: hint
       if (n == 0) then
          call fatal_error(error, "&surface profile_file = '" // path // "': holds no " // &
             & "heights (only comments or blank lines); give one height a line, or a " // &
@@ -734,8 +735,14 @@ contains
          call move_alloc(xs, raw%x)
          do k = 2, n
             if (.not. raw%x(k) > raw%x(k-1)) then
+               hint = ""
+               ! 0,0993 / 0,1947 / ...: a decimal comma makes every line two
+               ! numbers, the distances the whole parts
+               if (all(raw%x(1:k) == aint(raw%x(1:k)))) hint = " (every distance up to " // &
+                  & "there is a whole number: if the file writes decimals with a comma, as " // &
+                  & "0,0993, each line reads as two numbers; write decimal points)"
                call fatal_error(error, path // ":" // to_str(raw%line(k)) // &
-                  & ": distances do not increase")
+                  & ": distances do not increase" // hint)
                return
             end if
          end do

@@ -72,6 +72,7 @@ def _rate_core(z, dx, closed=True, speeds=(60.0,), repeats=3, **kw):
 
     kw.setdefault("error_estimate", False)     # one pass, as the plain loop and the reference
     kw.setdefault("time_scheme", "euler")      # their scheme: one Euler step per sample
+    kw.setdefault("min_contacts", 0)           # their pad: no refinement pass
     seconds, ds = _best(lambda: simulate(z, dx, list(speeds), closed=closed, **kw), repeats)
     n_el = ds.attrs["pad_elements"]
     steps = n_el * (ds.attrs["averaged_positions"] + ds.attrs["spinup_positions"]) * len(speeds)
@@ -372,6 +373,7 @@ warnings.simplefilter("ignore")
 z = np.load(sys.argv[1]); speeds = json.loads(sys.argv[2]); kw = json.loads(sys.argv[3])
 kw.setdefault("error_estimate", False)
 kw.setdefault("time_scheme", "euler")   # the plain loop's scheme, whatever the default
+kw.setdefault("min_contacts", 0)        # the plain loop's pad: no refinement pass
 pavefric.simulate(z[:4096], 0.87e-3, speeds, **kw)
 best = 1e9
 for _ in range(int(sys.argv[4])):
@@ -575,6 +577,12 @@ ESTIMATE_SCENES = [
      "&numerics substeps = 2 / &operation speeds_kmh = 20, 50, 80 /"),
     ("test", "dry, 6 speeds, no error estimate",
      "&numerics error_estimate = .false. / &operation speeds_kmh = 10, 20, 30, 40, 60, 80 /"),
+    # a fine texture under 1 mm of water: from 40 km/h the film lifts the pad
+    # onto few elements, and the default halves them for min_contacts and
+    # for the error estimate (passes the estimate, made before the run, does
+    # not foresee)
+    ("test", "wet kane2017, fine texture (rms 0.2 mm), 3 speeds",
+     "&surface fine / &water depth = 1e-3 / &operation speeds_kmh = 20, 50, 80 /"),
     ("test", "dry Maxwell 1 arm, 4 speeds, position_stride 2",
      "&rubber model = 'maxwell', prony_stiffness = 1e8, prony_times = 1e-3 / "
      "&numerics position_stride = 2, substeps = 2 / &operation speeds_kmh = 20, 40, 60, 80 /"),
@@ -603,11 +611,16 @@ def estimate_accuracy(log, points: int = 65_536, repeats: int = 3) -> list[dict]
                                                          skew=-0.3, seed=3))
         write_profile(str(d / "c.txt"), spectral_profile(max(points // 4, 1024), 0.87e-3,
                                                          rms=0.6e-3, skew=-0.5, seed=5))
+        write_profile(str(d / "f.txt"), spectral_profile(points, 0.87e-3, rms=0.2e-3,
+                                                         skew=-0.3, seed=7))
         for k, (which, name, groups) in enumerate(ESTIMATE_SCENES):
             scene = d / f"s{k}.nml"
             closed = "closed = .true." in groups
+            fine = "&surface fine / " in groups
             groups = groups.replace("&surface closed = .true. / ", "")
-            scene.write_text(f"&surface profile_file = '{'c' if closed else 'p'}.txt', "
+            groups = groups.replace("&surface fine / ", "")
+            which_profile = "c" if closed else ("f" if fine else "p")
+            scene.write_text(f"&surface profile_file = '{which_profile}.txt', "
                              f"height_unit = 'mm', mu_loc = 0.6, "
                              f"closed = {'.true.' if closed else '.false.'} /\n"
                              + groups.replace("/ ", "/\n") + "\n")

@@ -571,7 +571,11 @@ def _targets_now(results: dict) -> list[str]:
         "sums the paper's facet forces (Eq. 10); the core's default measures the energy "
         "the rubber and the facets dissipate (`friction_scheme`, docs/model.md), which "
         "differs from it by the `|mu - plain|` column below (the same model, not the "
-        "same discretisation of its friction). The NumPy reference is the tests' oracle, "
+        "same discretisation of its friction). In the kernel rows the core does the plain "
+        "loop's work: one Euler step per sample (`time_scheme = 'euler'`), no error estimate "
+        "and no refinement of the pad (`min_contacts = 0`); the default's further passes "
+        "(its error estimate, the pad halved where it stands on few elements) are costed "
+        "in the section 'Cost estimate'. The NumPy reference is the tests' oracle, "
         "tests/reference.py, timed only when the command names it (`--reference`).",
     ]
     return rows
