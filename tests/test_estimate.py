@@ -101,6 +101,49 @@ def _cost_warnings(record):
     return [str(w.message) for w in record if issubclass(w.category, pavefric.PavefricCostWarning)]
 
 
+def test_the_estimate_foresees_the_pad_refined_under_a_film(monkeypatch):
+    """The bench of 2026-11-28 measured runs 6-7 times their estimate where a
+    water film lifted the pad onto a few asperities: the default then halves
+    the elements there (min_contacts, the error estimate), each level about 4
+    times the cost of the one before, which the estimate did not count. A
+    probe (the run on every n-th position) now finds those speeds before the
+    run; the estimate costs their levels and names them."""
+    import warnings
+
+    import pavefric.core
+    from pavefric.surfaces import spectral_profile
+
+    z = spectral_profile(4096, DX, rms=0.2e-3, skew=-0.3, seed=7)     # fine, 1 mm of water
+    monkeypatch.setattr(pavefric.core, "ANNOUNCE_SECONDS", 0.0)      # every run says it
+
+    def run(speeds, **kw):
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            ds = pavefric.simulate(z, DX, speeds, closed=False, **kw)
+        said = [str(w.message) for w in record
+                if issubclass(w.category, pavefric.PavefricCostWarning)]
+        assert len(said) == 1, said
+        return ds, said[0]
+
+    slow, _ = run([20.0], depth=1e-3)
+    fast, _ = run([80.0], depth=1e-3)
+    both, line = run([20.0, 80.0], depth=1e-3)
+    # 80 km/h: the pad refined (the run's own record), and costed as such
+    assert list(both["elements_per_sample_used"].values) == [1, 2]
+    assert "of it refining the pad at 80 km/h, where a probe found it on fewer than 4" in line
+    assert fast.attrs["estimated_seconds"] > 2 * slow.attrs["estimated_seconds"]
+    # the element-steps stay the reported pass's; a dry run refines nothing
+    assert both.attrs["estimated_element_steps"] == (slow.attrs["estimated_element_steps"]
+                                                     + fast.attrs["estimated_element_steps"])
+    dry, line = run([20.0, 80.0])
+    assert "refining" not in line and dry.attrs["estimated_seconds"] < slow.attrs[
+        "estimated_seconds"]
+    # without the passes that refine, no probe and no refinement costed
+    plain, line = run([20.0, 80.0], depth=1e-3, min_contacts=0, error_estimate=False)
+    assert "refining" not in line
+    assert plain.attrs["estimated_seconds"] < 0.5 * both.attrs["estimated_seconds"]
+
+
 def test_python_warns_before_a_long_run(monkeypatch, profile_m, tmp_path):
     """The attack of 2026-11-27: Python ran for as long as a run takes without
     a word (the program announces from 1 s). simulate() and run() now warn,

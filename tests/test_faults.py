@@ -43,7 +43,12 @@ def full_size(tmp_path_factory):
 def test_full_disk_in_the_program(tmp_path, full_size, fraction):
     scene = write_scene(tmp_path, "s", groups={"output": "series = .true."})
     old = tmp_path / "out.nc"
-    old.write_bytes(b"the previous output")
+    # the previous output: a run of another scene (pavefric replaces only its own outputs)
+    prev = write_scene(tmp_path / "prev", "p")
+    r = subprocess.run([program(), str(prev), "-o", str(old)], capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode == 0, r.stderr
+    previous = old.read_bytes()
     r = run_limited([program(), scene.name, "-o", "out.nc"], int(fraction * full_size),
                     tmp_path)
     # a clean error, not SIGSEGV (139) or SIGXFSZ; the line reaches a pipe
@@ -52,7 +57,7 @@ def test_full_disk_in_the_program(tmp_path, full_size, fraction):
     assert "File too large" in r.stderr
     assert "Backtrace" not in r.stderr
     assert not list(tmp_path.glob("out.nc.tmp*"))
-    assert old.read_bytes() == b"the previous output"
+    assert old.read_bytes() == previous
 
 
 def test_full_disk_leaves_a_batch_resumable(tmp_path):

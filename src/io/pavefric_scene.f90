@@ -199,6 +199,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       logical, intent(in), optional :: arrays, profile_only
       logical :: from_arrays, only_profile
+      character(len=:), allocatable :: from
       type(param_spec_type), allocatable :: specs(:)
 
       from_arrays = .false.
@@ -225,8 +226,9 @@ contains
          scene%profile_file = join_path(dir_name(path), scene%profile_file)
          return
       end if
+      call source_name(path, from)
       if (.not. scene%parameters%v(p_speeds_kmh)%set) then
-         call fatal_error(error, "&operation speeds_kmh: not given in " // source_name(path) // &
+         call fatal_error(error, "&operation speeds_kmh: not given in " // from // &
             & " (a list of sliding speeds in km/h is required)")
          return
       end if
@@ -238,7 +240,7 @@ contains
       else if (scene%is_batch) then
          if (len(scene%batch_profiles) == 0 .eqv. len(scene%batch_profile_list) == 0) then
             call fatal_error(error, "&batch: give exactly one of profiles (a pattern or " // &
-               & "directory) and profile_list (a file) in " // source_name(path))
+               & "directory) and profile_list (a file) in " // from)
             return
          end if
          if (len(scene%batch_profiles) > 0) scene%batch_profiles = &
@@ -247,7 +249,7 @@ contains
             & join_path(dir_name(path), scene%batch_profile_list)
       else
          if (len(scene%profile_file) == 0) then
-            call fatal_error(error, "&surface profile_file: not given in " // source_name(path) // &
+            call fatal_error(error, "&surface profile_file: not given in " // from // &
                & "; give the profile, e.g. &surface profile_file = 'profile.txt' " // &
                & "(relative to the scene's directory), or a &batch group to run many profiles")
             return
@@ -260,15 +262,17 @@ contains
    !> How a message names where the scene came from: its file, quoted, or
    !> "the scene text" for a scene given as text (pavefric_new_scene, Python's
    !> keywords), which has no file.
-   pure function source_name(path) result(name)
+   !> (A subroutine: a function returning a deferred length keeps a hidden
+   !> static per call site, docs/api.md.)
+   pure subroutine source_name(path, name)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: name
+      character(len=:), allocatable, intent(out) :: name
       if (len(path) == 0) then
          name = "the scene text"
       else
          name = "'" // path // "'"
       end if
-   end function source_name
+   end subroutine source_name
 
    !> The scene's fields from its parameter values.
    pure subroutine lay_out(scene, specs)

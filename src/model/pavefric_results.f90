@@ -22,8 +22,13 @@ module pavefric_results
       real(wp) :: bytes = 0.0_wp
       !> Seconds on one thread at the calibrated rates below, with the
       !> error estimate's pass (step_passes); with &numerics tolerance, of
-      !> the first pass (each refinement doubles it).
+      !> the first pass (each refinement doubles it); with the passes that
+      !> will refine the pad where a probe found it on few elements.
       real(wp) :: seconds = 0.0_wp
+      !> Of `seconds`, those refining the pad (add_refinement_cost), and the
+      !> speeds (km/h) the probe found standing on too few elements.
+      real(wp) :: refine_seconds = 0.0_wp
+      real(wp), allocatable :: refine_speeds(:)
    end type cost_estimate_type
 
 

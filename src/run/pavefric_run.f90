@@ -8,7 +8,7 @@ module pavefric_run
    use pavefric_profile, only: raw_profile_type, read_raw_profile, unit_factor
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
-      & element_grid, add_spinup_cost, &
+      & element_grid, add_spinup_cost, add_refinement_cost, &
       & cost_estimate_type, check_memory
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
@@ -73,6 +73,10 @@ contains
       c%element_steps = c%element_steps * phases
       c%total_element_steps = c%total_element_steps * phases
       c%seconds = c%seconds * real(phases, wp)
+      ! where a probe finds the pad standing on few elements: the passes
+      ! that refine it (the same numbers simulate records)
+      call add_refinement_cost(scene%model, clean%z, clean%dx, scene%closed, &
+         & scene%speeds_kmh, c)
    end function scene_estimate
 
    !> scene_estimate, refused (error) when the run would not fit in the
@@ -96,6 +100,7 @@ contains
       real(wp), intent(in) :: tolerance
       character(len=:), allocatable, intent(out) :: text
       character(len=32) :: mib, sec
+      character(len=:), allocatable :: listed
       write(mib, '(i0)') max(1_i8, nint(c%bytes / 2.0_wp**20, i8))
       if (c%seconds < 0.01_wp) then
          sec = "under 0.01"
@@ -105,9 +110,34 @@ contains
       end if
       text = "estimate: " // to_str(c%total_element_steps) // " element-steps, about " // &
          & trim(mib) // " MiB, " // trim(sec) // " s on one thread"
+      if (c%refine_seconds >= 0.01_wp .and. allocated(c%refine_speeds)) then
+         write(sec, '(f0.2)') c%refine_seconds
+         if (sec(1:1) == ".") sec = "0" // sec
+         call speeds_list(c%refine_speeds, listed)
+         text = text // ", " // trim(sec) // " s of it refining the pad at " // &
+            & listed // " km/h, where a probe found it on fewer " // &
+            & "than 4 elements in contact (&numerics min_contacts, error_estimate)"
+      end if
       if (tolerance > 0.0_wp) text = text // " for the first pass (&numerics tolerance: " // &
          & "each refinement doubles it)"
    end subroutine estimate_text
+
+   !> Speeds as "20, 50 and 80" (a subroutine: no deferred-length function
+   !> results in the library, docs/api.md).
+   pure subroutine speeds_list(v, text)
+      real(wp), intent(in) :: v(:)
+      character(len=:), allocatable, intent(out) :: text
+      integer :: k
+      text = ""
+      do k = 1, size(v)
+         if (k > 1 .and. k == size(v)) then
+            text = text // " and "
+         else if (k > 1) then
+            text = text // ", "
+         end if
+         text = text // to_str(v(k))
+      end do
+   end subroutine speeds_list
 
    !> Read the scene's profile (any supported format), preprocess it as the
    !> scene says, and settle its spacing.

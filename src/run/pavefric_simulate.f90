@@ -26,7 +26,7 @@ module pavefric_simulate
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components, cost_estimate_type, estimate_cost, check_memory, element_grid
-   public :: add_spinup_cost
+   public :: add_spinup_cost, add_refinement_cost
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -258,6 +258,8 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call run_grids(m, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
+      ! the estimate as the program printed it before the run (scene_estimate)
+      call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
       allocate(res%elements_per_sample_used(size(speeds_kmh)), &
          & res%speed_n_elements(size(speeds_kmh)))
       res%elements_per_sample_used = m%elements_per_sample
@@ -1535,9 +1537,10 @@ contains
    !> substeps: 2 for the exact integrator (1.1 to 3.7 one pass,
    !> docs/accuracy.md), 3 with the error estimate's pass at half the step
    !> (&numerics error_estimate at tolerance = 0), else 1. (Where the pad
-   !> stands on few elements the estimate halves them until it stands on 4,
-   !> up to hundreds of passes' worth, and the exact integrator's pass halves
-   !> them too, 4 more: known only after the run, so not counted here.)
+   !> stands on few elements min_contacts and the estimate halve them until
+   !> it stands on 4, up to hundreds of passes' worth: add_refinement_cost
+   !> foresees them with a probe. The exact integrator's pass that halves
+   !> the elements, 4 more, is not counted.)
    pure real(wp) function step_passes(m, n_state) result(passes)
       type(model_type), intent(in) :: m
       integer, intent(in) :: n_state
@@ -1591,6 +1594,106 @@ contains
       per_step = sec_step + sec_arm * real(rubber%state_size() - 1, wp)
       c%seconds = c%seconds + step_passes(m, rubber%state_size()) * per_step * extra
    end subroutine add_spinup_cost
+
+   !> The passes the run will add where it finds the pad standing on fewer
+   !> than contacts_resolved elements in contact (resolve_pad for
+   !> min_contacts, estimate_step_error's levels and last pass), foreseen
+   !> before the run by a probe: each speed run once on every `stride`-th
+   !> position of the profile's first probe_window samples (about
+   !> probe_positions of them, one step per position, no estimate, no
+   !> refinement), whose contacts say how many halvings each
+   !> speed will need, on the assumption that the contacts double with each
+   !> halving of the elements. Each level is costed by estimate_cost at its
+   !> elements_per_sample (about 4 times the level before: twice the
+   !> elements at twice the positions). Added to c%seconds only (the
+   !> element-steps stay the reported pass's). Runs of fewer than
+   !> probe_runs_from * probe_positions positions (where the probe would cost
+   !> more than half a pass, a sixth of the default run), runs that refine
+   !> nothing (tolerance > 0, neither min_contacts nor the error estimate)
+   !> and probes that fail are left as they are: the probe is an estimate's
+   !> helper, never an error. (At 256 positions the probe of a pad the film
+   !> lifted at 80 km/h saw it touch at 2 of them, and missed the levels.)
+   subroutine add_refinement_cost(m, z, dx, closed, speeds_kmh, c)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
+      logical, intent(in) :: closed
+      type(cost_estimate_type), intent(inout) :: c
+      integer, parameter :: probe_positions = 1024, probe_runs_from = 2
+      integer, parameter :: probe_window = 65536
+      type(model_type) :: mp
+      type(sim_result_type) :: r
+      type(error_type), allocatable :: err
+      class(rubber_model), allocatable :: rubber
+      class(film_model), allocatable :: film
+      logical :: friction_film, estimate
+      integer :: npe, phases, positions, j, k, levels, eps, nw, npw, phw
+      real(wp) :: dxe, dxw, contacts, extra, fixed
+      if (m%tolerance > 0.0_wp) return
+      estimate = m%error_estimate
+      if (m%min_contacts <= 0 .and. .not. estimate) return
+      call element_grid(m, size(z), dx, closed, npe, dxe, phases, positions)
+      if (positions < probe_runs_from * probe_positions * phases) return
+      mp = m
+      mp%error_estimate = .false.
+      mp%min_contacts = 0
+      mp%substeps = 1
+      mp%time_scheme = "euler"
+      ! a window of the profile at most probe_window samples long (its
+      ! geometry is built for the probe as for a run: a 10-million-point
+      ! profile would pay that twice), on every n-th of its positions
+      nw = min(size(z), probe_window)
+      call element_grid(m, nw, dx, closed .and. nw == size(z), npw, dxw, phw, positions)
+      mp%position_stride = max(1, positions / (phw * probe_positions))
+      call run_grids(mp, z(1:nw), dx, closed .and. nw == size(z), speeds_kmh, .false., r, err)
+      if (allocated(err)) return
+      call make_components(m, rubber, film)
+      friction_film = .false.
+      if (allocated(film)) friction_film = film%changes_friction()
+      fixed = sec_run + sec_point * real(npe, wp)
+      extra = 0.0_wp
+      allocate(c%refine_speeds(0))
+      do j = 1, size(speeds_kmh)
+         contacts = contacts_touching(r, j)
+         if (.not. (contacts > 0.0_wp .and. contacts < contacts_resolved)) cycle
+         c%refine_speeds = [c%refine_speeds, speeds_kmh(j)]
+         levels = 0
+         do while (contacts * 2.0_wp**levels < contacts_resolved .and. levels < pad_levels)
+            levels = levels + 1
+         end do
+         eps = m%elements_per_sample
+         do k = 1, levels
+            if (2 * eps > max_elements_per_sample) exit
+            eps = 2 * eps
+            extra = extra + level_seconds(eps, m%substeps)
+         end do
+         if (.not. estimate) cycle
+         ! the estimate's last pass: half the step where the levels reached
+         ! the contacts, else half the elements once more
+         if (contacts * 2.0_wp**levels >= contacts_resolved) then
+            extra = extra + level_seconds(eps, 2 * m%substeps)
+         else if (2 * eps <= max_elements_per_sample) then
+            extra = extra + level_seconds(2 * eps, m%substeps)
+         end if
+      end do
+      c%refine_seconds = extra * real(phases, wp)
+      c%seconds = c%seconds + c%refine_seconds
+   contains
+      !> One speed's pass at elements_per_sample e and substeps s, without
+      !> the run's fixed costs.
+      real(wp) function level_seconds(e, s)
+         integer, intent(in) :: e, s
+         type(model_type) :: ml
+         type(cost_estimate_type) :: cl
+         ml = m
+         ml%error_estimate = .false.
+         ml%min_contacts = 0
+         ml%elements_per_sample = e
+         ml%substeps = s
+         cl = estimate_cost(ml, npe, dxe, closed, 1, .false., friction_film, &
+            & rubber%state_size())
+         level_seconds = max(0.0_wp, cl%seconds - fixed)
+      end function level_seconds
+   end subroutine add_refinement_cost
 
    !> Refuse a run, before allocating, whose estimated memory exceeds what
    !> the machine has (a clear error instead of the process being killed).

@@ -240,11 +240,12 @@ def outputs_markdown() -> str:
         "cost estimated before the run, from the scene alone: element updates of all "
         "speeds ((spin-up + averaged positions) x pad elements, exact), peak memory, and "
         "seconds on one thread at rates calibrated by `python -m pavefric bench` (with "
-        "`&numerics tolerance`: of the first pass; each refinement doubles it). Not "
-        "counted: the passes that halve the pad's elements where the run finds it standing "
-        "on fewer than 4 in contact (`min_contacts`, the error estimate), each level about "
-        "4 times the cost of the one before; a water film lifting the pad onto a few "
-        "asperities can make the run several times the estimate (docs/performance.md) |",
+        "`&numerics tolerance`: of the first pass; each refinement doubles it). The "
+        "seconds include the passes that will halve the pad's elements where it stands on "
+        "fewer than 4 in contact (`min_contacts`, the error estimate), each level about 4 "
+        "times the cost of the one before, foreseen by a probe (the run on every n-th of "
+        "at least 2048 positions; shorter runs are not probed); the element-steps are the "
+        "reported pass's (docs/performance.md) |",
         "| `preprocessing`, `preprocess_*` | what preprocessing did to the profile, in "
         "a sentence and as numbers (docs/profiles.md) |",
         "",
