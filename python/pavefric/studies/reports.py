@@ -726,7 +726,8 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
-        "error-estimate pass): the benchmark's coarse surface dry and wet (65,536 points, 6 "
+        "error-estimate pass, and since 2026-11-28 no refinement of the pad, "
+        "`min_contacts = 0`, as the sweep): the benchmark's coarse surface dry and wet (65,536 points, 6 "
         "speeds) and 500 calls on a 64-point profile (the fixed cost of a call); "
         "`tools/profile_kernel.sh --callgrind` counts the instructions of one dry and one "
         "wet run (16,384 points), which the load of a shared host does not move. Measured "
@@ -752,6 +753,39 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "formatted its message before knowing of an error) | 2.1 ms: a bisection over the "
         "digits, each text built once, messages only on error; now 59 % Python (the xarray "
         "Dataset) |",
+        "",
+        "## What the cost estimate foresees with a probe",
+        "",
+        "The estimate printed before a run (and recorded as `estimated_seconds`) counts "
+        "the passes the scene's numerics fix: the run, and the error estimate's pass at "
+        "half the step. Other passes depend on what the run finds: where the pad stands "
+        "on fewer than 4 elements in contact on average, the default (`min_contacts = "
+        "4`) reruns that speed with the elements halved, up to 4 times, each level "
+        "costing about 4 times the one before (twice the elements at twice the "
+        "positions), and the error estimate halves them again from there. A water film "
+        "that lifts the pad onto a few asperities triggers exactly this. In the first "
+        "run of 2026-11-28, before the probe, the cost-estimate section's test scene "
+        "\"wet kane2017, fine texture (rms 0.2 mm), 3 speeds\" (20, 50, 80 km/h at 1 mm) "
+        "took 4.6 s against 0.62 s estimated (0.14), and \"wet kane2017, 10 speeds, a 40 "
+        "mm pad\" at 2 mm 15.2 s against 2.6 s (0.17); the estimate had been within a "
+        "factor 2 on every scene of the run of 2026-11-27, made before `min_contacts` "
+        "defaulted to 4.",
+        "",
+        "Since then a probe runs before the estimate (`add_refinement_cost`, "
+        "src/run/pavefric_simulate.f90): each speed on every n-th of about 1024 "
+        "positions of the profile's first 65,536 samples, one step a position, no "
+        "estimate, no refinement. The speeds where it finds the pad on fewer than 4 "
+        "elements in contact get their levels costed (assuming the contacts double with "
+        "each halving), and the program's estimate line names them (\"4.06 s of it "
+        "refining the pad at 50 and 80 km/h\"). In the second run of 2026-11-28 the two "
+        "scenes came to 1.06 (4.68 s estimated, 4.43 s measured) and 0.98 (12.05 s, "
+        "12.30 s), every test scene within 0.53–1.06 (these two figures are that run's; "
+        "the table above is the latest run's). Runs of fewer than 2048 positions are "
+        "not probed (the probe would cost more than half a pass). A first version "
+        "probed 256 positions: at 80 km/h the film carried the pad at all but 2 of "
+        "them, too few to count its contacts, and it missed that speed. Command: "
+        "`python -m pavefric bench --report docs/performance.md --reference "
+        "tests/reference.py` (the section \"Cost estimate against the measured time\").",
         "",
         "## Why the NumPy ratio is lower when dry",
         "",
