@@ -144,6 +144,50 @@ def test_the_estimate_foresees_the_pad_refined_under_a_film(monkeypatch):
     assert plain.attrs["estimated_seconds"] < 0.5 * both.attrs["estimated_seconds"]
 
 
+def test_the_probe_runs_once_a_run(tmp_path):
+    """The probe behind the refinement's cost ran twice a run (for the
+    estimate printed before it, then again for the one recorded): up to a
+    third of a run of 2048 positions. The run now records the up-front
+    estimate's refinement seconds as given (the program, simulate() and
+    run() hand them on), and probes itself only when given none (< 0): a
+    forecast handed on is what the output records, and without one the run
+    records what the up-front estimate said."""
+    from pavefric import _core
+    from pavefric.core import _format, _spec, _tables, _typed
+    from pavefric.surfaces import spectral_profile
+
+    z = spectral_profile(4096, DX, rms=0.2e-3, skew=-0.3, seed=7)
+    settings = {("surface", "dx"): _format(_spec("surface", "dx"), DX, "dx"),
+                ("surface", "closed"): _format(_spec("surface", "closed"), False, "closed"),
+                ("water", "depth"): _format(_spec("water", "depth"), 1e-3, "depth"),
+                ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"),
+                                                     [20.0, 80.0], "speeds_kmh")}
+    typed = _typed(settings)
+    estimate, _, status, message = _core.pf_estimate(z, *typed)
+    assert status == 0, message
+    assert estimate[3] > 0.1 * estimate[2]        # 80 km/h refined: a probe found it
+
+    def recorded(forecast):
+        out = _core.pf_simulate(z, *typed, 2, 1, len(_tables()[2]), 1, 8192, forecast)
+        assert out[-2] == 0, out[-1]
+        return out[8][2]                          # estimated seconds, as recorded
+
+    probed = recorded(-1.0)
+    assert probed == pytest.approx(estimate[2], rel=1e-12)
+    assert recorded(estimate[3]) == pytest.approx(estimate[2], rel=1e-12)
+    # a forecast handed on is recorded as it is: the run did not probe again
+    assert recorded(100.0) == pytest.approx(estimate[2] - estimate[3] + 100.0, rel=1e-12)
+    # run(): the output records what the up-front estimate said
+    scene = write_scene(tmp_path / "s", profile=z,
+                        groups={"water": "depth = 1e-3", "operation": "speeds_kmh = 20, 80",
+                                "surface": "profile_file = 'scene_profile.txt', closed = .false."})
+    before, _, status, message = _core.pf_scene_estimate(str(scene).encode())
+    assert status == 0, message
+    assert before[3] > 0.1 * before[2]
+    with xr.open_dataset(pavefric.run(scene, output=tmp_path / "s.nc")) as ds:
+        assert ds.attrs["estimated_seconds"] == pytest.approx(before[2], rel=1e-12)
+
+
 def test_python_warns_before_a_long_run(monkeypatch, profile_m, tmp_path):
     """The attack of 2026-11-27: Python ran for as long as a run takes without
     a word (the program announces from 1 s). simulate() and run() now warn,

@@ -65,16 +65,21 @@ class PavefricCostWarning(UserWarning):
 ANNOUNCE_SECONDS = 10.0
 
 
-def _announce(estimate, text, status, message) -> None:
+def _announce(estimate, text, status, message) -> float:
     """Warn before a long run (the estimate from pf_estimate or
     pf_scene_estimate). A scene the estimate cannot read is left to the run,
-    which says why in its own order of checks."""
-    if int(status) != 0 or float(estimate[2]) < ANNOUNCE_SECONDS:
-        return
+    which says why in its own order of checks. Returns the estimate's seconds
+    for the passes that refine the pad, which the run then records without
+    probing the profile again (-1 when there is no estimate: the run probes)."""
+    if int(status) != 0:
+        return -1.0
+    if float(estimate[2]) < ANNOUNCE_SECONDS:
+        return float(estimate[3])
     import warnings
 
     warnings.warn(f"pavefric: a long run ({_text(text)}); the output records it as "
                   "estimated_seconds", PavefricCostWarning, stacklevel=3)
+    return float(estimate[3])
 
 
 class ProfilesFailedWarning(UserWarning):
@@ -559,13 +564,13 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
         n_el, npos, n_series, status, message = _core.pf_layout(*typed, z.size)
         _check(status, message, keywords=True)
         npos = max(npos, 1)
-    _announce(*_core.pf_estimate(z, *typed))
+    forecast = _announce(*_core.pf_estimate(z, *typed))
     _, _, outputs = _tables()
     ntext = 4096 + 2 * len(typed[-1]) + 32 * len(typed[0])
     while True:
         (speed, speed_kmh, values, series_values, present, position, counts, texture, estimate,
          ifi, texts, lengths, status, message) = _core.pf_simulate(z, *typed, speeds.size, npos, len(outputs),
-                                                        n_series, ntext)
+                                                        n_series, ntext, forecast)
         _check(status, message, keywords=True)
         if series and int(counts[1]) != npos:
             # a tolerance run chose finer steps: more positions (run again)
@@ -727,9 +732,9 @@ def run(path: str | os.PathLike, output: str | os.PathLike | None = None,
     _check(status, message)
     if is_batch:
         return _run_batch(str(path), str(output or ""), command, progress)
-    _announce(*_core.pf_scene_estimate(_b(os.fspath(path))))
+    forecast = _announce(*_core.pf_scene_estimate(_b(os.fspath(path))))
     out_path, warnings_text, status, message = _core.pf_run_scene(
-        _b(os.fspath(path)), _b(os.fspath(output) if output else ""), _b(command))
+        _b(os.fspath(path)), _b(os.fspath(output) if output else ""), _b(command), forecast)
     _check(status, message)
     if _text(warnings_text):
         _warn(_text(warnings_text))

@@ -338,7 +338,8 @@ contains
          & "Each halving costs about 4 times the run before " // &
          & "it; they are the passes the error estimate would run otherwise, so with it " // &
          & "the default costs about what the paper's discretisation does; the up-front " // &
-         & "cost estimate leaves the halvings out. 4 resolves the pad's " // &
+         & "cost estimate forecasts the halvings from a probe of the profile (runs of " // &
+         & "2048 positions or more). 4 resolves the pad's " // &
          & "contacts on the paper's surfaces (docs/accuracy.md, ""The pad's resolution"")", &
          & 0, 1000)
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &

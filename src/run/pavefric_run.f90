@@ -233,7 +233,8 @@ contains
    !> Run the scene in `path`; write its NetCDF output to `output_override`
    !> when that is not empty, else to the namelist's &output file, else to
    !> outputs/<scene name>.nc. `command` goes into the history attribute.
-   subroutine run_scene(path, output_override, command, out_path, res, error, warnings, announce)
+   subroutine run_scene(path, output_override, command, out_path, res, error, warnings, announce, &
+         & refine_seconds)
       character(len=*), intent(in) :: path, output_override, command
       character(len=:), allocatable, intent(out) :: out_path
       type(sim_result_type), intent(out) :: res
@@ -243,7 +244,12 @@ contains
       !> Told the cost estimate before the model runs, when it is long
       !> (announce_seconds or more; the output records it always).
       procedure(announce_interface), optional :: announce
+      !> The up-front estimate's seconds for the passes that refine the pad,
+      !> when the caller made it (>= 0; Python's run() does): recorded as
+      !> they are instead of probing the profile again.
+      real(wp), intent(in), optional :: refine_seconds
       character(len=:), allocatable :: line
+      real(wp) :: refine
       type(cost_estimate_type) :: cost
       type(scene_type) :: scene
       type(output_metadata_type) :: meta
@@ -282,13 +288,16 @@ contains
 
       call load_scene_profile(scene, clean, error)
       if (allocated(error)) return
+      refine = -1.0_wp
+      if (present(refine_seconds)) refine = refine_seconds
       if (present(announce)) then
          ! a refusal is the one line, not after the estimate
          call checked_estimate(scene, clean, cost, line, error)
          if (allocated(error)) return
          if (cost%seconds >= announce_seconds) call announce(line)
+         refine = cost%refine_seconds
       end if
-      call run_profile(scene, clean, res, meta, error)
+      call run_profile(scene, clean, res, meta, error, refine)
       if (allocated(error)) return
       meta%title = "pavefric friction-speed curve of scene " // scene%name
       meta%history = timestamp() // " pavefric " // pavefric_version // ": " // command
@@ -303,16 +312,19 @@ contains
    !> texture metrics and every warning, shared by the program, Python and
    !> the C API. `clean` holds heights (m), spacing and, for instrument
    !> files, their quality flags.
-   subroutine run_profile(scene, clean, res, meta, error)
+   subroutine run_profile(scene, clean, res, meta, error, refine_seconds)
       type(scene_type), intent(in) :: scene
       type(clean_profile_type), intent(in) :: clean
       type(sim_result_type), intent(out) :: res
       type(output_metadata_type), intent(out) :: meta
       type(error_type), allocatable, intent(out) :: error
+      !> simulate's: the up-front estimate's refinement seconds (< 0 or
+      !> absent: simulate probes the profile itself).
+      real(wp), intent(in), optional :: refine_seconds
       type(error_type), allocatable :: texture_error
 
       call simulate(scene%model, clean%z, clean%dx, scene%closed, scene%speeds_kmh, &
-         & scene%series, res, error)
+         & scene%series, res, error, refine_seconds)
       if (allocated(error)) then
          ! the core's words for the profile ("the profile has 8 points, ..."):
          ! which file (a batch names its profile itself)

@@ -250,16 +250,30 @@ contains
    !> &numerics min_contacts the pad's elements are then refined speed by
    !> speed (resolve_pad); at tolerance = 0 the error estimate follows
    !> (estimate_step_error), made on the results as reported.
-   subroutine simulate(m, z, dx, closed, speeds_kmh, want_series, res, error)
+   subroutine simulate(m, z, dx, closed, speeds_kmh, want_series, res, error, refine_seconds)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
       logical, intent(in) :: closed, want_series
       type(sim_result_type), intent(out) :: res
       type(error_type), allocatable, intent(out) :: error
+      !> The seconds the up-front estimate (scene_estimate) gave the passes
+      !> that refine the pad, when the caller made it (>= 0): recorded as
+      !> they are, so the probe behind them is not run a second time.
+      !> Absent or < 0: the probe runs here (add_refinement_cost).
+      real(wp), intent(in), optional :: refine_seconds
       call run_grids(m, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
       ! the estimate as the program printed it before the run (scene_estimate)
-      call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
+      if (present(refine_seconds)) then
+         if (refine_seconds >= 0.0_wp) then
+            res%estimate%refine_seconds = refine_seconds
+            res%estimate%seconds = res%estimate%seconds + refine_seconds
+         else
+            call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
+         end if
+      else
+         call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
+      end if
       allocate(res%elements_per_sample_used(size(speeds_kmh)), &
          & res%speed_n_elements(size(speeds_kmh)))
       res%elements_per_sample_used = m%elements_per_sample

@@ -178,7 +178,9 @@ subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    integer(c_int), intent(in) :: t_ids(t_n), t_kinds(t_n), t_counts(t_n), t_lengths(t_n)
    real(c_double), intent(in) :: t_reals(t_nreal)
    character(len=*), intent(in) :: t_text
-   real(c_double), intent(out) :: estimate(3)
+   !> Element-steps, bytes, seconds on one thread, and the seconds of them
+   !> that refine the pad (pf_simulate's `forecast`: the probe then runs once).
+   real(c_double), intent(out) :: estimate(4)
    character(len=512), intent(out) :: text
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
@@ -195,7 +197,8 @@ subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    call checked_estimate(scene, clean, cost, line, error)
    if (allocated(error)) goto 99
    text = line
-   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds]
+   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds, &
+      & cost%refine_seconds]
 99 continue
    if (allocated(error)) then
       status = error%stat
@@ -216,8 +219,8 @@ end subroutine pf_estimate
 !> tolerance run refined the step), counts(2) says how many, status 0.
 subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, t_text, &
       & ns, npos, nout, nser, ntext, speed, speed_kmh, values, &
-      & series, present, position, counts, texture, estimate, ifi, texts, text_lengths, &
-      & status, message)
+      & forecast, series, present, position, counts, texture, estimate, ifi, texts, &
+      & text_lengths, status, message)
    use, intrinsic :: iso_c_binding, only: c_double, c_int
    use pavefric_kinds, only: wp
    use pavefric_scene, only: scene_type, scene_from_typed
@@ -230,6 +233,9 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    implicit none
    integer(c_int), intent(in) :: np, ns, npos, nout, nser, ntext
    real(c_double), intent(in) :: z(np)
+   !> pf_estimate's seconds that refine the pad, recorded as they are (the
+   !> probe behind them not run again); < 0: the run probes the profile.
+   real(c_double), intent(in) :: forecast
    !> The settings as typed items (pavefric_model's apply_typed): variable
    !> ids (1-based, the table's order), kinds, numbers per item and text
    !> characters per item, the numbers and the text.
@@ -270,7 +276,7 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    end if
    clean%z = z
    clean%dx = scene%dx
-   call run_profile(scene, clean, res, meta, error)
+   call run_profile(scene, clean, res, meta, error, real(forecast, wp))
    if (allocated(error)) goto 99
    n_pos = 0
    if (scene%series) n_pos = res%n_positions
@@ -344,7 +350,7 @@ subroutine pf_scene_estimate(path, estimate, text, status, message)
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path
-   real(c_double), intent(out) :: estimate(3)
+   real(c_double), intent(out) :: estimate(4)
    character(len=512), intent(out) :: text
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
@@ -361,7 +367,8 @@ subroutine pf_scene_estimate(path, estimate, text, status, message)
    call checked_estimate(scene, clean, cost, line, error)
    if (allocated(error)) goto 99
    text = line
-   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds]
+   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds, &
+      & cost%refine_seconds]
 99 continue
    if (allocated(error)) then
       status = error%stat
@@ -371,13 +378,16 @@ end subroutine pf_scene_estimate
 
 !> Run a scene file and write its NetCDF output, as the program does; the
 !> warnings recorded in it come back in `warnings` (lines, truncated).
-subroutine pf_run_scene(path, output, command, out_path, warnings, status, message)
-   use, intrinsic :: iso_c_binding, only: c_int
+subroutine pf_run_scene(path, output, command, forecast, out_path, warnings, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use pavefric_kinds, only: wp
    use pavefric_run, only: run_scene
    use pavefric_simulate, only: sim_result_type
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path, output, command
+   !> pf_scene_estimate's seconds that refine the pad (< 0: the run probes).
+   real(c_double), intent(in) :: forecast
    character(len=4096), intent(out) :: out_path
    character(len=8192), intent(out) :: warnings
    integer(c_int), intent(out) :: status
@@ -389,7 +399,8 @@ subroutine pf_run_scene(path, output, command, out_path, warnings, status, messa
    message = ""
    out_path = ""
    warnings = ""
-   call run_scene(path, output, command, written, res, error, warnings=warned)
+   call run_scene(path, output, command, written, res, error, warnings=warned, &
+      & refine_seconds=real(forecast, wp))
    if (allocated(error)) then
       status = error%stat
       message = error%message
