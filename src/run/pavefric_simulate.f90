@@ -1927,6 +1927,12 @@ contains
       integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, film_count
       logical :: series, clamped, any_memory, any_load, any_friction, energy, settled
       logical :: film_reports
+      !> The Kelvin-Voigt pad without a film that changes the facets'
+      !> friction (the energy scheme; dry, or a film that carries load):
+      !> the rubber's free compression, the contacts, the work and the
+      !> rubber's update each fused into the pass beside them (lane_free_gaps,
+      !> lane_step_kv), the same numbers in fewer passes.
+      logical :: kv_fused
       !> Spin-up steps of each lane (closed profiles), and whether a lane has
       !> had a step since it started.
       integer, dimension(lanes) :: spin
@@ -1983,9 +1989,14 @@ contains
          end if
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
-         if (any_memory) call rubber%free_compression(rstep, state, u_free)
-         call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
-            & u_free, c, cmin, d)
+         if (kv_fused) then
+            call lane_free_gaps(nl, n, rstep%coef(:, 1), state, &
+               & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, c, cmin, d)
+         else
+            if (any_memory) call rubber%free_compression(rstep, state, u_free)
+            call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
+               & u_free, c, cmin, d)
+         end if
          ! warm start from the previous position's penetration
          call dry_roots(nl, n, d, s_load, delta_prev - cmin, x, work, dl)
          wh = 0.0_wp
@@ -2029,19 +2040,49 @@ contains
             end if
          end if
 
-         sum_f = 0.0_wp
-         call lane_contacts(nl, n, x, d, u_free, &
-            & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
-            & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
-            & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), push, sum_f, &
-            & contacts, sum_ft, clamps, u_max, sum_fa)
-         n_contact = nint(contacts)
-         n_clamp_j = nint(clamps)
-         if (t == -1) contact_before = n_contact > 0
+         if (kv_fused) then
+            ! lane_contacts, energy_step's lane_work_linear and kv_update in
+            ! one pass (the first step's work, from no previous step, is
+            ! discarded below as energy_step discards it)
+            call lane_step_kv(nl, n, x, d, u_free, &
+               & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+               & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+               & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+               & rstep%mean_weights, cmin + x - delta_last, u_prev, push_prev, state, push, &
+               & sum_f, contacts, sum_ft, clamps, u_max, sum_fa, hyst, mean_total)
+            n_contact = nint(contacts)
+            n_clamp_j = nint(clamps)
+            if (t == -1) contact_before = n_contact > 0
+            ! the rest of energy_step: the pad's descent against a film
+            ! that carries load (none without one)
+            do j = 1, nl
+               film_work(j) = 0.0_wp
+               if (load_film(j) .and. (wh(j) > 0.0_wp .or. wh_prev(j) > 0.0_wp)) &
+                  & film_work(j) = (m%load - kel(j) * mean_total(j)) * &
+                  & (cmin(j) + x(j) - delta_last(j))
+            end do
+            where (.not. have_prev)
+               hyst = 0.0_wp
+               film_work = 0.0_wp
+            end where
+            push_total_prev(1:nl) = sum_f(1:nl)
+            delta_last = cmin + x
+            have_prev = .true.
+         else
+            sum_f = 0.0_wp
+            call lane_contacts(nl, n, x, d, u_free, &
+               & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+               & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+               & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), push, sum_f, &
+               & contacts, sum_ft, clamps, u_max, sum_fa)
+            n_contact = nint(contacts)
+            n_clamp_j = nint(clamps)
+            if (t == -1) contact_before = n_contact > 0
 
-         call friction_films(t, k1)
-         if (energy) call energy_step()
-         if (any_memory) call rubber%update(rstep, state, u_free, push)
+            call friction_films(t, k1)
+            if (energy) call energy_step()
+            if (any_memory) call rubber%update(rstep, state, u_free, push)
+         end if
          delta_prev2 = merge(delta_prev, -huge(1.0_wp), delta_prev > -huge(1.0_wp))
          wh_prev = wh
          delta_prev = cmin + x
@@ -2126,6 +2167,18 @@ contains
          end if
          u_free = 0.0_wp
          if (any_memory) state = 0.0_wp
+         kv_fused = .false.
+         select type (rubber)
+         type is (kelvin_voigt_rubber)
+            kv_fused = any_memory .and. energy .and. allocated(rstep%mean_weights) .and. &
+               & .not. any_friction .and. ns_state == 1
+         end select
+         if (kv_fused) then
+            ! the first step's work is computed from these and discarded
+            u_prev = 0.0_wp
+            push_prev = 0.0_wp
+            delta_last = 0.0_wp
+         end if
          tan_max = tan(m%theta_max_deg * acos(-1.0_wp) / 180.0_wp)
          if (any_friction) then
             do j = 1, nl
@@ -2140,9 +2193,12 @@ contains
       !> whichever speeds share its chunk.
       subroutine restart_lanes(t)
          integer, intent(in) :: t
-         integer :: j
+         integer :: j, first
+            ! (spin-ups start at t <= 0: none later)
+            if (t > 0) return
+            first = -maxval(spin(1:nl))
             do j = 1, nl
-               if (t /= -spin(j) .or. t == -maxval(spin(1:nl))) cycle
+               if (t /= -spin(j) .or. t == first) cycle
                if (any_memory) state(j, :, :) = 0.0_wp
                u_free(j, :) = 0.0_wp
                delta_prev(j) = -huge(1.0_wp)
@@ -2547,6 +2603,76 @@ contains
          end do
       end do
    end subroutine lane_gaps
+
+   !> lane_gaps for the Kelvin-Voigt pad, with its free compression (kv_free:
+   !> u_free = b u, b the lane's relaxation over a step) in the same pass:
+   !> the same operations as the two, in one loop.
+   pure subroutine lane_free_gaps(nl, n, relax, state, z, h, u_free, c, cmin, d)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: relax(nl), state(nl, n), z(n), h(n)
+      real(wp), intent(out) :: u_free(nl, n), c(nl, n), cmin(nl), d(nl, n)
+      integer :: i, j
+      cmin = huge(1.0_wp)
+      do i = 1, n
+         do j = 1, nl
+            u_free(j, i) = relax(j) * state(j, i)
+            c(j, i) = h(i) - z(i) + u_free(j, i)
+            cmin(j) = min(cmin(j), c(j, i))
+         end do
+      end do
+      do i = 1, n
+         do j = 1, nl
+            d(j, i) = c(j, i) - cmin(j)
+         end do
+      end do
+   end subroutine lane_free_gaps
+
+   !> For the Kelvin-Voigt pad (the energy scheme) without a film that
+   !> changes the facets' friction, the step after the balance in one pass: lane_contacts' pushes
+   !> and sums, lane_work_linear's work and mean force (u_prev, push_prev
+   !> then the step's), and kv_update's state u = u_free + push; each value
+   !> by the same operations as theirs, in the same order.
+   pure subroutine lane_step_kv(nl, n, x, d, u_free, tan_t, clamped, adhesion, weights, &
+         & ddelta, u_prev, push_prev, state, push, sum_f, contacts, sum_ft, clamps, u_max, &
+         & sum_fa, w, total)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n), &
+         & adhesion(n), weights(nl, 2), ddelta(nl)
+      real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n), state(nl, n)
+      real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl), &
+         & sum_fa(nl), w(nl), total(nl)
+      real(wp), intent(inout) :: u_max(nl)
+      real(wp) :: p, in_contact, u, f
+      integer :: i, j
+      sum_f = 0.0_wp
+      contacts = 0.0_wp
+      sum_ft = 0.0_wp
+      sum_fa = 0.0_wp
+      clamps = 0.0_wp
+      w = 0.0_wp
+      total = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            p = max(0.0_wp, x(j) - d(j, i))
+            push(j, i) = p
+            in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
+            sum_f(j) = sum_f(j) + p
+            contacts(j) = contacts(j) + in_contact
+            sum_ft(j) = sum_ft(j) + p * tan_t(i)
+            sum_fa(j) = sum_fa(j) + p * adhesion(i)
+            clamps(j) = clamps(j) + in_contact * clamped(i)
+            u_max(j) = max(u_max(j), u_free(j, i) + p)
+            u = u_free(j, i) + p
+            f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + p > 0.0_wp) * &
+               & (weights(j, 1) * u_prev(j, i) + weights(j, 2) * u)
+            w(j) = w(j) + f * ((u - u_prev(j, i)) - ddelta(j))
+            total(j) = total(j) + f
+            u_prev(j, i) = u
+            push_prev(j, i) = p
+            state(j, i) = u
+         end do
+      end do
+   end subroutine lane_step_kv
 
    !> Per lane at penetration x: each element's push max(0, x - d) (its
    !> compression beyond u_free), their sum, the contacts, the sum weighted
