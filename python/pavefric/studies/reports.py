@@ -754,6 +754,22 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "digits, each text built once, messages only on error; now 59 % Python (the xarray "
         "Dataset) |",
         "",
+        "On 2026-11-28 (18f76b4) the Kelvin-Voigt pad's step lost three of its passes: the "
+        "rubber's free compression is taken in the gaps' pass (`lane_free_gaps`), and the "
+        "contacts, the energy scheme's work and the rubber's update in one pass after the "
+        "balance (`lane_step_kv`), dry and under films that carry load; each value by the "
+        "same operations, so every number keeps its bits. `valgrind --tool=callgrind` on "
+        "the program (one dry run of 16,384 points, 6 speeds, one thread, `min_contacts = "
+        "0`, no error estimate, a `-g` build): the core's kernel 235 M instructions before "
+        "(`slide` 115 M, the dry Newton passes 58 M, the energy step 50 M, the rubber 11 M), "
+        "213 M after (`slide` 155 M with all of them inlined but the Newton passes, 58 M). "
+        "The time fell more than the instructions (the sweep's dry rate 59-61 M "
+        "element-steps/s before, 69-70 M after, measured with the benchmark's sweep child): "
+        "the pass over each array's 138 values is the cost, more than its arithmetic. A "
+        "shortcut of the dry root's first pass (stop where no element lies between the "
+        "guess and the Newton step) saved no pass often enough to pay for its two extra "
+        "reductions: 5 % slower, not kept.",
+        "",
         "## What the cost estimate foresees with a probe",
         "",
         "The estimate printed before a run (and recorded as `estimated_seconds`) counts "
