@@ -2170,8 +2170,10 @@ contains
          kv_fused = .false.
          select type (rubber)
          type is (kelvin_voigt_rubber)
+            ! (not where the caller wants a friction film's series: the
+            ! general passes fill them at speeds where the film is off)
             kv_fused = any_memory .and. energy .and. allocated(rstep%mean_weights) .and. &
-               & .not. any_friction .and. ns_state == 1
+               & .not. any_friction .and. ns_state == 1 .and. .not. present(film_thickness)
          end select
          if (kv_fused) then
             ! the first step's work is computed from these and discarded
