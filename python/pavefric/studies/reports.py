@@ -723,6 +723,18 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "its default run` on these small scenes (ctm_dry's default run 13.7 ms before, "
         "5.4 ms after).",
         "",
+        "On 2026-11-28 (the run after 18f76b4) three rows moved again without their "
+        "numerators slowing: the drainage film against the paper's wet model (2.14x to "
+        "2.29x) and the Maxwell rubber of 3 arms against Kelvin-Voigt (1.50x to 1.62x), "
+        "because the Kelvin-Voigt pad's step was fused into fewer passes (dry and under the "
+        "paper's bearing) while the drainage film and the Maxwell rubber keep the general "
+        "passes (their own rates the same within the host's noise: 8.6-12.5 M element-steps/s "
+        "and 21.9-22.6 ns); and the tolerance rows' runs to 1e-6, 1.48 s and 3.51 s against "
+        "1.02 s and 2.60 s the run before, with the same default runs. The build of the "
+        "run before (45f5dd1) took as long on this host that hour (the program on "
+        "`ctm_dry` to 1e-6: 1.43-1.74 s, today's build 1.38-1.44 s; `ctm_wet`: 5.1 s and "
+        "4.8-5.0 s): the host, not the code.",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
