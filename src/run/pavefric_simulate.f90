@@ -2633,7 +2633,9 @@ contains
    !> changes the facets' friction, the step after the balance in one pass: lane_contacts' pushes
    !> and sums, lane_work_linear's work and mean force (u_prev, push_prev
    !> then the step's), and kv_update's state u = u_free + push; each value
-   !> by the same operations as theirs, in the same order.
+   !> by the same operations as theirs, in the same order (a copy of their
+   !> bodies: change them together, or the fused and general paths part by
+   !> rounding).
    pure subroutine lane_step_kv(nl, n, x, d, u_free, tan_t, clamped, adhesion, weights, &
          & ddelta, u_prev, push_prev, state, push, sum_f, contacts, sum_ft, clamps, u_max, &
          & sum_fa, w, total)
