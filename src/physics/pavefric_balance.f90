@@ -63,12 +63,10 @@ contains
    end subroutine dry_root
 
    !> dry_root for several lanes (speeds) at once: d(lane, element), s, x0 and
-   !> x per lane. A first pass (first_steps) settles the lanes whose root is
-   !> one or two Newton steps from the guess, crossing at most one element;
-   !> the others go on as dry_root does, the element loops over the lanes
-   !> innermost (they vectorise). Every lane's operations are its own, in
-   !> the same order whatever the other lanes, so the lane count changes no
-   !> bit; the root is dry_root's closed form up to the rounding of the sums.
+   !> x per lane. The element loops run over the lanes innermost (they
+   !> vectorise); every lane performs exactly dry_root's operations in the
+   !> same order, and a lane that has stopped is left as it is, so each x is
+   !> dry_root's to the bit.
    pure subroutine dry_roots(nl, n, d, s, x0, x, work, dl)
       !> Lanes (at most `lanes`, given at run time: the lane loops then compile
       !> to vector loops, a constant count to unrolled scalar code) and elements.
@@ -84,12 +82,8 @@ contains
       integer :: j, it
       x = s
       where (x0 > 0.0_wp .and. x0 < s) x = x0
-      ! the first Newton step, and its next one where it crosses a single
-      ! element, from one pass (first_steps); the lanes it does not settle
-      ! go on from where it left them
-      call first_steps(nl, n, d, s, x, running)
-      if (.not. any(running(1:nl))) return
       m_prev = -1
+      running = .true.
       do it = 1, max_newton_dry
          call active_sums(nl, n, d, x, sum_active, count)
          m(1:nl) = nint(count(1:nl))
@@ -116,72 +110,6 @@ contains
          call sorted_root(dl, s(j), x(j), work)
       end do
    end subroutine dry_roots
-
-   !> The dry root's first pass, per lane from its guess x: the sum and count
-   !> of the active d (d < x) and the two nearest d on each side of x. Newton's
-   !> step x1 = (s + sum) / count is the root where no d lies between x and
-   !> x1 (the active set at x1 is x's); where exactly one does (the nearest
-   !> above, or below), the step from the set with it added (or removed) is
-   !> the root if the next d lies beyond it. Those lanes are settled
-   !> (running false); the others leave x at the last step, for Newton to go
-   !> on from (the root is the same closed form on its piece whatever the
-   !> path, up to the rounding of the sums). One lane at a time, its sums in
-   !> registers: the lane count does not change a lane's numbers.
-   pure subroutine first_steps(nl, n, d, s, x, running)
-      integer, intent(in) :: nl, n
-      real(wp), intent(in) :: d(nl, n), s(nl)
-      real(wp), intent(inout) :: x(nl)
-      logical, intent(out) :: running(lanes)
-      real(wp), parameter :: big = huge(1.0_wp)
-      real(wp) :: total, counted, a1, a2, b1, b2, t, xj, x1, x2
-      logical :: in
-      integer :: i, j
-      running = .false.
-      do j = 1, nl
-         total = 0.0_wp
-         counted = 0.0_wp
-         a1 = big
-         a2 = big
-         b1 = -big
-         b2 = -big
-         xj = x(j)
-         do i = 1, n
-            in = d(j, i) < xj
-            total = total + merge(d(j, i), 0.0_wp, in)
-            counted = counted + merge(1.0_wp, 0.0_wp, in)
-            t = merge(big, d(j, i), in)
-            a2 = min(a2, max(a1, t))
-            a1 = min(a1, t)
-            t = merge(d(j, i), -big, in)
-            b2 = max(b2, min(b1, t))
-            b1 = max(b1, t)
-         end do
-         ! (counted >= 1: min d = 0 < x)
-         x1 = (s(j) + total) / counted
-         if (x1 >= xj) then
-            if (x1 <= a1) then
-               x(j) = x1
-               cycle
-            end if
-            x2 = (s(j) + (total + a1)) / (counted + 1.0_wp)
-            x(j) = x2
-            running(j) = x2 <= a1 .or. x2 > a2
-         else
-            if (x1 > b1) then
-               x(j) = x1
-               cycle
-            end if
-            if (counted < 2.0_wp) then
-               x(j) = x1
-               running(j) = .true.
-               cycle
-            end if
-            x2 = (s(j) + (total - b1)) / (counted - 1.0_wp)
-            x(j) = x2
-            running(j) = x2 <= b2 .or. x2 > b1
-         end if
-      end do
-   end subroutine first_steps
 
    !> Per lane, the sum and the count of the d below x: the loop over the
    !> lanes innermost, every shape explicit and given at run time, so that it

@@ -682,12 +682,8 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "- Dry balance: Newton's method on the convex piecewise-linear load "
         "function, warm-started from the previous position's penetration; it "
         "stops when its active set repeats, which gives the exact closed-form "
-        "root (no sort; LAPACK `dlasrt` only as a fallback). Its first pass also "
-        "finds the two nearest elements on either side of the guess, which "
-        "settles in that one pass every position whose root lies within one "
-        "element of the guess (since 2026-11-28; before, 2–4 passes: "
-        "`valgrind --tool=callgrind` on the program's dry run of 16,384 points at "
-        "6 speeds counts 49 M instructions in the balance against 58 M).",
+        "root in 2–4 passes over the elements (no sort; LAPACK `dlasrt` only as "
+        "a fallback).",
         "- Wet balance: safeguarded Newton with the analytic derivative of Eq. 15, "
         "warm-started from the previous position's wet root (from the dry root at the "
         "first position, or when the guess leaves the bracket), the evaluations of all "
