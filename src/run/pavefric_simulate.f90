@@ -261,16 +261,15 @@ contains
       !> they are, so the probe behind them is not run a second time.
       !> Absent or < 0: the probe runs here (add_refinement_cost).
       real(wp), intent(in), optional :: refine_seconds
+      logical :: given
       call run_grids(m, z, dx, closed, speeds_kmh, want_series, res, error)
       if (allocated(error)) return
       ! the estimate as the program printed it before the run (scene_estimate)
-      if (present(refine_seconds)) then
-         if (refine_seconds >= 0.0_wp) then
-            res%estimate%refine_seconds = refine_seconds
-            res%estimate%seconds = res%estimate%seconds + refine_seconds
-         else
-            call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
-         end if
+      given = present(refine_seconds)
+      if (given) given = refine_seconds >= 0.0_wp
+      if (given) then
+         res%estimate%refine_seconds = refine_seconds
+         res%estimate%seconds = res%estimate%seconds + refine_seconds
       else
          call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
       end if
@@ -2053,21 +2052,8 @@ contains
             n_contact = nint(contacts)
             n_clamp_j = nint(clamps)
             if (t == -1) contact_before = n_contact > 0
-            ! the rest of energy_step: the pad's descent against a film
-            ! that carries load (none without one)
-            do j = 1, nl
-               film_work(j) = 0.0_wp
-               if (load_film(j) .and. (wh(j) > 0.0_wp .or. wh_prev(j) > 0.0_wp)) &
-                  & film_work(j) = (m%load - kel(j) * mean_total(j)) * &
-                  & (cmin(j) + x(j) - delta_last(j))
-            end do
-            where (.not. have_prev)
-               hyst = 0.0_wp
-               film_work = 0.0_wp
-            end where
-            push_total_prev(1:nl) = sum_f(1:nl)
-            delta_last = cmin + x
-            have_prev = .true.
+            ! the rest of energy_step, its work already done
+            call energy_step(.true.)
          else
             sum_f = 0.0_wp
             call lane_contacts(nl, n, x, d, u_free, &
@@ -2080,7 +2066,7 @@ contains
             if (t == -1) contact_before = n_contact > 0
 
             call friction_films(t, k1)
-            if (energy) call energy_step()
+            if (energy) call energy_step(.false.)
             if (any_memory) call rubber%update(rstep, state, u_free, push)
          end if
          delta_prev2 = merge(delta_prev, -huge(1.0_wp), delta_prev > -huge(1.0_wp))
@@ -2297,12 +2283,17 @@ contains
       !> The energy scheme's step: the work the facets did on the elements
       !> beyond the pad's own descent (lane_work), and the pad's descent
       !> against the film.
-      subroutine energy_step()
+      subroutine energy_step(work_done)
+         !> The step's work (hyst, mean_total) already made with the
+         !> contacts (lane_step_kv): the rest only.
+         logical, intent(in) :: work_done
          integer :: j
             ! the work of the step on the elements beyond the pad's own
             ! descent: what the facets did (lane_work)
             if (any(have_prev(1:nl))) then
-               if (any_memory .and. allocated(rstep%mean_weights)) then
+               if (work_done) then
+                  ! (lane_step_kv: lane_work_linear's sums, in its pass)
+               else if (any_memory .and. allocated(rstep%mean_weights)) then
                   ! the same, for a law whose mean is linear in the step's two
                   ! compressions (u_prev is the step's start): in one pass
                   call lane_work_linear(nl, n, u_free, push, rstep%mean_weights, u_prev, &
