@@ -201,8 +201,9 @@ contains
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old
       real(wp) :: x_new
-      logical :: running(lanes), use_newton
+      logical :: running(lanes), use_newton, jumps
       integer :: it, j
+      jumps = film%jumps_at_contact()
       wh = 0.0_wp
       running = .false.
       running(1:nl) = wet
@@ -238,7 +239,10 @@ contains
                x_new = x(j) - f(j) / df(j)
                use_newton = x_new > lo(j) .and. x_new < hi(j)
             end if
-            if (.not. use_newton) x_new = 0.5_wp * (lo(j) + hi(j))
+            if (.not. use_newton) then
+               x_new = 0.5_wp * (lo(j) + hi(j))
+               if (jumps) x_new = breakpoint_split(d(j, :), lo(j), hi(j), x_new)
+            end if
             f_old(j) = abs(f(j))
             x(j) = x_new
          end do
@@ -284,6 +288,37 @@ contains
       end function pushed_at
 
    end subroutine wet_roots
+
+   !> Where to split the bracket (lo, hi) of a film whose load jumps where an
+   !> element touches (film_model%jumps_at_contact: at x = d_i, where gap_i
+   !> closes; f is continuous between these points and from the right at
+   !> each): at the breakpoint inside it nearest to its middle `mid`; with
+   !> none inside, and hi one, at the double below hi (the open side of its
+   !> jump: if f there still has f(lo)'s sign, the root is the jump and the
+   !> bracket has closed); else at mid. A root at a jump is then isolated in
+   !> about log2 of the breakpoints in the bracket, plus one, evaluations
+   !> (halving the bracket to adjacent doubles took about 50).
+   pure real(wp) function breakpoint_split(d, lo, hi, mid) result(x)
+      real(wp), intent(in) :: d(:), lo, hi, mid
+      real(wp) :: best
+      logical :: at_hi
+      integer :: i
+      x = mid
+      best = huge(1.0_wp)
+      at_hi = .false.
+      do i = 1, size(d)
+         if (d(i) > lo .and. d(i) < hi) then
+            if (abs(d(i) - mid) < best) then
+               best = abs(d(i) - mid)
+               x = d(i)
+            end if
+         else if (d(i) == hi) then
+            at_hi = .true.
+         end if
+      end do
+      if (best < huge(1.0_wp)) return
+      if (at_hi) x = max(nearest(hi, -1.0_wp), mid)
+   end function breakpoint_split
 
    !> f, df and the film's load of the lanes in `mask` at their x (the other
    !> lanes' values are left as they are); one more evaluation each.

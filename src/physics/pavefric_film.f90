@@ -77,6 +77,11 @@ module pavefric_film
       !> its own pass over the elements and calls `loads_of_sums` (one pass
       !> over the pad fewer per evaluation, no gap field stored).
       procedure :: sums_suffice => film_flag_false
+      !> Whether the load may jump where an element touches (x = d_i: its
+      !> gap closes), and only there. The wet balance then bisects at those
+      !> points first, so that a root at a jump is found in a few
+      !> evaluations, not by halving the bracket to adjacent doubles.
+      procedure :: jumps_at_contact => film_flag_false
       !> `loads` from each lane's gap sum (in element order) and count of
       !> open gaps, for films whose `sums_suffice`: each lane's numbers are
       !> `loads`'s to the bit. (Not called for the others; the default

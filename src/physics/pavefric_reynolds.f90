@@ -68,14 +68,13 @@ module pavefric_reynolds
 
    !> A lane's workspace (reynolds_work_size): the warm-start flag, the set
    !> (n values), then arrays of n values: the gap's terms h_T, c, k, run,
-   !> the same at the gap narrowed by the derivative's shift, the nodes'
-   !> pressure and fill, the solver's right side and three diagonals, and
-   !> the narrowed gap field.
-   integer, parameter :: w_ht = 1, w_c = 2, w_k = 3, w_run = 4, w_ht2 = 5, w_c2 = 6, &
-      & w_k2 = 7, w_run2 = 8, w_p = 9, w_theta = 10, w_y = 11, w_dl = 12, w_dd = 13, &
-      & w_du = 14, w_gap2 = 15
+   !> the derivatives of c and k with respect to the penetration, the
+   !> derivative's right side, the nodes' pressure and fill, the solver's
+   !> right side and three diagonals.
+   integer, parameter :: w_ht = 1, w_c = 2, w_k = 3, w_run = 4, w_dc = 5, w_dk = 6, &
+      & w_rhs = 7, w_p = 8, w_theta = 9, w_y = 10, w_dl = 11, w_dd = 12, w_du = 13
    !> Arrays of n values in a lane's workspace, the set's included.
-   integer, parameter :: n_work_arrays = 16
+   integer, parameter :: n_work_arrays = 14
 
    !> The Reynolds film.
    type, extends(film_model) :: reynolds_film
@@ -96,6 +95,9 @@ module pavefric_reynolds
       procedure :: lower_bound => reynolds_lower_bound
       procedure :: report => reynolds_report
       procedure :: reports => reynolds_carries_load
+      !> Its drainage lengths (the runs of open and of touching elements)
+      !> change where an element touches: the load jumps there.
+      procedure :: jumps_at_contact => reynolds_carries_load
    end type reynolds_film
 
 contains
@@ -229,38 +231,51 @@ contains
    end subroutine reynolds_loads
 
    !> The load and its derivative in a lane's workspace w (reynolds_work_size).
+   !> The derivative is the solution's at the settled set, differentiated:
+   !> with A y = b the settled system, dy/dx = A**-1 (db/dx - dA/dx y), from
+   !> the cell terms' analytic derivatives (an open gap narrows as x grows; a
+   !> contact's stays shut; the drainage lengths held), one more tridiagonal
+   !> solve and no more transcendental functions. Where the load jumps (an
+   !> element touching) or kinks (a node leaving the set), this is the
+   !> slope of the side the settled set holds; the balance is bracketed.
    pure subroutine load_in_work(self, speed, gap, w, wh, dwh_dx)
       class(reynolds_film), intent(in) :: self
       real(wp), intent(in) :: speed, gap(:)
       real(wp), intent(inout) :: w(:)
       real(wp), intent(out) :: wh, dwh_dx
-      real(wp) :: wh2, shift, tc0, p0
-      integer :: n, info
+      real(wp) :: tc0, p0, dtc0, dp0, total
+      integer :: n, info, m
       logical :: converged
       n = size(gap)
-      shift = 1.0e-6_wp * self%sigma
-      call solve_in_work(self, speed, gap, w, wh, converged, tc0, p0)
+      call solve_in_work(self, speed, gap, w, wh, converged, tc0, p0, dtc0, dp0)
+      dwh_dx = 0.0_wp
+      if (n < 2) then
+         dwh_dx = max(0.0_wp, self%width * self%length * 0.5_wp * dp0)
+         return
+      end if
       associate (set => w(2 : n + 1), &
-         & h_t2 => w(at(w_ht2, n) : at(w_ht2, n) + n - 1), &
-         & c2 => w(at(w_c2, n) : at(w_c2, n) + n - 1), &
-         & k2 => w(at(w_k2, n) : at(w_k2, n) + n - 1), &
-         & run2 => w(at(w_run2, n) : at(w_run2, n) + n - 1), &
+         & c => w(at(w_c, n) : at(w_c, n) + n - 1), &
+         & k => w(at(w_k, n) : at(w_k, n) + n - 1), &
+         & run => w(at(w_run, n) : at(w_run, n) + n - 1), &
+         & dc => w(at(w_dc, n) : at(w_dc, n) + n - 1), &
+         & dk => w(at(w_dk, n) : at(w_dk, n) + n - 1), &
+         & rhs => w(at(w_rhs, n) : at(w_rhs, n) + n - 1), &
+         & p => w(at(w_p, n) : at(w_p, n) + n - 1), &
          & y => w(at(w_y, n) : at(w_y, n) + n - 1), &
          & dl => w(at(w_dl, n) : at(w_dl, n) + n - 1), &
          & dd => w(at(w_dd, n) : at(w_dd, n) + n - 1), &
-         & du => w(at(w_du, n) : at(w_du, n) + n - 1), &
-         & gap2 => w(at(w_gap2, n) : at(w_gap2, n) + n - 1))
-         ! the gaps at x + shift: open ones narrow by shift (contacts stay
-         ! shut), solved at the same full and partial nodes
-         gap2 = max(0.0_wp, gap - shift)
-         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-            & self%density, speed, gap2, h_t2, c2, k2, run2, tc0, p0)
-         call assemble_and_solve(self%length, speed, c2, k2, run2, tc0, p0, set, y, dl, dd, du, &
-            & info)
-         dwh_dx = 0.0_wp
+         & du => w(at(w_du, n) : at(w_du, n) + n - 1))
+         call derivative_rhs(self%length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, rhs)
+         call assemble_and_solve(self%length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
+            & info, rhs)
          if (info /= 0) return
-         wh2 = set_load(self%width, self%length, y, set, p0)
-         dwh_dx = max(0.0_wp, (wh2 - wh) / shift)
+         ! the load's nodes: the full ones at a positive pressure (p, as the
+         ! solve left it, is 0 at the others)
+         total = 0.0_wp
+         do m = 1, n - 1
+            if (p(m) > 0.0_wp) total = total + y(m)
+         end do
+         dwh_dx = max(0.0_wp, self%width * (self%length / real(n, wp)) * (total + 0.5_wp * dp0))
       end associate
    end subroutine load_in_work
 
@@ -268,20 +283,30 @@ contains
    !> the gap's terms (w_ht .. w_run), the nodes' pressure and fill (w_p,
    !> w_theta), the load (N), whether the set settled, and the inlet's flux
    !> coefficient tc0 and pressure p0.
-   pure subroutine solve_in_work(self, speed, gap, w, load, settled, tc0, p0)
+   pure subroutine solve_in_work(self, speed, gap, w, load, settled, tc0, p0, dtc0, dp0)
       class(reynolds_film), intent(in) :: self
       real(wp), intent(in) :: speed, gap(:)
       real(wp), intent(inout) :: w(:)
       real(wp), intent(out) :: load, tc0, p0
       logical, intent(out) :: settled
+      !> If present: the derivatives of tc0 and p0 with respect to the
+      !> penetration, and those of c and k in the workspace (w_dc, w_dk).
+      real(wp), intent(out), optional :: dtc0, dp0
       integer :: iterations, n
       n = size(gap)
       associate (c => w(at(w_c, n) : at(w_c, n) + n - 1), &
          & k => w(at(w_k, n) : at(w_k, n) + n - 1), &
          & run => w(at(w_run, n) : at(w_run, n) + n - 1))
-         call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
-            & self%density, speed, gap, w(at(w_ht, n) : at(w_ht, n) + n - 1), c, k, run, &
-            & tc0, p0)
+         if (present(dtc0)) then
+            call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+               & self%density, speed, gap, w(at(w_ht, n) : at(w_ht, n) + n - 1), c, k, run, &
+               & tc0, p0, w(at(w_dc, n) : at(w_dc, n) + n - 1), &
+               & w(at(w_dk, n) : at(w_dk, n) + n - 1), dtc0, dp0)
+         else
+            call film_terms(self%depth, self%eta, self%sigma, self%width, self%length, &
+               & self%density, speed, gap, w(at(w_ht, n) : at(w_ht, n) + n - 1), c, k, run, &
+               & tc0, p0)
+         end if
          call solve_terms(self%width, self%length, speed, c, k, run, tc0, p0, &
             & w(at(w_p, n) : at(w_p, n) + n - 1), w(at(w_theta, n) : at(w_theta, n) + n - 1), &
             & w(2 : n + 1), w(1), load, iterations, settled, &
@@ -341,12 +366,15 @@ contains
    !> for isotropic roughness (gamma = 1): phi_x = 1 - 0.90 exp(-0.56 H),
    !> phi_s = 1.899 H**0.98 exp(-0.92 H + 0.05 H**2) (H <= 5),
    !> 1.126 exp(-0.25 H) (H > 5), H = h / sigma.
-   pure subroutine reynolds_cell_terms(h, sigma, eta, h_t, c, k)
+   !> With dc and dk present, also their derivatives with respect to h
+   !> (dh_T/dh = Phi(h/sigma); 0 at h <= 0, a contact, which stays shut).
+   pure subroutine reynolds_cell_terms(h, sigma, eta, h_t, c, k, dc, dk)
       real(wp), intent(in) :: h, sigma, eta
       real(wp), intent(out) :: h_t, c, k
+      real(wp), intent(out), optional :: dc, dk
       real(wp), parameter :: inv_sqrt2 = 0.70710678118654752_wp
       real(wp), parameter :: inv_sqrt2pi = 0.39894228040143268_wp
-      real(wp) :: hs, phi_x, phi_s
+      real(wp) :: hs, phi_x, phi_s, big_phi, e_x, dphi_s
       if (h <= 0.0_wp) then
          ! an element in contact (most of them, often): the same numbers as
          ! below at hs = 0, without the transcendental functions (erfc(0)
@@ -354,18 +382,29 @@ contains
          h_t = sigma * inv_sqrt2pi
          c = h_t
          k = (1.0_wp - 0.90_wp) * h_t**3 / (12.0_wp * eta)
+         if (present(dc)) dc = 0.0_wp
+         if (present(dk)) dk = 0.0_wp
          return
       end if
       hs = h / sigma
-      h_t = h * 0.5_wp * erfc(-hs * inv_sqrt2) + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
-      phi_x = 1.0_wp - 0.90_wp * exp(-0.56_wp * hs)
+      big_phi = 0.5_wp * erfc(-hs * inv_sqrt2)
+      h_t = h * big_phi + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
+      e_x = exp(-0.56_wp * hs)
+      phi_x = 1.0_wp - 0.90_wp * e_x
       if (hs <= 5.0_wp) then
          phi_s = 1.899_wp * hs**0.98_wp * exp(-0.92_wp * hs + 0.05_wp * hs * hs)
+         ! d phi_s / d hs; phi_s / hs bounded below hs = 1e-100 (Newton's
+         ! slope only)
+         dphi_s = phi_s * (0.1_wp * hs - 0.92_wp) + 0.98_wp * phi_s / max(hs, 1.0e-100_wp)
       else
          phi_s = 1.126_wp * exp(-0.25_wp * hs)
+         dphi_s = -0.25_wp * phi_s
       end if
       c = h_t + sigma * phi_s
       k = phi_x * h_t**3 / (12.0_wp * eta)
+      if (present(dc)) dc = big_phi + dphi_s
+      if (present(dk)) dk = (0.90_wp * 0.56_wp * e_x / sigma * h_t**3 &
+         & + 3.0_wp * phi_x * h_t**2 * big_phi) / (12.0_wp * eta)
    end subroutine reynolds_cell_terms
 
    !> The film on a gap field (element order, the leading element last): at
@@ -461,39 +500,41 @@ contains
       load = width * (length / real(n, wp)) * (sum(p(1:n - 1)) + 0.5_wp * p0)
    end function nodes_load
 
-   !> nodes_load of a solve at a fixed set: the full nodes' y clipped at 0,
-   !> the partial nodes' 0 (the same sum in the same order, without a
-   !> temporary array).
-   pure real(wp) function set_load(width, length, y, set, p0) result(load)
-      real(wp), intent(in) :: width, length, y(:), set(:), p0
-      real(wp) :: total
-      integer :: j, n
-      n = size(y)
-      total = 0.0_wp
-      do j = 1, n - 1
-         total = total + merge(max(0.0_wp, y(j)), 0.0_wp, set(j) > 0.5_wp)
-      end do
-      load = width * (length / real(n, wp)) * (total + 0.5_wp * p0)
-   end function set_load
-
    !> The gap's terms, in order from the leading edge (element n first): the
    !> mean gap h_T, transport c and flow coefficient k per element, its drainage length
    !> (the run of open, or of touching, elements holding it, capped at the
    !> pad width), and the inlet: the flux coefficient tc0 (the leading gap's
    !> c, or 2 H_in if starved) and the dynamic pressure p0 (Pa) of the water
    !> the leading edge stops. They do not depend on the active set.
+   !> With dc, dk, dtc0 and dp0 present (all or none), also the derivatives
+   !> of c, k, tc0 and p0 with respect to the penetration x (gap = d - x
+   !> where open).
    pure subroutine film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, &
-         & k, run, tc0, p0)
+         & k, run, tc0, p0, dc, dk, dtc0, dp0)
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
       real(wp), intent(out) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
       real(wp), intent(out) :: tc0, p0
+      real(wp), intent(out), optional :: dc(size(gap)), dk(size(gap)), dtc0, dp0
       real(wp) :: ds
       integer :: j, n, i1
+      logical :: slopes
       n = size(gap)
       ds = length / real(n, wp)
-      do j = 1, n
-         call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
-      end do
+      slopes = present(dc)
+      if (slopes) then
+         do j = 1, n
+            call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j), dc(j), &
+               & dk(j))
+            dc(j) = -dc(j)
+            dk(j) = -dk(j)
+         end do
+         dtc0 = 0.0_wp
+         dp0 = 0.0_wp
+      else
+         do j = 1, n
+            call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
+         end do
+      end if
       ! each run of open (or of touching) elements in one pass: its length,
       ! capped at the pad width, is the drainage length of its elements
       j = 1
@@ -512,6 +553,10 @@ contains
       if (2.0_wp * depth >= c(1)) then
          tc0 = c(1)
          p0 = (1.0_wp - c(1) / (2.0_wp * depth)) * 0.5_wp * density * speed * speed
+         if (slopes) then
+            dtc0 = dc(1)
+            dp0 = -dc(1) / (2.0_wp * depth) * 0.5_wp * density * speed * speed
+         end if
       else
          tc0 = 2.0_wp * depth
       end if
@@ -522,11 +567,13 @@ contains
    !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
    !> y: the full nodes' pressure, the partial nodes' 1 - theta (set: 1
    !> full, 0 partial). dl, dd, du: scratch of at least size(c).
+   !> With rhs present, the system's matrix solved for rhs(1:n-1) instead.
    pure subroutine assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
-         & info)
+         & info, rhs)
       real(wp), intent(in) :: length, speed, c(:), k(:), run(:), tc0, p0, set(:)
       real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
       integer, intent(out) :: info
+      real(wp), intent(in), optional :: rhs(:)
       real(wp) :: ds, half_v, lam
       integer :: n, m
       n = size(c)
@@ -551,7 +598,45 @@ contains
          end if
          if (m < n - 1) du(m) = merge(-k(m + 1) / ds, 0.0_wp, set(m + 1) > 0.5_wp)
       end do
+      if (present(rhs)) y(1:n - 1) = rhs(1:n - 1)
       call dgtsv(n - 1, 1, dl, dd, du, y, n, info)
    end subroutine assemble_and_solve
+
+   !> The derivative's right side db/dx - (dA/dx) y of the system
+   !> assemble_and_solve builds at a set (y its solution there), from the
+   !> derivatives dc, dk, dtc0, dp0 of its terms (the drainage lengths
+   !> held): row m of A y = b differentiated, y fixed.
+   pure subroutine derivative_rhs(length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, &
+         & rhs)
+      real(wp), intent(in) :: length, speed, k(:), run(:), dc(:), dk(:), p0, dtc0, dp0
+      real(wp), intent(in) :: set(:), y(:)
+      real(wp), intent(out) :: rhs(:)
+      real(wp) :: ds, half_v, r
+      integer :: n, m
+      n = size(k)
+      ds = length / real(n, wp)
+      half_v = 0.5_wp * speed
+      do m = 1, n - 1
+         ! db/dx
+         r = -half_v * dc(m + 1)
+         if (m == 1) then
+            r = r + half_v * dtc0 + (dk(1) * p0 + k(1) * dp0) / ds
+         else
+            r = r + half_v * dc(m)
+         end if
+         ! - (dA/dx) y: the diagonal, then the neighbours
+         if (set(m) > 0.5_wp) then
+            r = r - ((dk(m) + dk(m + 1)) / ds &
+               & + 6.0_wp * (dk(m) / run(m)**2 + dk(m + 1) / run(m + 1)**2) * ds) * y(m)
+         else
+            r = r + half_v * dc(m + 1) * y(m)
+         end if
+         if (m > 1) r = r - merge(-dk(m) / ds, half_v * dc(m), set(m - 1) > 0.5_wp) * y(m - 1)
+         if (m < n - 1) then
+            if (set(m + 1) > 0.5_wp) r = r + dk(m + 1) / ds * y(m + 1)
+         end if
+         rhs(m) = r
+      end do
+   end subroutine derivative_rhs
 
 end module pavefric_reynolds

@@ -381,7 +381,8 @@ def _write_report(report: Path, res, rows, pred, figs, description, mpd_mm, tabl
     ]
     for name, t in wm.items():
         lines.append(f"| {name} | {constant_text(t['parameter'], t['value'])} | "
-                     f"{interval_text(t['parameter'], t['interval'])} | {t['all']['R2']:.3f} | "
+                     f"{interval_text(t['parameter'], t['interval'], t.get('at_floor', False))} | "
+                     f"{t['all']['R2']:.3f} | "
                      f"{t['predicted']['R2']:.3f} | {t['all']['rmse']:.3f} | "
                      f"{t['predicted']['rmse']:.3f} |")
     lines += ["", "μ60/μ20 per surface, measured (DFT) and predicted by each wet model:", "",
