@@ -96,10 +96,10 @@ module pavefric_film
       !> A road sample passes under the pad's leading edge.
       procedure :: enter => film_enter_nothing
       !> Advance the film under the elements by one step and return each
-      !> element's share of mu_loc (friction films).
+      !> element's share of mu_loc and, under each element in contact, the
+      !> film's thickness after the step (on its first road
+      !> sample; 0 out of contact) (friction films).
       procedure :: friction => film_friction_unchanged
-      !> The film thickness (m) on a road sample, from its state.
-      procedure :: thickness => film_no_thickness
       !> What the film's solution at a gap field is, for the outputs (load
       !> films, once per averaged position at the balance's root): whether
       !> it settled, its water between the pad and the road per unit of pad
@@ -249,12 +249,6 @@ contains
       film_no_state = 0
    end function film_no_state
 
-   pure real(wp) function film_no_thickness(self, state)
-      class(film_model), intent(in) :: self
-      !> The state of one road sample.
-      real(wp), intent(in) :: state(:)
-      film_no_thickness = 0.0_wp
-   end function film_no_thickness
 
    pure integer function film_no_work(self, n)
       class(film_model), intent(in) :: self
@@ -354,7 +348,7 @@ contains
    end subroutine film_enter_nothing
 
    pure subroutine film_friction_unchanged(self, step, state, samples, footprint, pressure, &
-         & element_length, share)
+         & element_length, share, thickness)
       class(film_model), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(inout) :: state(:, :)
@@ -362,8 +356,11 @@ contains
       integer, intent(in) :: samples(:), footprint
       !> Contact pressure of each element (Pa; 0 out of contact), element length (m).
       real(wp), intent(in) :: pressure(:), element_length
-      real(wp), intent(out) :: share(:)
+      !> Each element's share of mu_loc, and the film's thickness (m) under
+      !> each element in contact after the step (0 out of contact).
+      real(wp), intent(out) :: share(:), thickness(:)
       share = 1.0_wp
+      thickness = 0.0_wp
    end subroutine film_friction_unchanged
 
 

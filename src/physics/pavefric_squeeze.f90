@@ -51,7 +51,6 @@ module pavefric_squeeze
       procedure :: reset => squeeze_reset
       procedure :: enter => squeeze_enter
       procedure :: friction => squeeze_friction
-      procedure :: thickness => squeeze_thickness
    end type squeeze_film
 
 contains
@@ -154,28 +153,22 @@ contains
       state(1, sample) = step%coef(2)
    end subroutine squeeze_enter
 
-   !> h = (h**-2)**-1/2.
-   pure real(wp) function squeeze_thickness(self, state)
-      class(squeeze_film), intent(in) :: self
-      real(wp), intent(in) :: state(:)
-      squeeze_thickness = 1.0_wp / sqrt(state(1))
-   end function squeeze_thickness
-
    !> Squeeze the film under each plateau for one step, then the share of
    !> microtexture piercing it under each element in contact (1 elsewhere:
    !> an element out of contact pushes on nothing).
    pure subroutine squeeze_friction(self, step, state, samples, footprint, pressure, &
-         & element_length, share)
+         & element_length, share, thickness)
       class(squeeze_film), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(inout) :: state(:, :)
       integer, intent(in) :: samples(:), footprint
       real(wp), intent(in) :: pressure(:), element_length
-      real(wp), intent(out) :: share(:)
+      real(wp), intent(out) :: share(:), thickness(:)
       real(wp) :: p_sum, b, c, h
       integer :: n, i, j, e, q
       n = size(pressure)
       share = 1.0_wp
+      thickness = 0.0_wp
       i = 1
       do while (i <= n)
          if (.not. pressure(i) > 0.0_wp) then
@@ -198,7 +191,9 @@ contains
                   s = s + c
                end associate
             end do
+            ! the film's thickness on the element's first sample: h = (h**-2)**-1/2
             h = 1.0_wp / sqrt(state(1, samples((e - 1) * footprint + 1)))
+            thickness(e) = h
             if (step%coef(3) > 0.0_wp) then
                share(e) = erfc(h * step%coef(3))
             else

@@ -1901,6 +1901,7 @@ contains
       type(film_step_type), allocatable :: fstep(:)
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
+      real(wp), allocatable :: thick(:)
       real(wp), allocatable :: tan_el(:), pl(:), gaps(:,:), u_prev(:,:), push_prev(:,:)
       real(wp), allocatable :: pmean(:,:)
       !> The film's workspace per lane (film%work_size(n), nl): zeroed when a
@@ -1926,11 +1927,11 @@ contains
       integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, film_count
       logical :: series, clamped, any_memory, any_load, any_friction, energy, settled
       logical :: film_reports
-      !> The Kelvin-Voigt pad without a film that changes the facets'
-      !> friction (the energy scheme; dry, or a film that carries load):
-      !> the rubber's free compression, the contacts, the work and the
-      !> rubber's update each fused into the pass beside them (lane_free_gaps,
-      !> lane_step_kv), the same numbers in fewer passes.
+      !> The Kelvin-Voigt pad (the energy scheme; dry, under a film that
+      !> carries load or one that changes the facets' friction): the rubber's
+      !> free compression, the contacts, the work and the rubber's update
+      !> each fused into the pass beside them (lane_free_gaps, lane_step_kv),
+      !> the same numbers in fewer passes; a friction film's facets after.
       logical :: kv_fused
       !> Spin-up steps of each lane (closed profiles), and whether a lane has
       !> had a step since it started.
@@ -2052,6 +2053,10 @@ contains
             n_contact = nint(contacts)
             n_clamp_j = nint(clamps)
             if (t == -1) contact_before = n_contact > 0
+            ! a friction film's facets (its tangents, adhesion and clamps
+            ! replace the ones above on its lanes; the work and the rubber's
+            ! update do not depend on them)
+            call friction_films(t, k1)
             ! the rest of energy_step, its work already done
             call energy_step(.true.)
          else
@@ -2145,7 +2150,8 @@ contains
          if (stat == 0 .and. any_load) allocate(gaps(nl, n), &
             & fwork(film%work_size(n), nl), source=0.0_wp, stat=stat)
          if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
-            & pressure(n), share(n), tan_el(n), pl(n), samples(n * geo%spacing), stat=stat)
+            & pressure(n), share(n), thick(n), tan_el(n), pl(n), samples(n * geo%spacing), &
+            & stat=stat)
          if (stat /= 0) then
             out%failed = 1
             done = .true.
@@ -2156,10 +2162,8 @@ contains
          kv_fused = .false.
          select type (rubber)
          type is (kelvin_voigt_rubber)
-            ! (not where the caller wants a friction film's series: the
-            ! general passes fill them at speeds where the film is off)
             kv_fused = any_memory .and. energy .and. allocated(rstep%mean_weights) .and. &
-               & .not. any_friction .and. ns_state == 1 .and. .not. present(film_thickness)
+               & ns_state == 1
          end select
          if (kv_fused) then
             ! the first step's work is computed from these and discarded
@@ -2224,7 +2228,7 @@ contains
                   pl = push(j, :)
                   pressure = rstep%k_eff(j) * pl
                   call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
-                     & geo%dx_el, share)
+                     & geo%dx_el, share, thick)
                   film_sum = 0.0_wp
                   film_count = 0
                   sum_ft(j) = 0.0_wp
@@ -2250,9 +2254,9 @@ contains
                      n_clamp_j(j) = n_clamp_j(j) + merge(1, 0, pl(i) > 0.0_wp .and. clamped)
                      if (t >= 0) local_sum(j) = local_sum(j) + pl(i) * mu_eff
                      ! the film where the rubber touches: the one between them
-                     if (pl(i) > 0.0_wp) then
-                        film_sum = film_sum + film%thickness(fstate(:, samples((i-1) * &
-                           & geo%spacing + 1), j))
+                     ! (as the film's step left it under the element)
+                     if (pressure(i) > 0.0_wp) then
+                        film_sum = film_sum + thick(i)
                         film_count = film_count + 1
                      end if
                   end do
