@@ -86,14 +86,16 @@ def test_each_wet_model_is_costed_as_itself(profile_m):
     """The Reynolds film was costed as the paper's bearing (found 2026-11-27:
     estimated 0.04 s, measured 1.06 s, 25 times too cheap); each wet model
     now has its own rate, and the Reynolds film's per element-step is many
-    times the bearing's (docs/performance.md measures it)."""
+    times the bearing's (docs/performance.md measures it: at most 22 times
+    since its balance got faster on 2026-11-28; here its estimate is 9.3
+    times the bearing's)."""
     est = {}
     for model in ("kane2017", "squeeze", "reynolds"):
         ds = pavefric.simulate(profile_m, DX, [20.0, 60.0], depth=1e-3, wet_model=model,
                                **VISCOUS)
         est[model] = ds.attrs["estimated_seconds"]
     dry = pavefric.simulate(profile_m, DX, [20.0, 60.0], **VISCOUS).attrs["estimated_seconds"]
-    assert est["reynolds"] > 10 * est["kane2017"] > 10 * dry
+    assert est["reynolds"] > 5 * est["kane2017"] > 5 * dry
     assert est["squeeze"] > dry
 
 
