@@ -605,7 +605,10 @@ contains
    !> The derivative's right side db/dx - (dA/dx) y of the system
    !> assemble_and_solve builds at a set (y its solution there), from the
    !> derivatives dc, dk, dtc0, dp0 of its terms (the drainage lengths
-   !> held): row m of A y = b differentiated, y fixed.
+   !> held): row m of A y = b differentiated, y fixed. Its terms are those
+   !> of assemble_and_solve differentiated one by one: change both together
+   !> (tests/test_reynolds.py, "the load slope", compares the result with
+   !> differences of the load).
    pure subroutine derivative_rhs(length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, &
          & rhs)
       real(wp), intent(in) :: length, speed, k(:), run(:), dc(:), dk(:), p0, dtc0, dp0

@@ -742,12 +742,16 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "instead of a second solve with every cell term evaluated again: 13.8 "
         "evaluations per position at 80 km/h became 5.9 on the medium surface, and "
         "perf counted 13,517 samples of a Reynolds sweep against 24,128 "
-        "(tests/test_reynolds.py; its roots moved where the balance has several, "
-        "docs/model.md). The drainage film: the Kelvin-Voigt pad's fused step now runs "
-        "under it too (its facets after), and the film's thickness under each element "
-        "comes out of its step instead of a call per element; callgrind, the program's "
-        "run of 16,384 points at 6 speeds in 1 mm of water: 930 M instructions before, "
-        "866 M after, every number the same to the bit.",
+        "(the evaluations: `bearing_evaluations` over the positions of the scene of "
+        "tests/test_reynolds.py, \"a root at the film's jump\", which bounds them at 7; "
+        "the perf samples by hand, `perf record` on the bench's Reynolds sweep child with "
+        "each build; its roots moved where the balance has several, docs/model.md). The "
+        "drainage film: the Kelvin-Voigt pad's fused step now runs under it too (its "
+        "facets after), and the film's thickness under each element comes out of its "
+        "step instead of a call per element; callgrind by hand, `valgrind "
+        "--tool=callgrind` on the program's run of 16,384 points at 6 speeds in 1 mm of "
+        "water (`min_contacts = 0`, no error estimate): 930 M instructions before, 866 M "
+        "after, every number the same to the bit.",
         "",
         "## Where the time goes",
         "",
