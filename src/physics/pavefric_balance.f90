@@ -203,6 +203,11 @@ contains
       real(wp) :: x_new
       logical :: running(lanes), use_newton, jumps
       integer :: it, j
+      if (film%sums_suffice() .and. .not. film%jumps_at_contact()) then
+         call wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
+            & evaluations)
+         return
+      end if
       jumps = film%jumps_at_contact()
       wh = 0.0_wp
       running = .false.
@@ -288,6 +293,162 @@ contains
       end function pushed_at
 
    end subroutine wet_roots
+
+   !> wet_roots for a film whose load depends on the gap field only through
+   !> the gaps' sum and the count of open gaps (film_model%sums_suffice, and
+   !> no jump where an element touches: the paper's bearing). Between two
+   !> touching points (a piece: the contacts d_i < x fixed) the pad's push
+   !> and the gaps' sum are linear in x,
+   !>     P(y) = P(x) + n_c (y - x),   G(y) = G(x) - n_o (y - x),
+   !> so f on the piece is kel P(y) + Wh(G(y), n_o) - W: one film load per
+   !> value, no pass over the elements. Each pass over the elements (an
+   !> evaluation of f) gives x's piece; safeguarded Newton then runs on that
+   !> piece's formula (bisection on its own bracket where a step leaves it
+   !> or does not halve the residual) until it balances to tol W, and the
+   !> next pass evaluates f there. Where that point lies on the same piece,
+   !> f is its formula and the lane stops: a root typically takes two
+   !> passes (the guess's and the check), where Newton with a pass per step
+   !> took four to five. The stopping test, the bracket and its closing are
+   !> wet_roots': the root is the same to tol W. `evaluations` counts the
+   !> passes over the elements, as wet_roots' (each with the film's load);
+   !> the steps on a piece's formula are not counted.
+   pure subroutine wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, &
+      & wh, evaluations)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), kel(nl), load, tol, x0(nl)
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fsteps(nl)
+      logical, intent(in) :: wet(nl)
+      real(wp), intent(inout) :: x(nl)
+      real(wp), intent(out) :: wh(nl)
+      integer(i8), intent(inout) :: evaluations(nl)
+      ! fixed-size locals (run-time sizes would be heap allocations)
+      real(wp), dimension(lanes) :: lo, hi, f, df, f_old, xe, pushed, contacts, gap_total, &
+         & n_open, dwh, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm
+      logical, dimension(lanes) :: running, inner
+      real(wp) :: y_new
+      logical :: use_newton
+      integer :: it, k, j
+      integer, parameter :: max_inner = 200
+      wh = 0.0_wp
+      running = .false.
+      running(1:nl) = wet
+      if (.not. any(running)) return
+      do j = 1, nl
+         if (.not. wet(j)) cycle
+         lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
+         hi(j) = x(j)
+         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
+      end do
+      f_old = huge(1.0_wp)
+      do it = 1, max_iter_wet
+         ! a pass over the elements: f at x, and x's piece
+         do j = 1, nl
+            xe(j) = merge(x(j), 0.0_wp, running(j))
+         end do
+         call contact_gap_sums(nl, n, d, xe, pushed, contacts, gap_total, n_open)
+         call film%loads_of_sums(nl, n, fsteps, gap_total, n_open, running, wh, dwh)
+         do j = 1, nl
+            if (.not. running(j)) cycle
+            f(j) = kel(j) * pushed(j) + wh(j) - load
+            df(j) = kel(j) * contacts(j) + dwh(j)
+            evaluations(j) = evaluations(j) + 1
+         end do
+         ! the lanes that balance or whose bracket closed stop; the others
+         ! step to their piece's root (or bisect their bracket)
+         inner = .false.
+         do j = 1, nl
+            if (.not. running(j)) cycle
+            if (abs(f(j)) <= tol * load) then
+               running(j) = .false.
+               cycle
+            end if
+            if (f(j) > 0.0_wp) then
+               hi(j) = x(j)
+            else
+               lo(j) = x(j)
+            end if
+            if (hi(j) - lo(j) <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo(j)), abs(hi(j)))) then
+               running(j) = .false.
+               cycle
+            end if
+            if (abs(f(j)) <= 0.5_wp * f_old(j)) then
+               inner(j) = .true.                  ! the piece's root
+               y(j) = x(j)
+               fy(j) = f(j)
+               dfy(j) = df(j)
+               fy_old(j) = huge(1.0_wp)
+               ylo(j) = lo(j)
+               yhi(j) = hi(j)
+            else
+               x(j) = 0.5_wp * (lo(j) + hi(j))    ! the last step did not halve |f|
+            end if
+            f_old(j) = abs(f(j))
+         end do
+         if (.not. any(running(1:nl))) exit
+         do k = 1, max_inner
+            if (.not. any(inner(1:nl))) exit
+            do j = 1, nl
+               if (.not. inner(j)) cycle
+               use_newton = dfy(j) > 0.0_wp .and. dfy(j) < huge(1.0_wp) .and. &
+                  & abs(fy(j)) <= 0.5_wp * fy_old(j)
+               if (use_newton) then
+                  y_new = y(j) - fy(j) / dfy(j)
+                  use_newton = y_new > ylo(j) .and. y_new < yhi(j)
+               end if
+               if (.not. use_newton) y_new = 0.5_wp * (ylo(j) + yhi(j))
+               fy_old(j) = abs(fy(j))
+               y(j) = y_new
+               ! the piece's gap sum at y (0 where the piece's open gaps
+               ! would all have closed: the film's largest load)
+               gm(j) = max(0.0_wp, gap_total(j) - n_open(j) * (y(j) - x(j)))
+            end do
+            call film%loads_of_sums(nl, n, fsteps, gm, n_open, inner, whm, dwhm)
+            do j = 1, nl
+               if (.not. inner(j)) cycle
+               fy(j) = kel(j) * (pushed(j) + contacts(j) * (y(j) - x(j))) + whm(j) - load
+               dfy(j) = kel(j) * contacts(j) + dwhm(j)
+               if (abs(fy(j)) <= tol * load) then
+                  inner(j) = .false.
+               else
+                  if (fy(j) > 0.0_wp) then
+                     yhi(j) = y(j)
+                  else
+                     ylo(j) = y(j)
+                  end if
+                  if (yhi(j) - ylo(j) <= 2.0_wp * epsilon(1.0_wp) * &
+                     & max(abs(ylo(j)), abs(yhi(j)))) inner(j) = .false.
+               end if
+               if (.not. inner(j)) x(j) = y(j)
+            end do
+         end do
+         do j = 1, nl
+            if (inner(j)) x(j) = y(j)
+         end do
+      end do
+      do j = 1, nl
+         if (.not. wet(j)) cycle
+         ! (a lane the iterations ran out on: the point its f was taken at)
+         if (running(j)) x(j) = xe(j)
+         if (abs(f(j)) > tol * load) then
+            ! The bracket closed on adjacent doubles without |f| reaching
+            ! the tolerance (wet_roots): the upper end, the film carrying
+            ! what the rubber does not.
+            if (f(j) < 0.0_wp) x(j) = hi(j)
+            wh(j) = max(0.0_wp, load - kel(j) * pushed_at(d(j, :), x(j)))
+         end if
+      end do
+   contains
+      pure function pushed_at(dd, xx) result(total)
+         real(wp), intent(in) :: dd(:), xx
+         real(wp) :: total
+         integer :: i
+         total = 0.0_wp
+         do i = 1, size(dd)
+            total = total + max(0.0_wp, xx - dd(i))
+         end do
+      end function pushed_at
+   end subroutine wet_roots_on_pieces
 
    !> Where to split the bracket (lo, hi) of a film whose load jumps where an
    !> element touches (film_model%jumps_at_contact: at x = d_i, where gap_i

@@ -193,8 +193,10 @@ contains
          & "the water film carried load")
       t(2) = output_var("film", "mean_hydro_load", "N", "load carried by the water film, " // &
          & "averaged over positions")
-      t(3) = output_var("film", "bearing_evaluations", "1", "evaluations of the film's " // &
-         & "load (0: no film took part in the balance)", out_int64)
+      t(3) = output_var("film", "bearing_evaluations", "1", "evaluations of the wet " // &
+         & "balance over the pad's elements, each with the film's load (0: no film took " // &
+         & "part in the balance; with wet_model = 'kane2017' Newton's steps between them " // &
+         & "run on the formula of the contacts' piece and are not counted)", out_int64)
       t(4) = output_var("film", "bearing_ran", "", "whether a load-carrying water film took " // &
          & "part in the load balance", out_flag)
       t(5) = output_var("film", "hydro_load", "N", "load carried by the water film (Eq. 15)", &

@@ -1914,6 +1914,10 @@ contains
       !> The penetration two positions back and the film's load at the
       !> previous position: the wet balance's warm start.
       real(wp), dimension(lanes) :: delta_prev2, wh_prev
+      !> The previous position's dry root (the dry balance's warm start: under
+      !> a film the penetration taken, delta_prev, is the wet root, further
+      !> from this position's dry root).
+      real(wp), dimension(lanes) :: delta_dry_prev
       real(wp), dimension(lanes) :: guess
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
@@ -1950,6 +1954,7 @@ contains
       if (done) return
       delta_prev = -huge(1.0_wp)
       delta_prev2 = -huge(1.0_wp)
+      delta_dry_prev = -huge(1.0_wp)
       wh_prev = 0.0_wp
       have_prev = .false.
       contact_before = .false.
@@ -2001,7 +2006,8 @@ contains
                & u_free, c, cmin, d)
          end if
          ! warm start from the previous position's penetration
-         call dry_roots(nl, n, d, s_load, delta_prev - cmin, x, work, dl)
+         call dry_roots(nl, n, d, s_load, delta_dry_prev - cmin, x, work, dl)
+         delta_dry_prev = cmin + x
          wh = 0.0_wp
          if (any_load) then
             ! the lanes whose film engages at the dry balance, then their wet
@@ -2198,6 +2204,7 @@ contains
                u_free(j, :) = 0.0_wp
                delta_prev(j) = -huge(1.0_wp)
                delta_prev2(j) = -huge(1.0_wp)
+               delta_dry_prev(j) = -huge(1.0_wp)
                wh_prev(j) = 0.0_wp
                if (allocated(fwork)) fwork(:, j) = 0.0_wp
                have_prev(j) = .false.

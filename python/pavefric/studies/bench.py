@@ -462,7 +462,8 @@ def sweep(ref, plain: PlainLoop, log, repeats: int = 5, tile: int = 64) -> list:
     log(f"the Reynolds film's cost per element-step against the paper's wet model: at most "
         f"{max(k / q for k, q in zip(kane, rey)):.2f}x (target <= 3x)")
     ev = [r["evaluations"] for r in rows if "evaluations" in r]
-    log(f"the paper's wet balance: {min(ev):.2f}-{max(ev):.2f} bearing evaluations per speed "
+    log(f"the paper's wet balance: {min(ev):.2f}-{max(ev):.2f} bearing evaluations "
+        f"(passes over the pad) per speed "
         f"and position")
     call = _child(CALL_CHILD, env={"OMP_NUM_THREADS": "1"})
     log(f"the fixed cost of one call (64 points, 6 speeds, pavefric.simulate): "

@@ -692,7 +692,17 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "the dry root, exact when the film carries nothing) took 11–37 % fewer evaluations "
         "on the scenes of the regression record, 45–52 % on its tolerance cases and 2 % "
         "more on one steep profile (the record's `bearing_evaluations` before and after, "
-        "2026-11-26), for the same roots to the balance's tolerance (mu moved by 1e-16).",
+        "2026-11-26), for the same roots to the balance's tolerance (mu moved by 1e-16). "
+        "Since 2026-11-28 the Newton steps run on the formula of the piece the iterate "
+        "lies on (the contacts fixed: the pad's push and the gaps' sum linear in the "
+        "penetration, one logarithm per step and no pass over the elements), and a pass "
+        "checks the piece's root: `bearing_evaluations` counts the passes, 3.7–4.5 a "
+        "position before and 2.1–2.3 after on the wet run of `tools/profile_kernel.sh "
+        "--callgrind`, for the same roots to the tolerance (mu moved by at most 1e-15 on "
+        "the regression record's scenes; tests/test_wet_balance.py). The dry balance "
+        "under a film starts from the previous position's dry root, no longer from its "
+        "wet one (the same roots to the bit, a third fewer of its passes: callgrind, "
+        "93 M instructions of `dry_roots` before and 59 M after in that run).",
         "- Facet tangents computed once per profile sample, not per position; a "
         "closed profile is unrolled once so no element index needs a modulo; no "
         "allocation inside the position loop.",
@@ -710,7 +720,8 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "vectors, with sums in another order: results would then differ from 0.1.0's "
         "in the last bits, which the regression record forbids for dry scenes. The "
         "wet balance needed 4–8 bearing evaluations a position (each a logarithm per "
-        "speed); warm-started, 4–5 (the line under the sweep table). The demand that "
+        "speed); warm-started, 4–5; with Newton on the pieces' formula, about 2 passes "
+        "(the line under the sweep table). The demand that "
         "results stay bit for bit with 0.1.0 is withdrawn (issue 23), so the elements-in-"
         "vectors design is open; it has not been built.",
         "",
