@@ -1999,7 +1999,7 @@ contains
          ! starts to push (Eqs. 4, 8).
          if (kv_fused) then
             call lane_free_gaps(nl, n, rstep%coef(:, 1), state, &
-               & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, c, cmin, d)
+               & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, cmin, d)
          else
             if (any_memory) call rubber%free_compression(rstep, state, u_free)
             call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
@@ -2054,11 +2054,10 @@ contains
             ! one pass (the first step's work, from no previous step, is
             ! discarded below as energy_step discards it)
             call lane_step_kv(nl, n, x, d, u_free, &
-               & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
-               & rstep%mean_weights, cmin + x - delta_last, u_prev, push_prev, state, push, &
-               & sum_f, contacts, sum_ft, clamps, u_max, sum_fa, hyst, mean_total)
+               & rstep%mean_weights, cmin + x - delta_last, push_prev, state, push, &
+               & sum_f, contacts, clamps, u_max, sum_fa, hyst, mean_total)
             n_contact = nint(contacts)
             n_clamp_j = nint(clamps)
             if (t == -1) contact_before = n_contact > 0
@@ -2614,69 +2613,74 @@ contains
    !> lane_gaps for the Kelvin-Voigt pad, with its free compression (kv_free:
    !> u_free = b u, b the lane's relaxation over a step) in the same pass:
    !> the same operations as the two, in one loop.
-   pure subroutine lane_free_gaps(nl, n, relax, state, z, h, u_free, c, cmin, d)
+   pure subroutine lane_free_gaps(nl, n, relax, state, z, h, u_free, cmin, d)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: relax(nl), state(nl, n), z(n), h(n)
-      real(wp), intent(out) :: u_free(nl, n), c(nl, n), cmin(nl), d(nl, n)
+      real(wp), intent(out) :: u_free(nl, n), cmin(nl), d(nl, n)
       integer :: i, j
+      ! c_i (lane_gaps' c) into d, then shifted by its least value in place
       cmin = huge(1.0_wp)
       do i = 1, n
+         !GCC$ ivdep
          do j = 1, nl
             u_free(j, i) = relax(j) * state(j, i)
-            c(j, i) = h(i) - z(i) + u_free(j, i)
-            cmin(j) = min(cmin(j), c(j, i))
+            d(j, i) = h(i) - z(i) + u_free(j, i)
+            cmin(j) = min(cmin(j), d(j, i))
          end do
       end do
       do i = 1, n
+         !GCC$ ivdep
          do j = 1, nl
-            d(j, i) = c(j, i) - cmin(j)
+            d(j, i) = d(j, i) - cmin(j)
          end do
       end do
    end subroutine lane_free_gaps
 
-   !> For the Kelvin-Voigt pad (the energy scheme) without a film that
-   !> changes the facets' friction, the step after the balance in one pass: lane_contacts' pushes
-   !> and sums, lane_work_linear's work and mean force (u_prev, push_prev
-   !> then the step's), and kv_update's state u = u_free + push; each value
-   !> by the same operations as theirs, in the same order (a copy of their
-   !> bodies: change them together, or the fused and general paths part by
-   !> rounding).
-   pure subroutine lane_step_kv(nl, n, x, d, u_free, tan_t, clamped, adhesion, weights, &
-         & ddelta, u_prev, push_prev, state, push, sum_f, contacts, sum_ft, clamps, u_max, &
-         & sum_fa, w, total)
+   !> For the Kelvin-Voigt pad (the energy scheme; a friction film's facets
+   !> are taken after it), the step after the balance in one pass: lane_contacts' pushes
+   !> and sums, lane_work_linear's work and mean force (push_prev then the
+   !> step's), and kv_update's state u = u_free + push; each value by the
+   !> same operations as theirs, in the same order (a copy of their bodies:
+   !> change them together, or the fused and general paths part by
+   !> rounding). The step's starting compression u_prev is the state
+   !> itself (both are u after every step; the first step's work, whatever
+   !> they hold, is discarded), and lane_contacts' sum of the pushes
+   !> weighted by the facet tangents is not taken: the energy scheme, the
+   !> only one fused, does not use it.
+   pure subroutine lane_step_kv(nl, n, x, d, u_free, clamped, adhesion, weights, &
+         & ddelta, push_prev, state, push, sum_f, contacts, clamps, u_max, sum_fa, w, total)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n), &
+      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), clamped(n), &
          & adhesion(n), weights(nl, 2), ddelta(nl)
-      real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n), state(nl, n)
-      real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl), &
+      real(wp), intent(inout) :: push_prev(nl, n), state(nl, n)
+      real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), clamps(nl), &
          & sum_fa(nl), w(nl), total(nl)
       real(wp), intent(inout) :: u_max(nl)
-      real(wp) :: p, in_contact, u, f
+      real(wp) :: p, in_contact, u, f, u_prev
       integer :: i, j
       sum_f = 0.0_wp
       contacts = 0.0_wp
-      sum_ft = 0.0_wp
       sum_fa = 0.0_wp
       clamps = 0.0_wp
       w = 0.0_wp
       total = 0.0_wp
       do i = 1, n
+         !GCC$ ivdep
          do j = 1, nl
             p = max(0.0_wp, x(j) - d(j, i))
             push(j, i) = p
             in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
             sum_f(j) = sum_f(j) + p
             contacts(j) = contacts(j) + in_contact
-            sum_ft(j) = sum_ft(j) + p * tan_t(i)
             sum_fa(j) = sum_fa(j) + p * adhesion(i)
             clamps(j) = clamps(j) + in_contact * clamped(i)
             u_max(j) = max(u_max(j), u_free(j, i) + p)
             u = u_free(j, i) + p
+            u_prev = state(j, i)
             f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + p > 0.0_wp) * &
-               & (weights(j, 1) * u_prev(j, i) + weights(j, 2) * u)
-            w(j) = w(j) + f * ((u - u_prev(j, i)) - ddelta(j))
+               & (weights(j, 1) * u_prev + weights(j, 2) * u)
+            w(j) = w(j) + f * ((u - u_prev) - ddelta(j))
             total(j) = total(j) + f
-            u_prev(j, i) = u
             push_prev(j, i) = p
             state(j, i) = u
          end do

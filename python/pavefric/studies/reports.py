@@ -764,6 +764,21 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "water (`min_contacts = 0`, no error estimate): 930 M instructions before, 866 M "
         "after, every number the same to the bit.",
         "",
+        "Later still on 2026-11-28 (after 0c0b275), the paper's wet balance took Newton's "
+        "steps on the formula of the contacts' piece with a pass over the elements to "
+        "check each piece's root (above, \"Wet balance\"), the dry balance under a film "
+        "started from the previous dry root, and the Kelvin-Voigt pad's fused step lost "
+        "a copy of the state, a sum the energy scheme does not use and the compiler's "
+        "aliasing checks; the runs of `tools/profile_kernel.sh --callgrind` (under "
+        "valgrind, whose logarithm differs in the last bits from the host's): dry 227 M "
+        "instructions before, 209 M after, every number the same to the bit; wet 597 M "
+        "before, 528 M after. From the same run on, the sweep times the core and the plain "
+        "loop in three alternating rounds and keeps the best of each: before, each was "
+        "timed once in a row, and on this shared host the ratio of two times taken a "
+        "minute apart could measure the host's drift (the coarse surface's wet ratio "
+        "4.61x in the run before, where its wet time equalled the other surfaces' within "
+        "5 % when timed by hand).",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
