@@ -87,8 +87,8 @@ def test_each_wet_model_is_costed_as_itself(profile_m):
     estimated 0.04 s, measured 1.06 s, 25 times too cheap); each wet model
     now has its own rate, and the Reynolds film's per element-step is many
     times the bearing's (docs/performance.md measures it: at most 22 times
-    since its balance got faster on 2026-11-28; here its estimate is 9.3
-    times the bearing's)."""
+    after its balance got faster on 2026-11-28, 25.5 after the bearing's
+    did; here its estimate is 9.3 times the bearing's)."""
     est = {}
     for model in ("kane2017", "squeeze", "reynolds"):
         ds = pavefric.simulate(profile_m, DX, [20.0, 60.0], depth=1e-3, wet_model=model,

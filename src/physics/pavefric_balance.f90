@@ -201,7 +201,7 @@ contains
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old
       real(wp) :: x_new
-      logical :: running(lanes), use_newton, jumps
+      logical :: running(lanes), use_newton, jumps, stops
       integer :: it, j
       if (film%sums_suffice() .and. .not. film%jumps_at_contact()) then
          call wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
@@ -225,16 +225,8 @@ contains
       do it = 1, max_iter_wet
          do j = 1, nl
             if (.not. running(j)) cycle
-            if (abs(f(j)) <= tol * load) then
-               running(j) = .false.
-               cycle
-            end if
-            if (f(j) > 0.0_wp) then
-               hi(j) = x(j)
-            else
-               lo(j) = x(j)
-            end if
-            if (hi(j) - lo(j) <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo(j)), abs(hi(j)))) then
+            call settle(f(j), x(j), tol * load, lo(j), hi(j), stops)
+            if (stops) then
                running(j) = .false.
                cycle
             end if
@@ -282,16 +274,6 @@ contains
          mask(jj) = .true.
       end function lane_mask
 
-      pure function pushed_at(dd, xx) result(total)
-         real(wp), intent(in) :: dd(:), xx
-         real(wp) :: total
-         integer :: i
-         total = 0.0_wp
-         do i = 1, size(dd)
-            total = total + max(0.0_wp, xx - dd(i))
-         end do
-      end function pushed_at
-
    end subroutine wet_roots
 
    !> wet_roots for a film whose load depends on the gap field only through
@@ -327,7 +309,7 @@ contains
          & n_open, dwh, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm
       logical, dimension(lanes) :: running, inner
       real(wp) :: y_new
-      logical :: use_newton
+      logical :: use_newton, stops
       integer :: it, k, j
       integer, parameter :: max_inner = 200
       wh = 0.0_wp
@@ -359,16 +341,8 @@ contains
          inner = .false.
          do j = 1, nl
             if (.not. running(j)) cycle
-            if (abs(f(j)) <= tol * load) then
-               running(j) = .false.
-               cycle
-            end if
-            if (f(j) > 0.0_wp) then
-               hi(j) = x(j)
-            else
-               lo(j) = x(j)
-            end if
-            if (hi(j) - lo(j) <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo(j)), abs(hi(j)))) then
+            call settle(f(j), x(j), tol * load, lo(j), hi(j), stops)
+            if (stops) then
                running(j) = .false.
                cycle
             end if
@@ -408,18 +382,11 @@ contains
                if (.not. inner(j)) cycle
                fy(j) = kel(j) * (pushed(j) + contacts(j) * (y(j) - x(j))) + whm(j) - load
                dfy(j) = kel(j) * contacts(j) + dwhm(j)
-               if (abs(fy(j)) <= tol * load) then
+               call settle(fy(j), y(j), tol * load, ylo(j), yhi(j), stops)
+               if (stops) then
                   inner(j) = .false.
-               else
-                  if (fy(j) > 0.0_wp) then
-                     yhi(j) = y(j)
-                  else
-                     ylo(j) = y(j)
-                  end if
-                  if (yhi(j) - ylo(j) <= 2.0_wp * epsilon(1.0_wp) * &
-                     & max(abs(ylo(j)), abs(yhi(j)))) inner(j) = .false.
+                  x(j) = y(j)
                end if
-               if (.not. inner(j)) x(j) = y(j)
             end do
          end do
          do j = 1, nl
@@ -438,17 +405,34 @@ contains
             wh(j) = max(0.0_wp, load - kel(j) * pushed_at(d(j, :), x(j)))
          end if
       end do
-   contains
-      pure function pushed_at(dd, xx) result(total)
-         real(wp), intent(in) :: dd(:), xx
-         real(wp) :: total
-         integer :: i
-         total = 0.0_wp
-         do i = 1, size(dd)
-            total = total + max(0.0_wp, xx - dd(i))
-         end do
-      end function pushed_at
    end subroutine wet_roots_on_pieces
+
+   !> One step of a wet balance's bracket [lo, hi] at x, where f = f(x):
+   !> whether the lane stops (|f| <= tol_load, or the bracket, narrowed to
+   !> x on f's side, has closed on adjacent doubles).
+   pure subroutine settle(f, x, tol_load, lo, hi, stops)
+      real(wp), intent(in) :: f, x, tol_load
+      real(wp), intent(inout) :: lo, hi
+      logical, intent(out) :: stops
+      stops = abs(f) <= tol_load
+      if (stops) return
+      if (f > 0.0_wp) then
+         hi = x
+      else
+         lo = x
+      end if
+      stops = hi - lo <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo), abs(hi))
+   end subroutine settle
+
+   !> The pad's push sum max(0, x - d_i) of one lane, in element order.
+   pure real(wp) function pushed_at(d, x) result(total)
+      real(wp), intent(in) :: d(:), x
+      integer :: i
+      total = 0.0_wp
+      do i = 1, size(d)
+         total = total + max(0.0_wp, x - d(i))
+      end do
+   end function pushed_at
 
    !> Where to split the bracket (lo, hi) of a film whose load jumps where an
    !> element touches (film_model%jumps_at_contact: at x = d_i, where gap_i

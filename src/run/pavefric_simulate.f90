@@ -1766,7 +1766,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       real(wp), allocatable :: zf(:), tf(:), t_fine(:), sf(:), af(:)
       logical, allocatable :: cf(:), c_fine(:)
-      real(wp) :: dxf, xc, r, tan_max
+      real(wp) :: dxf, tan_max
       integer :: fine, n_ext, k, i, stat
 
       fine = m%elements_per_sample * m%substeps
@@ -1931,7 +1931,7 @@ contains
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
       real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j, water, pmax
-      integer :: t, k1, k, i, n, nl, j, stat, q, lead, lead_prev, ns_state, film_count
+      integer :: t, k1, n, nl, j, stat, lead, lead_prev, ns_state, film_count
       logical :: series, clamped, any_memory, any_load, any_friction, energy, settled
       logical :: film_reports
       !> The Kelvin-Voigt pad (the energy scheme; dry, under a film that
