@@ -199,28 +199,20 @@ contains
       !> caller over a speed's run.
       real(wp), intent(inout) :: fwork(:, :)
       ! fixed-size locals (run-time sizes would be heap allocations)
-      real(wp), dimension(lanes) :: lo, hi, f, df, f_old
+      real(wp), dimension(lanes) :: lo, hi, f, df, f_old, pushed, contacts, gap_total, n_open
       real(wp) :: x_new
       logical :: running(lanes), use_newton, jumps, stops
       integer :: it, j
       if (film%sums_suffice() .and. .not. film%jumps_at_contact()) then
          call wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
-            & evaluations)
+            & evaluations, gaps, fwork)
          return
       end if
       jumps = film%jumps_at_contact()
-      wh = 0.0_wp
-      running = .false.
-      running(1:nl) = wet
+      call start_brackets(nl, d, film, fsteps, wet, x0, x, lo, hi, wh, running)
       if (.not. any(running)) return
-      do j = 1, nl
-         if (.not. wet(j)) cycle
-         lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
-         hi(j) = x(j)
-         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
-      end do
       call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
-         & gaps, fwork)
+         & gaps, fwork, pushed, contacts, gap_total, n_open)
       f_old = huge(1.0_wp)
       do it = 1, max_iter_wet
          do j = 1, nl
@@ -230,12 +222,7 @@ contains
                running(j) = .false.
                cycle
             end if
-            use_newton = df(j) > 0.0_wp .and. df(j) < huge(1.0_wp) .and. &
-               & abs(f(j)) <= 0.5_wp * f_old(j)
-            if (use_newton) then
-               x_new = x(j) - f(j) / df(j)
-               use_newton = x_new > lo(j) .and. x_new < hi(j)
-            end if
+            call newton_step(f(j), df(j), f_old(j), x(j), lo(j), hi(j), x_new, use_newton)
             if (.not. use_newton) then
                x_new = 0.5_wp * (lo(j) + hi(j))
                if (jumps) x_new = breakpoint_split(d(j, :), lo(j), hi(j), x_new)
@@ -245,7 +232,7 @@ contains
          end do
          if (.not. any(running)) exit
          call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
-         & gaps, fwork)
+         & gaps, fwork, pushed, contacts, gap_total, n_open)
       end do
       do j = 1, nl
          if (.not. wet(j)) cycle
@@ -261,7 +248,7 @@ contains
             if (f(j) < 0.0_wp) then
                x(j) = hi(j)
                call evaluate_wet(nl, n, d, kel, load, film, fsteps, lane_mask(j), x, f, df, &
-                  & wh, evaluations, gaps, fwork)
+                  & wh, evaluations, gaps, fwork, pushed, contacts, gap_total, n_open)
             end if
             wh(j) = max(0.0_wp, load - kel(j) * pushed_at(d(j, :), x(j)))
          end if
@@ -295,7 +282,7 @@ contains
    !> passes over the elements, as wet_roots' (each with the film's load);
    !> the steps on a piece's formula are not counted.
    pure subroutine wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, &
-      & wh, evaluations)
+      & wh, evaluations, gaps, fwork)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol, x0(nl)
       class(film_model), intent(in) :: film
@@ -304,38 +291,24 @@ contains
       real(wp), intent(inout) :: x(nl)
       real(wp), intent(out) :: wh(nl)
       integer(i8), intent(inout) :: evaluations(nl)
+      !> evaluate_wet's workspaces (wet_roots').
+      real(wp), intent(inout) :: gaps(nl, n), fwork(:, :)
       ! fixed-size locals (run-time sizes would be heap allocations)
-      real(wp), dimension(lanes) :: lo, hi, f, df, f_old, xe, pushed, contacts, gap_total, &
-         & n_open, dwh, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm
+      real(wp), dimension(lanes) :: lo, hi, f, df, f_old, x_eval, pushed, contacts, &
+         & gap_total, n_open, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm
       logical, dimension(lanes) :: running, inner
       real(wp) :: y_new
       logical :: use_newton, stops
       integer :: it, k, j
       integer, parameter :: max_inner = 200
-      wh = 0.0_wp
-      running = .false.
-      running(1:nl) = wet
+      call start_brackets(nl, d, film, fsteps, wet, x0, x, lo, hi, wh, running)
       if (.not. any(running)) return
-      do j = 1, nl
-         if (.not. wet(j)) cycle
-         lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
-         hi(j) = x(j)
-         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
-      end do
       f_old = huge(1.0_wp)
       do it = 1, max_iter_wet
          ! a pass over the elements: f at x, and x's piece
-         do j = 1, nl
-            xe(j) = merge(x(j), 0.0_wp, running(j))
-         end do
-         call contact_gap_sums(nl, n, d, xe, pushed, contacts, gap_total, n_open)
-         call film%loads_of_sums(nl, n, fsteps, gap_total, n_open, running, wh, dwh)
-         do j = 1, nl
-            if (.not. running(j)) cycle
-            f(j) = kel(j) * pushed(j) + wh(j) - load
-            df(j) = kel(j) * contacts(j) + dwh(j)
-            evaluations(j) = evaluations(j) + 1
-         end do
+         x_eval(1:nl) = x
+         call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, &
+            & evaluations, gaps, fwork, pushed, contacts, gap_total, n_open)
          ! the lanes that balance or whose bracket closed stop; the others
          ! step to their piece's root (or bisect their bracket)
          inner = .false.
@@ -364,12 +337,8 @@ contains
             if (.not. any(inner(1:nl))) exit
             do j = 1, nl
                if (.not. inner(j)) cycle
-               use_newton = dfy(j) > 0.0_wp .and. dfy(j) < huge(1.0_wp) .and. &
-                  & abs(fy(j)) <= 0.5_wp * fy_old(j)
-               if (use_newton) then
-                  y_new = y(j) - fy(j) / dfy(j)
-                  use_newton = y_new > ylo(j) .and. y_new < yhi(j)
-               end if
+               call newton_step(fy(j), dfy(j), fy_old(j), y(j), ylo(j), yhi(j), y_new, &
+                  & use_newton)
                if (.not. use_newton) y_new = 0.5_wp * (ylo(j) + yhi(j))
                fy_old(j) = abs(fy(j))
                y(j) = y_new
@@ -396,7 +365,7 @@ contains
       do j = 1, nl
          if (.not. wet(j)) cycle
          ! (a lane the iterations ran out on: the point its f was taken at)
-         if (running(j)) x(j) = xe(j)
+         if (running(j)) x(j) = x_eval(j)
          if (abs(f(j)) > tol * load) then
             ! The bracket closed on adjacent doubles without |f| reaching
             ! the tolerance (wet_roots): the upper end, the film carrying
@@ -406,6 +375,44 @@ contains
          end if
       end do
    end subroutine wet_roots_on_pieces
+
+   !> The wet lanes' brackets [lo, x_dry] (lo from the film) and their
+   !> starting points: the guess x0 where it lies strictly inside, else
+   !> x_dry; `running` the wet lanes, wh zero.
+   pure subroutine start_brackets(nl, d, film, fsteps, wet, x0, x, lo, hi, wh, running)
+      integer, intent(in) :: nl
+      real(wp), intent(in) :: d(:, :), x0(nl)
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fsteps(nl)
+      logical, intent(in) :: wet(nl)
+      real(wp), intent(inout) :: x(nl)
+      real(wp), intent(out) :: lo(lanes), hi(lanes), wh(nl)
+      logical, intent(out) :: running(lanes)
+      integer :: j
+      wh = 0.0_wp
+      running = .false.
+      running(1:nl) = wet
+      do j = 1, nl
+         if (.not. wet(j)) cycle
+         lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
+         hi(j) = x(j)
+         if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
+      end do
+   end subroutine start_brackets
+
+   !> Newton's step from x (f, df there) inside the bracket (lo, hi), taken
+   !> (`taken`) only where df is positive and finite, |f| at most half the
+   !> last |f| (f_old), and the step lands strictly inside.
+   pure subroutine newton_step(f, df, f_old, x, lo, hi, x_new, taken)
+      real(wp), intent(in) :: f, df, f_old, x, lo, hi
+      real(wp), intent(out) :: x_new
+      logical, intent(out) :: taken
+      x_new = x
+      taken = df > 0.0_wp .and. df < huge(1.0_wp) .and. abs(f) <= 0.5_wp * f_old
+      if (.not. taken) return
+      x_new = x - f / df
+      taken = x_new > lo .and. x_new < hi
+   end subroutine newton_step
 
    !> One step of a wet balance's bracket [lo, hi] at x, where f = f(x):
    !> whether the lane stops (|f| <= tol_load, or the bracket, narrowed to
@@ -468,7 +475,7 @@ contains
    !> f, df and the film's load of the lanes in `mask` at their x (the other
    !> lanes' values are left as they are); one more evaluation each.
    pure subroutine evaluate_wet(nl, n, d, kel, load, film, fsteps, mask, x, f, df, wh, &
-      & evaluations, gaps, fwork)
+      & evaluations, gaps, fwork, pushed, contacts, gap_total, n_open)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, x(nl)
       class(film_model), intent(in) :: film
@@ -477,7 +484,11 @@ contains
       real(wp), intent(inout) :: f(nl), df(nl), wh(nl)
       integer(i8), intent(inout) :: evaluations(nl)
       real(wp), intent(inout) :: gaps(nl, n), fwork(:, :)
-      real(wp), dimension(lanes) :: xe, pushed, contacts, dwh, gap_total, n_open
+      !> Per lane, x's piece: the pad's push sum, the contacts and (films
+      !> whose sums suffice) the gaps' sum and the open gaps.
+      real(wp), intent(out) :: pushed(lanes), contacts(lanes), gap_total(lanes), &
+         & n_open(lanes)
+      real(wp), dimension(lanes) :: xe, dwh
       integer :: j
       ! the lanes not evaluated sit at a harmless penetration
       do j = 1, nl
@@ -489,6 +500,8 @@ contains
       else
          call contact_sums(nl, n, d, xe, pushed, contacts, gaps)
          call film%loads(nl, n, fsteps, gaps, mask, wh, dwh, fwork)
+         gap_total = 0.0_wp                       ! (not taken: the film has the field)
+         n_open = 0.0_wp
       end if
       do j = 1, nl
          if (.not. mask(j)) cycle
