@@ -353,8 +353,10 @@ contains
          & "passes are in their first-order range and its estimate is the smaller " // &
          & "(mu_extrapolated says where), meeting a tolerance at 2 to 4 times fewer " // &
          & "substeps; 'euler' reports the finest pass: with substeps = 1 the paper's one " // &
-         & "step per sample (docs/accuracy.md)", &
-         & choices="auto extrapolated euler exact")
+         & "step per sample. 'richardson': as 'extrapolated', and at tolerance = 0 the " // &
+         & "Richardson value of the run and its error estimate's pass (needs " // &
+         & "error_estimate; docs/model.md)", &
+         & choices="auto extrapolated euler exact richardson")
       s(p_friction_scheme) = text("numerics", "friction_scheme", "energy", "", "model", &
          & "'energy': the friction of a step is the work the facet forces do, the " // &
          & "elements' stored energy change plus their dissipation (trapezoidal in time), " // &
@@ -1312,6 +1314,14 @@ contains
          return
       end if
       if (allocated(m%time_scheme)) then
+         if (m%time_scheme == "richardson" .and. m%tolerance <= 0.0_wp .and. &
+            & .not. m%error_estimate) then
+            call fatal_error(error, "&numerics time_scheme = 'richardson' with " // &
+               & "error_estimate = .false. (and tolerance = 0): the Richardson value " // &
+               & "combines the run with the error estimate's pass at half the step; give " // &
+               & "error_estimate = .true. (or time_scheme = 'euler' for the run's own pass)")
+            return
+         end if
          if (m%time_scheme == "exact" .and. m%position_stride /= 1) then
             call fatal_error(error, "&numerics time_scheme = 'exact' with position_stride = " // &
                & to_str(m%position_stride) // ": the exact integrator follows the road " // &

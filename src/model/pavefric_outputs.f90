@@ -132,7 +132,9 @@ contains
          & "the step where the pad stood on 4 elements in contact or more; where it stood on " // &
          & "fewer, the change of mu as the elements were halved until it stood on 4 (at most " // &
          & "4 times) plus three times the change of one more halving; speeds the exact " // &
-         & "integrator ran: from halving the elements. " // &
+         & "integrator ran: from halving the elements; where time_scheme = 'richardson' " // &
+         & "extrapolated mu (mu_extrapolated), twice the change of mu at half the step, " // &
+         & "the correction it made. " // &
          & "With &numerics tolerance: twice the larger of its last " // &
          & "two changes as the step was halved, or where mu is extrapolated, the larger of " // &
          & "the extrapolated value's change and the last change", when=when_error_estimate)
@@ -140,8 +142,9 @@ contains
          & "of the reported mu: the tolerance's choice, or substeps as given at tolerance " // &
          & "= 0", out_int64, when=when_error_estimate)
       t(3) = output_var("numerics", "mu_extrapolated", "1", "1 where mu (and its parts) is " // &
-         & "the Richardson value 2 mu(s) - mu(s/2) of the last two passes, 0 where it is " // &
-         & "the finest pass (&numerics tolerance, time_scheme)", out_int64, &
+         & "the Richardson value 2 mu(s) - mu(s/2) of two Euler passes (with a tolerance: " // &
+         & "the last two; time_scheme 'richardson' at tolerance = 0: the run and its error " // &
+         & "estimate's pass), 0 where it is one pass's own", out_int64, &
          & when=when_error_estimate)
       t(4) = output_var("numerics", "exact_integrator_ran", "", "whether the rubber was " // &
          & "integrated exactly in time, from contact event to event (&numerics time_scheme " // &

@@ -102,10 +102,16 @@ def main() -> None:
     print(f"   200 C, 1 km/h: {ds['mu'].values[0]:.4f}")
     print("The default's two passes (substeps 1, and 2 for its error estimate, at the pad "
           "min_contacts = 4 chose), 20 km/h: the first (reported), the second, and "
-          "2 mu(2) - mu(1) (Richardson, not what the default reports)")
+          "2 mu(2) - mu(1) (Richardson, not what the default reports: what "
+          "time_scheme = 'richardson' reports, its run's mu_extrapolated and "
+          "mu_error_estimate after it)")
     for t, level, one, two in default_passes(z, rubber, (0, 10, 20, 30, 40, 50, 60)):
+        rich = pavefric.simulate(z, DX, [20.0], mu_loc=0.0, temperature=float(t),
+                                 time_scheme="richardson", **rubber)
         print(f"  {t:4d} C (elements_per_sample {level}): {one:.4f}, {two:.4f}, "
-              f"{2 * two - one:.4f}")
+              f"{2 * two - one:.4f} (richardson: {rich['mu'].values[0]:.4f}, "
+              f"{int(rich['mu_extrapolated'].values[0])}, "
+              f"{rich['mu_error_estimate'].values[0]:.4f})")
     print("The same at substeps 16, elements_per_sample 4, min_contacts = 0 (the tests' "
           "numerics for the bell; mu at 20 and 60 km/h)")
     for t in (0, 10, 20, 30, 40, 50, 60):

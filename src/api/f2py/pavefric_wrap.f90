@@ -55,7 +55,7 @@ subroutine pf_parameter_info(i, group, name, keyword, scope, unit, default_text,
    character(len=32), intent(out) :: group, name, keyword, scope, unit
    character(len=64), intent(out) :: default_text
    character(len=256), intent(out) :: choices
-   character(len=1024), intent(out) :: meaning
+   character(len=4096), intent(out) :: meaning
    integer(c_int), intent(out) :: kind, strict(2), max_values, required
    real(c_double), intent(out) :: bounds(4)
    type(param_spec_type), allocatable :: specs(:)
@@ -82,7 +82,7 @@ subroutine pf_group_info(i, name, title, description)
    integer(c_int), intent(in) :: i
    character(len=32), intent(out) :: name
    character(len=128), intent(out) :: title
-   character(len=1024), intent(out) :: description
+   character(len=4096), intent(out) :: description
    type(group_spec_type) :: g(n_groups)
    name = ""; title = ""; description = ""
    if (i < 1 .or. i > n_groups) return
@@ -108,7 +108,7 @@ subroutine pf_output_info(i, name, units, long_name, var_type, dims, written, ow
    implicit none
    integer(c_int), intent(in) :: i
    character(len=64), intent(out) :: name, units, owner
-   character(len=256), intent(out) :: long_name, written
+   character(len=4096), intent(out) :: long_name, written
    integer(c_int), intent(out) :: var_type, dims
    type(output_var_type) :: t(n_outputs)
    name = ""; units = ""; long_name = ""; var_type = 0; dims = 0; written = ""; owner = ""
