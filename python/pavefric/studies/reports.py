@@ -211,7 +211,10 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "first-order term of that error once the steps are fine enough for it to "
         "dominate (from about substeps 4–8); below that, the passes are not in their "
         "asymptotic range and `time_scheme = 'extrapolated'` reports the finest pass "
-        "instead (the ratio test below). Resolving each contact event within the "
+        "instead (the ratio test below). `time_scheme = 'richardson'` reports the "
+        "default's own pair extrapolated (substeps 1 and 2: the run and its error "
+        "estimate's pass, no pass more): the column \"extrapolated error at dt = 1/2\" "
+        "is its error on these scenes. Resolving each contact event within the "
         "step, as `time_scheme = 'exact'` does, removes that error altogether.",
         "",
         "## What a default run says of its accuracy",
