@@ -156,3 +156,15 @@ def test_output_descriptions_are_whole(tmp_path):
     assert max(len(p.meaning) for p in params) < 4000
     assert max(len(o[2]) for o in outputs) < 4000
     assert any(len(p.meaning) > 1000 for p in params)     # the old 1024 was near
+
+
+def test_series_are_the_runs_own_pass(short_profile_m):
+    """With series, mu is the Richardson value but mu_inst is the run's own
+    pass (as the parameter's description says): its mean is that pass's mu."""
+    ds = quiet(short_profile_m, DX, [20.0], time_scheme="richardson", min_contacts=0,
+               series=True)
+    one, _ = euler_passes(short_profile_m, [20.0])
+    np.testing.assert_allclose(ds["mu_inst"].values.mean(axis=1), one["mu"].values,
+                               rtol=1e-12)
+    assert ds["mu_extrapolated"].values[0] == 1
+    assert abs(ds["mu"].values[0] - one["mu"].values[0]) > 1e-6

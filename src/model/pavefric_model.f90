@@ -355,7 +355,7 @@ contains
          & "substeps; 'euler' reports the finest pass: with substeps = 1 the paper's one " // &
          & "step per sample. 'richardson': as 'extrapolated', and at tolerance = 0 the " // &
          & "Richardson value of the run and its error estimate's pass (needs " // &
-         & "error_estimate; docs/model.md)", &
+         & "error_estimate; series stay the run's own pass; docs/model.md)", &
          & choices="auto extrapolated euler exact richardson")
       s(p_friction_scheme) = text("numerics", "friction_scheme", "energy", "", "model", &
          & "'energy': the friction of a step is the work the facet forces do, the " // &
