@@ -26,7 +26,7 @@ module pavefric_simulate
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components, cost_estimate_type, estimate_cost, check_memory, element_grid
-   public :: add_spinup_cost, add_refinement_cost
+   public :: add_spinup_cost, add_refinement_cost, richardson
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
@@ -561,7 +561,7 @@ contains
       integer, allocatable :: idx(:)
       integer :: ns, k, j, level
       real(wp) :: change, est, est_r, rich, rich_h, rich_a
-      logical :: extrapolate
+      logical :: extrapolate, usable
       ns = size(speeds_kmh)
       mm = m
       mm%tolerance = 0.0_wp            ! each pass runs its substeps as given
@@ -600,13 +600,8 @@ contains
          do k = 1, size(idx)
             j = idx(k)
             change = r%mu(k) - prev(j)
-            rich = 2.0_wp * r%mu(k) - prev(j)
-            rich_h = 2.0_wp * r%mu_hysteresis(k) - prev_h(j)
-            rich_a = 2.0_wp * r%mu_adhesion(k) - prev_a(j)
-            if (r%mu_hysteresis(k) >= 0.0_wp .and. prev_h(j) >= 0.0_wp .and. rich_h < 0.0_wp) &
-               & rich = -huge(1.0_wp)
-            if (r%mu_adhesion(k) >= 0.0_wp .and. prev_a(j) >= 0.0_wp .and. rich_a < 0.0_wp) &
-               & rich = -huge(1.0_wp)
+            call richardson(prev(j), prev_h(j), prev_a(j), r%mu(k), r%mu_hysteresis(k), &
+               & r%mu_adhesion(k), rich, rich_h, rich_a, usable)
             prev(j) = r%mu(k)
             prev_h(j) = r%mu_hysteresis(k)
             prev_a(j) = r%mu_adhesion(k)
@@ -623,8 +618,7 @@ contains
                if (est <= m%tolerance) active(j) = .false.
             else if (level >= 2) then
                est = 2.0_wp * max(abs(change), abs(last_change(j)))
-               if (extrapolate .and. asymptotic(last_change(j), change) .and. &
-                  & rich > -huge(1.0_wp)) then
+               if (extrapolate .and. asymptotic(last_change(j), change) .and. usable) then
                   est_r = max(abs(2.0_wp * change - last_change(j)), abs(change))
                   if (est_r < est) then
                      est = est_r
@@ -818,6 +812,7 @@ contains
       logical, allocatable :: by_step(:)
       integer :: ns, j, k, e, level, cap
       real(wp) :: rich, rich_h, rich_a
+      logical :: usable
       character(len=:), allocatable :: why
       ns = size(speeds_kmh)
       allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), &
@@ -910,11 +905,9 @@ contains
       do j = 1, ns
          if (.not. by_step(j)) cycle
          if (res%refined_elements_per_sample(j) /= res%elements_per_sample_used(j)) cycle
-         rich = 2.0_wp * pass_mu(j) - res%mu(j)
-         rich_h = 2.0_wp * pass_h(j) - res%mu_hysteresis(j)
-         rich_a = 2.0_wp * pass_a(j) - res%mu_adhesion(j)
-         if (pass_h(j) >= 0.0_wp .and. res%mu_hysteresis(j) >= 0.0_wp .and. rich_h < 0.0_wp) cycle
-         if (pass_a(j) >= 0.0_wp .and. res%mu_adhesion(j) >= 0.0_wp .and. rich_a < 0.0_wp) cycle
+         call richardson(res%mu(j), res%mu_hysteresis(j), res%mu_adhesion(j), pass_mu(j), &
+            & pass_h(j), pass_a(j), rich, rich_h, rich_a, usable)
+         if (.not. usable) cycle
          res%mu_error(j) = 2.0_wp * abs(pass_mu(j) - res%mu(j))
          res%mu(j) = rich
          res%mu_hysteresis(j) = rich_h
@@ -994,6 +987,22 @@ contains
             & "error" // text)
       end subroutine no_estimate
    end subroutine estimate_step_error
+
+   !> The Richardson value 2 b - a of two backward-Euler passes, a at a step
+   !> and b at half of it, for mu and its parts alike (their sum stays mu);
+   !> `usable` false where it would turn negative a part both passes have
+   !> >= 0 (mu_loc = 0 keeps mu >= 0).
+   pure subroutine richardson(mu_a, hyst_a, adh_a, mu_b, hyst_b, adh_b, rich, rich_h, &
+      & rich_a, usable)
+      real(wp), intent(in) :: mu_a, hyst_a, adh_a, mu_b, hyst_b, adh_b
+      real(wp), intent(out) :: rich, rich_h, rich_a
+      logical, intent(out) :: usable
+      rich = 2.0_wp * mu_b - mu_a
+      rich_h = 2.0_wp * hyst_b - hyst_a
+      rich_a = 2.0_wp * adh_b - adh_a
+      usable = .not. (hyst_a >= 0.0_wp .and. hyst_b >= 0.0_wp .and. rich_h < 0.0_wp) .and. &
+         & .not. (adh_a >= 0.0_wp .and. adh_b >= 0.0_wp .and. rich_a < 0.0_wp)
+   end subroutine richardson
 
    !> The scene of a pass the run makes for itself (the pad's levels, the
    !> error estimate's): no estimate of its own, no refinement, and its own
