@@ -57,4 +57,10 @@ def test_wet_tolerance_controls_the_residual(profile_m):
     tight = pavefric.simulate(profile_m, DX, [60.0], depth=1e-3)
     assert loose["max_balance_residual"].values[0] <= 1e-3
     assert tight["max_balance_residual"].values[0] <= 1e-13
-    assert loose["bearing_evaluations"].values[0] < tight["bearing_evaluations"].values[0]
+    # the knob sets it: the loose balance stops where the tight one goes on
+    # (measured 9.8e-4 against 9.9e-15)
+    assert loose["max_balance_residual"].values[0] > 1e6 * tight["max_balance_residual"].values[0]
+    # and takes no more passes with the film's load (the paper's bearing runs
+    # Newton on each piece's formula, not counted, and with no breakpoint
+    # between takes its root without a pass: 1218 for both here)
+    assert loose["bearing_evaluations"].values[0] <= tight["bearing_evaluations"].values[0]

@@ -273,14 +273,18 @@ contains
    !> value, no pass over the elements. Each pass over the elements (an
    !> evaluation of f) gives x's piece; safeguarded Newton then runs on that
    !> piece's formula (bisection on its own bracket where a step leaves it
-   !> or does not halve the residual) until it balances to tol W, and the
-   !> next pass evaluates f there. Where that point lies on the same piece,
-   !> f is its formula and the lane stops: a root typically takes two
-   !> passes (the guess's and the check), where Newton with a pass per step
-   !> took four to five. The stopping test, the bracket and its closing are
-   !> wet_roots': the root is the same to tol W. `evaluations` counts the
-   !> passes over the elements, as wet_roots' (each with the film's load);
-   !> the steps on a piece's formula are not counted.
+   !> or does not halve the residual) until it balances to tol W. Where no
+   !> d_i lies between x and that root (ends included: a cheap pass that
+   !> only counts them, all such lanes at once), the root is on x's piece,
+   !> f there is the formula's and the lane stops; else the next pass
+   !> evaluates f there. The formula and a pass give the same f rounded
+   !> differently (by about 1e-15 W), so a root taken from the formula may
+   !> miss the tolerance by that much when f is summed element by element.
+   !> A root typically takes one or two passes, where Newton with a pass
+   !> per step took four to five. The stopping test, the bracket and its
+   !> closing are wet_roots': the root is the same to tol W. `evaluations`
+   !> counts the passes with the film's load, as wet_roots'; the steps on
+   !> a piece's formula and the counting passes are not counted.
    pure subroutine wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, &
       & wh, evaluations, gaps, fwork)
       integer, intent(in) :: nl, n
@@ -295,8 +299,9 @@ contains
       real(wp), intent(inout) :: gaps(nl, n), fwork(:, :)
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old, x_eval, pushed, contacts, &
-         & gap_total, n_open, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm
-      logical, dimension(lanes) :: running, inner
+         & gap_total, n_open, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm, fy_stop, wh_stop, &
+         & between
+      logical, dimension(lanes) :: running, inner, cand
       real(wp) :: y_new
       logical :: use_newton, stops
       integer :: it, k, j
@@ -312,6 +317,7 @@ contains
          ! the lanes that balance or whose bracket closed stop; the others
          ! step to their piece's root (or bisect their bracket)
          inner = .false.
+         cand = .false.
          do j = 1, nl
             if (.not. running(j)) cycle
             call settle(f(j), x(j), tol * load, lo(j), hi(j), stops)
@@ -355,12 +361,31 @@ contains
                if (stops) then
                   inner(j) = .false.
                   x(j) = y(j)
+                  if (abs(fy(j)) <= tol * load) then
+                     cand(j) = .true.
+                     fy_stop(j) = fy(j)
+                     wh_stop(j) = whm(j)
+                  end if
                end if
             end do
          end do
          do j = 1, nl
             if (inner(j)) x(j) = y(j)
          end do
+         ! a root that balances with no d_i between the pass's point and it
+         ! (ends included) lies on that point's piece, whose formula is f
+         ! there: no pass with the film's load is needed to check it (one
+         ! pass counting the d_i between, for all such lanes at once)
+         if (any(cand(1:nl))) then
+            call breakpoints_between(nl, n, d, cand, x_eval, x, between)
+            do j = 1, nl
+               if (.not. cand(j) .or. between(j) > 0.0_wp) cycle
+               running(j) = .false.
+               f(j) = fy_stop(j)
+               wh(j) = wh_stop(j)
+            end do
+            if (.not. any(running(1:nl))) exit
+         end if
       end do
       do j = 1, nl
          if (.not. wet(j)) cycle
@@ -430,6 +455,29 @@ contains
       end if
       stops = hi - lo <= 2.0_wp * epsilon(1.0_wp) * max(abs(lo), abs(hi))
    end subroutine settle
+
+   !> Per lane in `mask`, how many d_i lie between a and b, ends included
+   !> (0: the contacts d_i < x and the open gaps d_i > x are the same sets
+   !> at every x between, and neither end is a breakpoint); lanes innermost,
+   !> a vector loop. The other lanes count nothing.
+   pure subroutine breakpoints_between(nl, n, d, mask, a, b, count)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), a(nl), b(nl)
+      logical, intent(in) :: mask(nl)
+      real(wp), intent(out) :: count(nl)
+      real(wp) :: lo(lanes), hi(lanes)
+      integer :: i, j
+      do j = 1, nl
+         lo(j) = merge(min(a(j), b(j)), huge(1.0_wp), mask(j))
+         hi(j) = merge(max(a(j), b(j)), -huge(1.0_wp), mask(j))
+      end do
+      count = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            count(j) = count(j) + merge(1.0_wp, 0.0_wp, d(j, i) >= lo(j) .and. d(j, i) <= hi(j))
+         end do
+      end do
+   end subroutine breakpoints_between
 
    !> The pad's push sum max(0, x - d_i) of one lane, in element order.
    pure real(wp) function pushed_at(d, x) result(total)

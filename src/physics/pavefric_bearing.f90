@@ -10,7 +10,7 @@ module pavefric_bearing
    implicit none
    private
 
-   public :: bearing_prefactor, hydro_load, bracket_over_e2, series_threshold
+   public :: bearing_prefactor, hydro_load, hydro_loads, bracket_over_e2, series_threshold
 
    !> Below this e = a - 1 the series is used (closed-form relative error
    !> there is about 12 eps / e**2 = 4e-14; the series' truncation is < 1e-18).
@@ -100,5 +100,41 @@ contains
       ! da/dHout = -a**2/Hin
       dwh_dhout = -prefactor / h_in**3 * dg * a * a
    end subroutine hydro_load
+
+   !> hydro_load of the films in `active` (the others' wh and dwh_dhout are
+   !> left as they are), given each one's prefactor P and its scales
+   !> P / h_in**2 and P / h_in**3 (computed once a speed: the two divisions
+   !> hydro_load takes per call). A wedge of moderate ratio (the usual case:
+   !> 0.25 <= a - 1 <= 1e100) is evaluated in line, by hydro_load's own
+   !> operations (the same numbers); the rest call hydro_load. One call for
+   !> all the lanes of a step: the balance calls this at every Newton step
+   !> on a piece.
+   pure subroutine hydro_loads(nl, prefactor, scale2, scale3, h_in, h_out, active, wh, &
+      & dwh_dhout)
+      integer, intent(in) :: nl
+      real(wp), intent(in) :: prefactor(nl), scale2(nl), scale3(nl), h_in, h_out(nl)
+      logical, intent(in) :: active(nl)
+      real(wp), intent(inout) :: wh(nl), dwh_dhout(nl)
+      real(wp) :: e, a, p, b, db, g, dg
+      integer :: j
+      do j = 1, nl
+         if (.not. active(j)) cycle
+         if (h_out(j) < h_in .and. prefactor(j) > 0.0_wp .and. h_out(j) > h_in * 1.0e-250_wp) then
+            e = (h_in - h_out(j)) / h_out(j)
+            if (e >= series_threshold .and. e <= huge_ratio) then
+               a = 1.0_wp + e
+               p = log(a) - 2.0_wp * e / (a + 1.0_wp)
+               b = p / e**2
+               db = 1.0_wp / (a * (a + 1.0_wp)**2) - 2.0_wp * p / e**3
+               g = a * a * b
+               dg = 2.0_wp * a * b + a * a * db
+               wh(j) = scale2(j) * g
+               dwh_dhout(j) = -(scale3(j) * dg * a * a)
+               cycle
+            end if
+         end if
+         call hydro_load(prefactor(j), h_in, h_out(j), wh(j), dwh_dhout(j))
+      end do
+   end subroutine hydro_loads
 
 end module pavefric_bearing

@@ -8,7 +8,7 @@
 !> The driver and the load balance see only this interface (`film_model`).
 module pavefric_film
    use pavefric_kinds, only: wp, lanes
-   use pavefric_bearing, only: bearing_prefactor, hydro_load
+   use pavefric_bearing, only: bearing_prefactor, hydro_load, hydro_loads
    use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
    use pavefric_output_spec, only: output_var_type, output_var, out_int64, out_flag, &
       & dim_position_speed, when_series
@@ -369,16 +369,22 @@ contains
    ! --- the paper's pseudo-bearing ----------------------------------------------
 
    !> Active with water and motion (Sect. 3); coef(1) is Eq. 15's prefactor
-   !> alpha 6 eta V**beta l L**2.
+   !> P = alpha 6 eta V**beta l L**2, coef(2:3) its scales P / H_in**2 and
+   !> P / H_in**3.
    pure subroutine bearing_prepare(self, speed, advance, step)
       class(pseudo_bearing_film), intent(in) :: self
       real(wp), intent(in) :: speed, advance
       type(film_step_type), intent(out) :: step
-      allocate(step%coef(1))
-      step%coef(1) = 0.0_wp
+      allocate(step%coef(3))
+      step%coef = 0.0_wp
       step%active = self%depth > 0.0_wp .and. speed > 0.0_wp
-      if (step%active) step%coef(1) = bearing_prefactor(self%alpha, self%beta, self%eta, &
-         & speed, self%width, self%length)
+      if (step%active) then
+         step%coef(1) = bearing_prefactor(self%alpha, self%beta, self%eta, speed, self%width, &
+            & self%length)
+         ! Eq. 15's scales P / H_in**2 and P / H_in**3 (hydro_loads)
+         step%coef(2) = step%coef(1) / self%depth**2
+         step%coef(3) = step%coef(1) / self%depth**3
+      end if
       if (speed > 0.0_wp) step%dt = advance / speed
    end subroutine bearing_prepare
 
@@ -441,12 +447,19 @@ contains
       real(wp), intent(in) :: total(nl), n_open(nl)
       logical, intent(in) :: active(nl)
       real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
-      real(wp) :: dwh
+      ! fixed-size locals (the balance's lanes; run-time sizes would be heap
+      ! allocations)
+      real(wp), dimension(lanes) :: prefactor, scale2, scale3, h_out, dwh
       integer :: j
       do j = 1, nl
-         if (.not. active(j)) cycle
-         call hydro_load(steps(j)%coef(1), self%depth, total(j) / real(n, wp), wh(j), dwh)
-         dwh_dx(j) = -(dwh * n_open(j) / real(n, wp))
+         prefactor(j) = steps(j)%coef(1)
+         scale2(j) = steps(j)%coef(2)
+         scale3(j) = steps(j)%coef(3)
+         h_out(j) = total(j) / real(n, wp)
+      end do
+      call hydro_loads(nl, prefactor, scale2, scale3, self%depth, h_out, active, wh, dwh)
+      do j = 1, nl
+         if (active(j)) dwh_dx(j) = -(dwh(j) * n_open(j) / real(n, wp))
       end do
    end subroutine bearing_loads_of_sums
 
