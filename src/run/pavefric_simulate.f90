@@ -77,7 +77,12 @@ module pavefric_simulate
    ! the relative error), which is how these were obtained (2026-11-26, with
    ! the error estimate's pass).
    real(wp), parameter :: sec_point = 5.9e-7_wp, sec_step = 9.3e-9_wp, sec_arm = 1.2e-9_wp
-   real(wp), parameter :: sec_bearing_step = 1.7e-8_wp, sec_bearing_position = 7.1e-7_wp
+   !> The paper's bearing: refitted on 2026-11-29 on the section's five
+   !> kane2017 training runs alone, the other rates held (non-negative least
+   !> squares on the relative error of what they leave), after its balance
+   !> took the roots of its pieces without a checking pass (1.7e-8 and
+   !> 7.1e-7 before; those runs' estimated / measured were 1.31-1.53).
+   real(wp), parameter :: sec_bearing_step = 8.1e-9_wp, sec_bearing_position = 5.0e-7_wp
    real(wp), parameter :: sec_squeeze_step = 4.1e-8_wp, sec_squeeze_position = 0.0_wp
    !> The Reynolds film (wet_model = 'reynolds'; before 2026-11-27 it was
    !> costed as the paper's bearing, 25 times too cheap): the section's
