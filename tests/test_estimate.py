@@ -47,7 +47,9 @@ def test_estimated_element_steps_are_the_steps_the_run_made(profile_m, knobs):
 def test_the_estimate_grows_as_the_knobs_say(profile_m):
     """Linear in substeps, quadratic in elements_per_sample (more elements,
     each over a finer profile), wet dearer than dry: what a user must see
-    before choosing a knob."""
+    before choosing a knob. (Wet against dry here, 2026-11-29: estimated
+    1.96x, measured 1.89-1.91x, best of 7; 2x and more before the paper's
+    balance took its pieces' roots without a checking pass.)"""
     def est(**kw):
         a = pavefric.simulate(profile_m, DX, [20.0], **kw).attrs
         return a["estimated_element_steps"], a["estimated_seconds"]
@@ -58,7 +60,7 @@ def test_the_estimate_grows_as_the_knobs_say(profile_m):
     _, wet = est(substeps=8, depth=1e-3)
     assert sub / base == pytest.approx(8, rel=0.02)
     assert eps / base == pytest.approx(16, rel=0.02)
-    assert wet > 2 * dry
+    assert wet > 1.5 * dry
 
 
 def test_the_program_announces_a_long_run_and_records_every_estimate(tmp_path, profile_m):

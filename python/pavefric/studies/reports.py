@@ -807,6 +807,18 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "did not meet the target either, and the 1.32x of the run before was a quieter "
         "moment.",
         "",
+        "On 2026-11-29 the paper's wet balance took its pieces' roots without a checking "
+        "pass where no element's height lies between (above, \"Wet balance\"). Two runs "
+        "of this benchmark with that build, an hour apart on this shared host: wet "
+        "(`kane2017`) 8.0-9.4x the plain loop and 6.7-8.5x, dry 2.27-2.60x and 2.57-2.81x "
+        "(the dry kernel unchanged), the fine surface's wet rate 51.8 and 30.0 M "
+        "element-steps/s, the 2 MPI ranks 1.73x and 1.61x, the Maxwell rubber's 3 arms "
+        "1.73x and 2.03x, the drainage film 2.26x and 1.85x the paper's bearing. A row that "
+        "moves across its target between two runs of the same build measures the host. "
+        "The cost model's rates for the paper's bearing were refitted between the two runs "
+        "(src/run/pavefric_simulate.f90): estimated / measured on the test scenes 1.00-2.04 "
+        "in the first, 0.83-1.52 in the second.",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
