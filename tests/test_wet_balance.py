@@ -186,3 +186,68 @@ def test_the_wet_root_is_the_bisected_balances(tmp_path):
     assert worst_fb <= 1e-10, worst_fb
     assert 0 < fallback < 4000, fallback
     assert passes <= 0.5 * plain_passes, (passes, plain_passes)
+
+
+LOADS_CHECK = """
+program check
+   use pavefric_kinds, only: wp, lanes
+   use pavefric_film, only: pseudo_bearing_film, film_step_type
+   use pavefric_bearing, only: hydro_load
+   implicit none
+   type(pseudo_bearing_film) :: film
+   integer, parameter :: nmax = 12, n = 23
+   type(film_step_type) :: steps(nmax)
+   real(wp) :: total(nmax), n_open(nmax), wh(nmax), dwh(nmax), w, dw, r(nmax)
+   logical :: active(nmax)
+   integer :: trial, j, nl, differ, touched
+   call random_seed(put=[(7 * j + 1, j = 1, 64)])
+   differ = 0
+   touched = 0
+   do trial = 1, 2000
+      nl = 1 + mod(trial, nmax)                  ! 1 to 12 films: beyond the 8 lanes too
+      call random_number(r)
+      film = pseudo_bearing_film(depth=10.0_wp**(-6 + 3 * r(1)), eta=1e-3_wp, &
+         & alpha=10.0_wp**(-1 + 4 * r(2)), beta=1.75_wp, width=0.016_wp, length=0.02_wp)
+      call random_number(r)
+      do j = 1, nl
+         call film%prepare(0.5_wp + 40 * r(j), 1e-3_wp, steps(j))
+      end do
+      call random_number(r)
+      ! mean gaps from a film closing to none (e = a - 1 from 1e-3 to 1e12, and
+      ! above H_in), each branch of Eq. 15's evaluation
+      total = n * film%depth * 10.0_wp**(-12 + 13 * r)
+      call random_number(r)
+      n_open = real(floor(r * n) + 1, wp)
+      call random_number(r)
+      active = r > 0.2_wp
+      wh = -1.0_wp
+      dwh = -1.0_wp
+      call film%loads_of_sums(nl, n, steps(1:nl), total(1:nl), n_open(1:nl), active(1:nl), &
+         & wh(1:nl), dwh(1:nl))
+      do j = 1, nl
+         if (.not. active(j)) then
+            if (wh(j) /= -1.0_wp .or. dwh(j) /= -1.0_wp) touched = touched + 1
+            cycle
+         end if
+         call hydro_load(steps(j)%coef(1), film%depth, total(j) / real(n, wp), w, dw)
+         if (wh(j) /= w .or. dwh(j) /= -(dw * n_open(j) / real(n, wp))) differ = differ + 1
+      end do
+   end do
+   print *, differ, touched, lanes
+end program check
+"""
+
+
+def test_the_lanes_film_loads_are_hydro_loads(tmp_path):
+    """The paper's bearing evaluates Eq. 15 for all of a step's lanes in one
+    call, in line, from the scales P / H_in**2 and P / H_in**3 its step
+    keeps (film%loads_of_sums, hydro_loads): on 2,000 random calls of 1 to 12
+    films (beyond the balance's 8 lanes, which take the one-at-a-time path),
+    mean gaps from a closing film to none, every active film's load and
+    derivative are hydro_load's to the bit and the inactive ones are left
+    as they were."""
+    out = _compile_and_run(tmp_path, LOADS_CHECK)
+    differ, touched, lanes = (int(v) for v in out[:3])
+    assert lanes == 8
+    assert differ == 0
+    assert touched == 0

@@ -447,11 +447,22 @@ contains
       real(wp), intent(in) :: total(nl), n_open(nl)
       logical, intent(in) :: active(nl)
       real(wp), intent(inout) :: wh(nl), dwh_dx(nl)
-      ! fixed-size locals (the balance's lanes; run-time sizes would be heap
-      ! allocations)
+      ! fixed-size locals (run-time sizes would be heap allocations); the
+      ! steps of inactive lanes are not read (nor are these by hydro_loads)
       real(wp), dimension(lanes) :: prefactor, scale2, scale3, h_out, dwh
+      real(wp) :: dw
       integer :: j
+      if (nl > lanes) then
+         ! more films than the balance's lanes: one at a time
+         do j = 1, nl
+            if (.not. active(j)) cycle
+            call hydro_load(steps(j)%coef(1), self%depth, total(j) / real(n, wp), wh(j), dw)
+            dwh_dx(j) = -(dw * n_open(j) / real(n, wp))
+         end do
+         return
+      end if
       do j = 1, nl
+         if (.not. active(j)) cycle
          prefactor(j) = steps(j)%coef(1)
          scale2(j) = steps(j)%coef(2)
          scale3(j) = steps(j)%coef(3)
