@@ -716,7 +716,7 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "call (the same numbers to the bit). On the wet run of `tools/profile_kernel.sh "
         "--callgrind`: 2.06–2.25 passes with the film's load a speed and position before, "
         "1.10–1.19 after; "
-        "533 M instructions before, 495 M after; mu moved by at most 6e-16 of its scale "
+        "533 M instructions before, 497 M after; mu moved by at most 6e-16 of its scale "
         "(its rubber part 6e-15) on the regression record (tests/data/regression/"
         "record.json before and after, 2026-11-29).",
         "- Facet tangents computed once per profile sample, not per position; a "
