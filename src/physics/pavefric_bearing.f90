@@ -37,7 +37,7 @@ contains
    pure subroutine bracket_over_e2(e, b, db)
       real(wp), intent(in) :: e
       real(wp), intent(out) :: b, db
-      real(wp) :: a, p, sr, dsr
+      real(wp) :: sr, dsr
       integer :: n
       if (e < series_threshold) then
          ! B = e S(e), S = sum_{n>=3} c_n e**(n-3): Horner on S and dS/de.
@@ -50,12 +50,20 @@ contains
          b = e * sr
          db = sr + e * dsr
       else
-         a = 1.0_wp + e
-         p = log(a) - 2.0_wp * e / (a + 1.0_wp)
-         b = p / e**2
-         db = 1.0_wp / (a * (a + 1.0_wp)**2) - 2.0_wp * p / e**3
+         call bracket_closed_form(e, b, db)
       end if
    end subroutine bracket_over_e2
+
+   !> B and dB/da in closed form, for e = a - 1 >= series_threshold.
+   pure subroutine bracket_closed_form(e, b, db)
+      real(wp), intent(in) :: e
+      real(wp), intent(out) :: b, db
+      real(wp) :: a, p
+      a = 1.0_wp + e
+      p = log(a) - 2.0_wp * e / (a + 1.0_wp)
+      b = p / e**2
+      db = 1.0_wp / (a * (a + 1.0_wp)**2) - 2.0_wp * p / e**3
+   end subroutine bracket_closed_form
 
    !> Load carried by the film (Eq. 15) and its derivative with respect to
    !> the outlet film h_out. Zero when h_out >= h_in (no wedge); the largest
@@ -94,12 +102,20 @@ contains
          return
       end if
       call bracket_over_e2(e, b, db)
-      g = a * a * b                       ! g(a) = a**2 B(a)
-      dg = 2.0_wp * a * b + a * a * db
-      wh = prefactor / h_in**2 * g
-      ! da/dHout = -a**2/Hin
-      dwh_dhout = -prefactor / h_in**3 * dg * a * a
+      call load_of_bracket(a, b, db, prefactor / h_in**2, prefactor / h_in**3, wh, dwh_dhout)
    end subroutine hydro_load
+
+   !> Wh = (P / Hin**2) g(a) and dWh/dHout = -(P / Hin**3) g'(a) a**2 from
+   !> B(a), dB/da and the two scales, g(a) = a**2 B(a) (da/dHout = -a**2/Hin).
+   pure subroutine load_of_bracket(a, b, db, scale2, scale3, wh, dwh_dhout)
+      real(wp), intent(in) :: a, b, db, scale2, scale3
+      real(wp), intent(out) :: wh, dwh_dhout
+      real(wp) :: g, dg
+      g = a * a * b
+      dg = 2.0_wp * a * b + a * a * db
+      wh = scale2 * g
+      dwh_dhout = -(scale3 * dg * a * a)
+   end subroutine load_of_bracket
 
    !> hydro_load of the films in `active` (the others' wh and dwh_dhout are
    !> left as they are), given each one's prefactor P and its scales
@@ -115,21 +131,16 @@ contains
       real(wp), intent(in) :: prefactor(nl), scale2(nl), scale3(nl), h_in, h_out(nl)
       logical, intent(in) :: active(nl)
       real(wp), intent(inout) :: wh(nl), dwh_dhout(nl)
-      real(wp) :: e, a, p, b, db, g, dg
+      real(wp) :: e, b, db
       integer :: j
       do j = 1, nl
          if (.not. active(j)) cycle
          if (h_out(j) < h_in .and. prefactor(j) > 0.0_wp .and. h_out(j) > h_in * 1.0e-250_wp) then
             e = (h_in - h_out(j)) / h_out(j)
             if (e >= series_threshold .and. e <= huge_ratio) then
-               a = 1.0_wp + e
-               p = log(a) - 2.0_wp * e / (a + 1.0_wp)
-               b = p / e**2
-               db = 1.0_wp / (a * (a + 1.0_wp)**2) - 2.0_wp * p / e**3
-               g = a * a * b
-               dg = 2.0_wp * a * b + a * a * db
-               wh(j) = scale2(j) * g
-               dwh_dhout(j) = -(scale3(j) * dg * a * a)
+               call bracket_closed_form(e, b, db)
+               call load_of_bracket(1.0_wp + e, b, db, scale2(j), scale3(j), wh(j), &
+                  & dwh_dhout(j))
                cycle
             end if
          end if
