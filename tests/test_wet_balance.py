@@ -251,3 +251,92 @@ def test_the_lanes_film_loads_are_hydro_loads(tmp_path):
     assert lanes == 8
     assert differ == 0
     assert touched == 0
+
+
+ENGAGE_CHECK = """
+module plain_bearing_mod2
+   use pavefric_film, only: pseudo_bearing_film
+   implicit none
+   !> The same film, saying its sums do not suffice (each lane's field).
+   type, extends(pseudo_bearing_film) :: plain_bearing
+   contains
+      procedure :: sums_suffice => no
+   end type plain_bearing
+contains
+   pure logical function no(self)
+      class(plain_bearing), intent(in) :: self
+      no = .false.
+   end function no
+end module plain_bearing_mod2
+
+program check
+   use pavefric_kinds, only: wp, lanes
+   use pavefric_film, only: pseudo_bearing_film, film_step_type
+   use pavefric_balance, only: engaged_lanes, gap_field
+   use plain_bearing_mod2, only: plain_bearing
+   implicit none
+   type(pseudo_bearing_film) :: film
+   type(plain_bearing) :: plain
+   integer, parameter :: n = 23
+   type(film_step_type) :: steps(lanes)
+   real(wp) :: d(lanes, n), x(lanes), sum_d(lanes), sum_p(lanes), r(lanes), dl(n), gap(n)
+   real(wp) :: row(n)
+   logical :: mask(lanes), wet(lanes), wet_p(lanes)
+   integer :: trial, j, nl, differ, bound_differ, engaged, total
+   call random_seed(put=[(5 * j + 3, j = 1, 64)])
+   differ = 0
+   bound_differ = 0
+   engaged = 0
+   total = 0
+   do trial = 1, 3000
+      nl = 1 + mod(trial, lanes)
+      call random_number(r)
+      film = pseudo_bearing_film(depth=10.0_wp**(-5 + 2 * r(1)), eta=1e-3_wp, alpha=12.0_wp, &
+         & beta=1.75_wp, width=0.016_wp, length=0.02_wp)
+      plain = plain_bearing(depth=film%depth, eta=1e-3_wp, alpha=12.0_wp, beta=1.75_wp, &
+         & width=0.016_wp, length=0.02_wp)
+      do j = 1, nl
+         call film%prepare(20.0_wp, 1e-3_wp, steps(j))
+      end do
+      ! clearances spanning a film that fills the valleys and one that does not
+      call random_number(d)
+      d = d * film%depth * 10.0_wp**(-1 + 2 * mod(trial, 3))
+      d(:, 1 + mod(trial, n)) = 0.0_wp
+      call random_number(x)
+      x = x * maxval(d)
+      call random_number(r)
+      mask = r > 0.2_wp
+      call engaged_lanes(nl, n, d(1:nl, :), x(1:nl), film, steps(1:nl), mask(1:nl), &
+         & wet(1:nl), dl, gap, sum_d(1:nl))
+      call engaged_lanes(nl, n, d(1:nl, :), x(1:nl), plain, steps(1:nl), mask(1:nl), &
+         & wet_p(1:nl), dl, gap, sum_p(1:nl))
+      do j = 1, nl
+         total = total + 1
+         ! the field's answer, written out
+         row = d(j, :)
+         call gap_field(row, x(j), gap)
+         if (wet(j) .neqv. (mask(j) .and. film%engages(steps(j), gap))) differ = differ + 1
+         if (wet(j) .neqv. wet_p(j)) differ = differ + 1
+         if (wet(j)) engaged = engaged + 1
+         if (mask(j) .and. film%lower_bound_of_sum(steps(j), n, sum_d(j)) /= &
+            & film%lower_bound(steps(j), row)) bound_differ = bound_differ + 1
+      end do
+   end do
+   print *, differ, bound_differ, engaged, total
+end program check
+"""
+
+
+def test_the_lanes_engage_as_each_field_does(tmp_path):
+    """Whether the paper's bearing engages at the dry root is decided for
+    all lanes at once from their gaps' sums (engaged_lanes, the film's
+    engages_of_sums), and its lower bound from each lane's sum of the
+    clearances (lower_bound_of_sum): on 3,000 random pads of 1 to 8 lanes,
+    films that fill the valleys and films that do not, the answers are
+    those of each lane's gap field (engages, lower_bound) and of the path
+    for films whose sums do not suffice, to the bit."""
+    out = _compile_and_run(tmp_path, ENGAGE_CHECK)
+    differ, bound_differ, engaged, total = (int(v) for v in out[:4])
+    assert differ == 0
+    assert bound_differ == 0
+    assert 0.2 * total < engaged < 0.8 * total, (engaged, total)

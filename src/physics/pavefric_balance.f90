@@ -12,7 +12,7 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_roots, gap_field, lanes
+   public :: dry_root, dry_roots, wet_roots, gap_field, engaged_lanes, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -181,7 +181,7 @@ contains
    !> position's shifted coordinates), else at x_dry. The guess changes only
    !> where the iteration starts: the root is the same to wet_tol.
    pure subroutine wet_roots(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
-      & evaluations, gaps, fwork)
+      & evaluations, gaps, fwork, sum_d)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol
       !> Per lane, the starting guess (anything outside the bracket: none).
@@ -198,6 +198,9 @@ contains
       !> The film's workspace per lane (film%work_size(n), nl), kept by the
       !> caller over a speed's run.
       real(wp), intent(inout) :: fwork(:, :)
+      !> Per lane, sum(d) in element order, if the caller has it (engaged_lanes'):
+      !> for a film whose sums suffice, its lower bound from it.
+      real(wp), intent(in), optional :: sum_d(nl)
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old, pushed, contacts, gap_total, n_open
       real(wp) :: x_new
@@ -205,11 +208,11 @@ contains
       integer :: it, j
       if (film%sums_suffice() .and. .not. film%jumps_at_contact()) then
          call wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, wh, &
-            & evaluations, gaps, fwork)
+            & evaluations, gaps, fwork, sum_d)
          return
       end if
       jumps = film%jumps_at_contact()
-      call start_brackets(nl, d, film, fsteps, wet, x0, x, lo, hi, wh, running)
+      call start_brackets(nl, n, d, film, fsteps, wet, x0, x, lo, hi, wh, running, sum_d)
       if (.not. any(running)) return
       call evaluate_wet(nl, n, d, kel, load, film, fsteps, running, x, f, df, wh, evaluations, &
          & gaps, fwork, pushed, contacts, gap_total, n_open)
@@ -286,7 +289,7 @@ contains
    !> counts the passes with the film's load, as wet_roots'; the steps on
    !> a piece's formula and the counting passes are not counted.
    pure subroutine wet_roots_on_pieces(nl, n, d, kel, load, film, fsteps, wet, tol, x0, x, &
-      & wh, evaluations, gaps, fwork)
+      & wh, evaluations, gaps, fwork, sum_d)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: d(nl, n), kel(nl), load, tol, x0(nl)
       class(film_model), intent(in) :: film
@@ -297,6 +300,8 @@ contains
       integer(i8), intent(inout) :: evaluations(nl)
       !> evaluate_wet's workspaces (wet_roots').
       real(wp), intent(inout) :: gaps(nl, n), fwork(:, :)
+      !> wet_roots'.
+      real(wp), intent(in), optional :: sum_d(nl)
       ! fixed-size locals (run-time sizes would be heap allocations)
       real(wp), dimension(lanes) :: lo, hi, f, df, f_old, x_eval, pushed, contacts, &
          & gap_total, n_open, y, fy, dfy, fy_old, ylo, yhi, gm, whm, dwhm, fy_stop, wh_stop, &
@@ -306,7 +311,7 @@ contains
       logical :: use_newton, stops
       integer :: it, k, j
       integer, parameter :: max_inner = 200
-      call start_brackets(nl, d, film, fsteps, wet, x0, x, lo, hi, wh, running)
+      call start_brackets(nl, n, d, film, fsteps, wet, x0, x, lo, hi, wh, running, sum_d)
       if (.not. any(running)) return
       f_old = huge(1.0_wp)
       do it = 1, max_iter_wet
@@ -404,26 +409,94 @@ contains
    !> The wet lanes' brackets [lo, x_dry] (lo from the film) and their
    !> starting points: the guess x0 where it lies strictly inside, else
    !> x_dry; `running` the wet lanes, wh zero.
-   pure subroutine start_brackets(nl, d, film, fsteps, wet, x0, x, lo, hi, wh, running)
-      integer, intent(in) :: nl
-      real(wp), intent(in) :: d(:, :), x0(nl)
+   pure subroutine start_brackets(nl, n, d, film, fsteps, wet, x0, x, lo, hi, wh, running, &
+      & sum_d_in)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), x0(nl)
       class(film_model), intent(in) :: film
       type(film_step_type), intent(in) :: fsteps(nl)
       logical, intent(in) :: wet(nl)
       real(wp), intent(inout) :: x(nl)
       real(wp), intent(out) :: lo(lanes), hi(lanes), wh(nl)
       logical, intent(out) :: running(lanes)
-      integer :: j
+      !> Per lane, sum(d) in element order, if the caller has it.
+      real(wp), intent(in), optional :: sum_d_in(nl)
+      real(wp) :: sum_d(lanes)
+      integer :: i, j
       wh = 0.0_wp
       running = .false.
       running(1:nl) = wet
+      if (film%sums_suffice() .and. present(sum_d_in)) then
+         sum_d(1:nl) = sum_d_in
+      else if (film%sums_suffice()) then
+         ! each lane's sum of d in element order, all lanes in one vector
+         ! pass (lower_bound's row by row was a strided copy per lane)
+         sum_d = 0.0_wp
+         do i = 1, n
+            do j = 1, nl
+               sum_d(j) = sum_d(j) + d(j, i)
+            end do
+         end do
+      end if
       do j = 1, nl
          if (.not. wet(j)) cycle
-         lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
+         if (film%sums_suffice()) then
+            lo(j) = min(0.0_wp, film%lower_bound_of_sum(fsteps(j), n, sum_d(j)))
+         else
+            lo(j) = min(0.0_wp, film%lower_bound(fsteps(j), d(j, :)))
+         end if
          hi(j) = x(j)
          if (x0(j) > lo(j) .and. x0(j) < hi(j)) x(j) = x0(j)
       end do
    end subroutine start_brackets
+
+   !> Per lane in `mask`, whether the film engages at the dry root x
+   !> (film_model%engages on the gap field max(0, d - x)); the other lanes
+   !> are not wet. For a film whose sums suffice, the gaps' sums of all
+   !> lanes in one vector pass and engages_of_sums (the same answers); else
+   !> each lane's field. dl and gap: workspaces of size n.
+   pure subroutine engaged_lanes(nl, n, d, x, film, fsteps, mask, wet, dl, gap, sum_d)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), x(nl)
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fsteps(nl)
+      logical, intent(in) :: mask(nl)
+      logical, intent(out) :: wet(nl)
+      real(wp), intent(inout) :: dl(:), gap(:)
+      !> For a film whose sums suffice, each lane's sum(d) in element order
+      !> (wet_roots takes it), for the lanes in `mask`; else 0.
+      real(wp), intent(out) :: sum_d(nl)
+      real(wp), dimension(lanes) :: gap_total, n_open
+      real(wp) :: g
+      integer :: i, j
+      wet = .false.
+      sum_d = 0.0_wp
+      if (.not. any(mask)) return
+      if (film%sums_suffice()) then
+         ! the gaps' sums as contact_gap_sums makes them, without the push
+         gap_total = 0.0_wp
+         n_open = 0.0_wp
+         sum_d = 0.0_wp
+         do i = 1, n
+            do j = 1, nl
+               sum_d(j) = sum_d(j) + d(j, i)
+               g = max(0.0_wp, d(j, i) - x(j))
+               gap_total(j) = gap_total(j) + g
+               n_open(j) = n_open(j) + merge(1.0_wp, 0.0_wp, g > 0.0_wp)
+            end do
+         end do
+         do j = 1, nl
+            if (mask(j)) wet(j) = film%engages_of_sums(fsteps(j), n, gap_total(j), n_open(j))
+         end do
+         return
+      end if
+      do j = 1, nl
+         if (.not. mask(j)) cycle
+         dl(1:n) = d(j, :)
+         call gap_field(dl(1:n), x(j), gap(1:n))
+         wet(j) = film%engages(fsteps(j), gap(1:n))
+      end do
+   end subroutine engaged_lanes
 
    !> Newton's step from x (f, df there) inside the bracket (lo, hi), taken
    !> (`taken`) only where df is positive and finite, |f| at most half the

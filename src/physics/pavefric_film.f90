@@ -87,10 +87,19 @@ module pavefric_film
       !> `loads`'s to the bit. (Not called for the others; the default
       !> returns no load.)
       procedure :: loads_of_sums => film_no_loads_of_sums
+      !> `engages` from the gap field's sum (in element order) and count of
+      !> open gaps, for films whose `sums_suffice`: `engages`'s answer for
+      !> every field with these sums. (Not called for the others; the
+      !> default, as `engages`' default, never engages.)
+      procedure :: engages_of_sums => film_never_of_sums
       !> Penetration below which the film carries nothing and no element
       !> touches, given the shifted clearances d (min d = 0): the wet
       !> balance's lower bracket is min(0, this).
       procedure :: lower_bound => film_lower_zero
+      !> `lower_bound` from the sum of d (in element order), for films whose
+      !> `sums_suffice`: `lower_bound`'s value to the bit. (Not called for
+      !> the others; the default, as `lower_bound`'s, is 0.)
+      procedure :: lower_bound_of_sum => film_lower_zero_of_sum
       !> The state of every road sample before the pad arrives.
       procedure :: reset => film_reset_nothing
       !> A road sample passes under the pad's leading edge.
@@ -174,6 +183,8 @@ module pavefric_film
       procedure :: sums_suffice => bearing_sums_suffice
       procedure :: loads_of_sums => bearing_loads_of_sums
       procedure :: lower_bound => bearing_lower_bound
+      procedure :: engages_of_sums => bearing_engages_of_sums
+      procedure :: lower_bound_of_sum => bearing_lower_bound_of_sum
    end type pseudo_bearing_film
 
    !> Variables the pseudo-bearing declares (pseudo_bearing_entry).
@@ -283,6 +294,14 @@ contains
       film_never = .false.
    end function film_never
 
+   pure logical function film_never_of_sums(self, step, n, total, n_open)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      integer, intent(in) :: n
+      real(wp), intent(in) :: total, n_open
+      film_never_of_sums = .false.
+   end function film_never_of_sums
+
    pure subroutine film_no_load(self, step, gap, wh, dwh_dx)
       class(film_model), intent(in) :: self
       type(film_step_type), intent(in) :: step
@@ -335,6 +354,14 @@ contains
       real(wp), intent(in) :: d(:)
       film_lower_zero = 0.0_wp
    end function film_lower_zero
+
+   pure real(wp) function film_lower_zero_of_sum(self, step, n, sum_d)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      integer, intent(in) :: n
+      real(wp), intent(in) :: sum_d
+      film_lower_zero_of_sum = 0.0_wp
+   end function film_lower_zero_of_sum
 
    pure subroutine film_reset_nothing(self, step, state)
       class(film_model), intent(in) :: self
@@ -412,6 +439,16 @@ contains
       real(wp), intent(in) :: gap(:)
       bearing_engages = mean(gap) < self%depth
    end function bearing_engages
+
+   !> bearing_engages from the gaps' sum: mean(gap) is that sum (in element
+   !> order) over n.
+   pure logical function bearing_engages_of_sums(self, step, n, total, n_open)
+      class(pseudo_bearing_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      integer, intent(in) :: n
+      real(wp), intent(in) :: total, n_open
+      bearing_engages_of_sums = total / real(n, wp) < self%depth
+   end function bearing_engages_of_sums
 
    !> Eq. 15 with H_out = the mean gap; d(mean gap)/dx = -(elements with a gap)/N.
    pure subroutine bearing_load(self, step, gap, wh, dwh_dx)
@@ -511,6 +548,15 @@ contains
       real(wp), intent(in) :: d(:)
       bearing_lower_bound = sum(d) / real(size(d), wp) - self%depth
    end function bearing_lower_bound
+
+   !> bearing_lower_bound from sum(d) (in element order).
+   pure real(wp) function bearing_lower_bound_of_sum(self, step, n, sum_d)
+      class(pseudo_bearing_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      integer, intent(in) :: n
+      real(wp), intent(in) :: sum_d
+      bearing_lower_bound_of_sum = sum_d / real(n, wp) - self%depth
+   end function bearing_lower_bound_of_sum
 
    !> Mean of a gap field, summed in element order.
    pure real(wp) function mean(gap)

@@ -18,7 +18,7 @@ module pavefric_simulate
    use pavefric_results, only: cost_estimate_type, sim_result_type
    use pavefric_components, only: make_components
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, wet_roots, gap_field, lanes
+   use pavefric_balance, only: dry_roots, wet_roots, gap_field, engaged_lanes, lanes
    use pavefric_kv_exact, only: kv_exact_lane, kv_exact_type
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
@@ -1986,6 +1986,8 @@ contains
       !> from this position's dry root).
       real(wp), dimension(lanes) :: delta_dry_prev
       real(wp), dimension(lanes) :: guess
+      !> Per lane, the sum of the shifted clearances d (engaged_lanes').
+      real(wp), dimension(lanes) :: sum_d
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
@@ -2079,13 +2081,7 @@ contains
          if (any_load) then
             ! the lanes whose film engages at the dry balance, then their wet
             ! balances together
-            do j = 1, nl
-               wet_lane(j) = load_film(j)
-               if (.not. wet_lane(j)) cycle
-               dl = d(j, :)
-               call gap_field(dl, x(j), gap)
-               wet_lane(j) = film%engages(fstep(j), gap)
-            end do
+            call engaged_lanes(nl, n, d, x, film, fstep, load_film, wet_lane, dl, gap, sum_d)
             ! Warm start where the film carried load at the previous position:
             ! from its wet penetration, extrapolated linearly from the two
             ! before. Elsewhere from the dry root, which is then the root to
@@ -2100,7 +2096,7 @@ contains
                guess(j) = guess(j) - cmin(j)
             end do
             call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
-               & guess, x, wh, n_eval, gaps, fwork)
+               & guess, x, wh, n_eval, gaps, fwork, sum_d)
             ! what the film's solution at the root is (films that report it)
             if (film_reports .and. t >= 0) then
                do j = 1, nl
