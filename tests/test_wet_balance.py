@@ -340,3 +340,89 @@ def test_the_lanes_engage_as_each_field_does(tmp_path):
     assert differ == 0
     assert bound_differ == 0
     assert 0.2 * total < engaged < 0.8 * total, (engaged, total)
+
+
+LEVEL_CHECK = """
+program check
+   use pavefric_kinds, only: wp, lanes
+   use pavefric_film, only: pseudo_bearing_film, film_step_type
+   use pavefric_balance, only: engaged_lanes, engaged_by_level, dry_roots
+   implicit none
+   type(pseudo_bearing_film) :: film
+   integer, parameter :: n = 23
+   type(film_step_type) :: steps(lanes)
+   real(wp) :: d(lanes, n), x(lanes), s(lanes), x0(lanes), sum_d(lanes), sum_l(lanes)
+   real(wp) :: upper(lanes), r(lanes), dl(n), gap(n), work(n)
+   logical :: mask(lanes), wet(lanes), wet_l(lanes)
+   integer :: trial, j, nl, differ, engaged, total, bad_upper, tight
+   call random_seed(put=[(11 * j + 2, j = 1, 64)])
+   differ = 0
+   engaged = 0
+   total = 0
+   bad_upper = 0
+   tight = 0
+   do trial = 1, 3000
+      nl = 1 + mod(trial, lanes)
+      call random_number(r)
+      film = pseudo_bearing_film(depth=10.0_wp**(-5 + 2 * r(1)), eta=1e-3_wp, alpha=12.0_wp, &
+         & beta=1.75_wp, width=0.016_wp, length=0.02_wp)
+      do j = 1, nl
+         call film%prepare(20.0_wp, 1e-3_wp, steps(j))
+      end do
+      call random_number(d)
+      ! (cubed on every other pad: many elements near the lowest, so that
+      ! several touch at the film's level)
+      if (mod(trial, 2) == 0) d = d**3
+      d = d * film%depth * 10.0_wp**(-1 + 2 * mod(trial, 3))
+      do j = 1, nl
+         d(j, 1 + mod(trial + j, n)) = 0.0_wp            ! min d = 0 in every lane
+      end do
+      call random_number(s)
+      s = s * film%depth * 10.0_wp**(-2 + mod(trial, 4))
+      if (mod(trial, 5) == 0) then
+         ! a flat stretch of the pad at the lowest clearance and a heavy
+         ! load: several elements touch at the film's level, where the
+         ! bound is below W / kel
+         d(1:nl, 1:8) = 0.0_wp
+         s = s * 100.0_wp
+      end if
+      call random_number(r)
+      mask = r > 0.2_wp
+      x0 = -1.0_wp
+      call dry_roots(nl, n, d(1:nl, :), s(1:nl), x0(1:nl), x(1:nl), work, dl)
+      call engaged_lanes(nl, n, d(1:nl, :), x(1:nl), film, steps(1:nl), mask(1:nl), &
+         & wet(1:nl), dl, gap, sum_d(1:nl))
+      call engaged_by_level(nl, n, d(1:nl, :), s(1:nl), film, steps(1:nl), mask(1:nl), &
+         & wet_l(1:nl), sum_l(1:nl), upper(1:nl))
+      do j = 1, nl
+         total = total + 1
+         if (wet(j) .neqv. wet_l(j)) differ = differ + 1
+         if (wet_l(j)) then
+            engaged = engaged + 1
+            ! an upper bound of the dry root, and no larger than s
+            if (upper(j) < x(j) .or. upper(j) > s(j)) bad_upper = bad_upper + 1
+            if (upper(j) < s(j)) tight = tight + 1
+         end if
+      end do
+   end do
+   print *, differ, engaged, total, bad_upper, tight
+end program check
+"""
+
+
+def test_the_film_engages_without_the_dry_roots(tmp_path):
+    """Where every lane's film carried load at the previous position, the
+    driver decides whether the paper's bearing engages without the dry
+    roots (engaged_by_level: the dry root lies above the film's engage_level
+    iff the pad's push there is below the load) and brackets the wet root
+    by an upper bound of the dry one. On 3,000 random pads of 1 to 8 lanes,
+    films that fill the valleys and films that do not, the answers are
+    those of the mean gap at the dry root (engaged_lanes), and the bound
+    lies between the dry root and W / kel (below W / kel on pads where
+    several elements touch at the film's level)."""
+    out = _compile_and_run(tmp_path, LEVEL_CHECK)
+    differ, engaged, total, bad_upper, tight = (int(v) for v in out[:5])
+    assert differ == 0
+    assert 0.2 * total < engaged < 0.8 * total, (engaged, total)
+    assert bad_upper == 0
+    assert tight > 0.05 * engaged, (tight, engaged)

@@ -12,7 +12,7 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_roots, gap_field, engaged_lanes, lanes
+   public :: dry_root, dry_roots, wet_roots, gap_field, engaged_lanes, engaged_by_level, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -497,6 +497,60 @@ contains
          wet(j) = film%engages(fsteps(j), gap(1:n))
       end do
    end subroutine engaged_lanes
+
+   !> engaged_lanes without the dry roots, for a film whose sums suffice:
+   !> lane j engages iff its dry root lies above the film's engage_level
+   !> x_e, i.e. iff sum_i max(0, x_e - d_i) < s_j (the push sum increases
+   !> strictly above min d = 0, and is 0 below). Two vector passes over the
+   !> lanes (the sums of d, then the pushes at x_e), where the dry roots
+   !> take about four. At a dry root within rounding of x_e the answer may
+   !> differ from engaged_lanes' at the computed root; the film's load
+   !> there is nil (its mean gap is H_in), so the wet root is the dry one
+   !> either way, to the balance's tolerance.
+   pure subroutine engaged_by_level(nl, n, d, s, film, fsteps, mask, wet, sum_d, upper)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n), s(nl)
+      class(film_model), intent(in) :: film
+      type(film_step_type), intent(in) :: fsteps(nl)
+      logical, intent(in) :: mask(nl)
+      logical, intent(out) :: wet(nl)
+      !> Each lane's sum(d) in element order (wet_roots takes it).
+      real(wp), intent(out) :: sum_d(nl)
+      !> Per lane, an upper bound of its dry root (so of its wet one): the
+      !> dry balance's Newton step from x_e, which lands at or above the
+      !> root of that convex function (raised by 8 ulps against rounding),
+      !> or s (min d = 0) if smaller or where no element touches at x_e.
+      real(wp), intent(out) :: upper(nl)
+      real(wp), dimension(lanes) :: level, pushed, touching
+      integer :: i, j
+      sum_d = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            sum_d(j) = sum_d(j) + d(j, i)
+         end do
+      end do
+      do j = 1, nl
+         level(j) = film%engage_level(fsteps(j), n, sum_d(j), s(j))
+         if (.not. mask(j)) level(j) = 0.0_wp
+      end do
+      pushed = 0.0_wp
+      touching = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            pushed(j) = pushed(j) + max(0.0_wp, level(j) - d(j, i))
+            touching(j) = touching(j) + merge(1.0_wp, 0.0_wp, d(j, i) < level(j))
+         end do
+      end do
+      do j = 1, nl
+         wet(j) = mask(j) .and. pushed(j) < s(j)
+         upper(j) = s(j)
+         ! (raised by 8 ulps: where the step lands on the root itself, as
+         ! it does when x_e lies on the root's piece, the two roundings
+         ! differ by an ulp or two; level > 0 where any element touches)
+         if (wet(j) .and. touching(j) > 0.0_wp) upper(j) = min(s(j), &
+            & (level(j) + (s(j) - pushed(j)) / touching(j)) * (1.0_wp + 8.0_wp * epsilon(1.0_wp)))
+      end do
+   end subroutine engaged_by_level
 
    !> Newton's step from x (f, df there) inside the bracket (lo, hi), taken
    !> (`taken`) only where df is positive and finite, |f| at most half the

@@ -92,6 +92,13 @@ module pavefric_film
       !> every field with these sums. (Not called for the others; the
       !> default, as `engages`' default, never engages.)
       procedure :: engages_of_sums => film_never_of_sums
+      !> For films whose `sums_suffice`: the penetration x_e such that,
+      !> where x_dry is the dry root (sum_i max(0, x_dry - d_i) = s), the
+      !> film engages at it (`engages_of_sums` there) iff x_dry > x_e; from
+      !> the sum of d in element order, the element count and s. The
+      !> balance then decides without the dry root. The default, as
+      !> `engages_of_sums`', never engages.
+      procedure :: engage_level => film_never_level
       !> Penetration below which the film carries nothing and no element
       !> touches, given the shifted clearances d (min d = 0): the wet
       !> balance's lower bracket is min(0, this).
@@ -184,6 +191,7 @@ module pavefric_film
       procedure :: loads_of_sums => bearing_loads_of_sums
       procedure :: lower_bound => bearing_lower_bound
       procedure :: engages_of_sums => bearing_engages_of_sums
+      procedure :: engage_level => bearing_engage_level
       procedure :: lower_bound_of_sum => bearing_lower_bound_of_sum
    end type pseudo_bearing_film
 
@@ -301,6 +309,14 @@ contains
       real(wp), intent(in) :: total, n_open
       film_never_of_sums = .false.
    end function film_never_of_sums
+
+   pure real(wp) function film_never_level(self, step, n, sum_d, s)
+      class(film_model), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      integer, intent(in) :: n
+      real(wp), intent(in) :: sum_d, s
+      film_never_level = huge(1.0_wp)
+   end function film_never_level
 
    pure subroutine film_no_load(self, step, gap, wh, dwh_dx)
       class(film_model), intent(in) :: self
@@ -449,6 +465,16 @@ contains
       real(wp), intent(in) :: total, n_open
       bearing_engages_of_sums = total / real(n, wp) < self%depth
    end function bearing_engages_of_sums
+
+   !> At the dry root the gaps sum to sum(d) - n x_dry + s (the pushes sum
+   !> to s), so the mean gap is below H_in iff x_dry > (sum(d) + s) / n - H_in.
+   pure real(wp) function bearing_engage_level(self, step, n, sum_d, s)
+      class(pseudo_bearing_film), intent(in) :: self
+      type(film_step_type), intent(in) :: step
+      integer, intent(in) :: n
+      real(wp), intent(in) :: sum_d, s
+      bearing_engage_level = (sum_d + s) / real(n, wp) - self%depth
+   end function bearing_engage_level
 
    !> Eq. 15 with H_out = the mean gap; d(mean gap)/dx = -(elements with a gap)/N.
    pure subroutine bearing_load(self, step, gap, wh, dwh_dx)

@@ -18,7 +18,8 @@ module pavefric_simulate
    use pavefric_results, only: cost_estimate_type, sim_result_type
    use pavefric_components, only: make_components
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, wet_roots, gap_field, engaged_lanes, lanes
+   use pavefric_balance, only: dry_roots, wet_roots, gap_field, engaged_lanes, engaged_by_level, &
+      & lanes
    use pavefric_kv_exact, only: kv_exact_lane, kv_exact_type
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
@@ -2003,6 +2004,10 @@ contains
       integer :: t, k1, n, nl, j, stat, lead, lead_prev, ns_state, film_count
       logical :: series, clamped, any_memory, any_load, any_friction, energy, settled
       logical :: film_reports
+      !> Whether the film's engagement may be decided without the dry roots
+      !> (engaged_by_level: a load film whose sums suffice), and whether this
+      !> position's wet lanes start without them.
+      logical :: level_test, skip_dry
       !> The Kelvin-Voigt pad (the energy scheme; dry, under a film that
       !> carries load or one that changes the facets' friction): the rubber's
       !> free compression, the contacts, the work and the rubber's update
@@ -2074,14 +2079,32 @@ contains
             call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
                & u_free, c, cmin, d)
          end if
-         ! warm start from the previous position's penetration
-         call dry_roots(nl, n, d, s_load, delta_dry_prev - cmin, x, work, dl)
-         delta_dry_prev = cmin + x
+         ! Where every lane's film carried load at the previous position
+         ! (and its sums suffice), whether it engages here is decided
+         ! without the dry roots (engaged_by_level); where all engage, their
+         ! wet balances are bracketed by an upper bound of the dry roots
+         ! (engaged_by_level's) instead of the dry roots, which are then not
+         ! needed.
+         skip_dry = .false.
+         if (level_test) then
+            if (all(load_film(1:nl) .and. wh_prev(1:nl) > 0.0_wp .and. &
+               & delta_prev(1:nl) > -huge(1.0_wp))) then
+               call engaged_by_level(nl, n, d, s_load, film, fstep, load_film, wet_lane, sum_d, &
+                  & x)
+               skip_dry = all(wet_lane(1:nl))
+            end if
+         end if
          wh = 0.0_wp
+         if (.not. skip_dry) then
+            ! warm start from the previous position's dry root
+            call dry_roots(nl, n, d, s_load, delta_dry_prev - cmin, x, work, dl)
+            delta_dry_prev = cmin + x
+         end if
          if (any_load) then
             ! the lanes whose film engages at the dry balance, then their wet
             ! balances together
-            call engaged_lanes(nl, n, d, x, film, fstep, load_film, wet_lane, dl, gap, sum_d)
+            if (.not. skip_dry) &
+               & call engaged_lanes(nl, n, d, x, film, fstep, load_film, wet_lane, dl, gap, sum_d)
             ! Warm start where the film carried load at the previous position:
             ! from its wet penetration, extrapolated linearly from the two
             ! before. Elsewhere from the dry root, which is then the root to
@@ -2196,6 +2219,8 @@ contains
          any_friction = any(friction_film)
          film_reports = .false.
          if (allocated(film)) film_reports = any_load .and. film%reports()
+         level_test = .false.
+         if (allocated(film)) level_test = any_load .and. film%sums_suffice()
          if (nl == 1 .and. exact_scheme(m) .and. .not. any_load .and. .not. any_friction .and. &
             & rstep%memory(1)) then
             select type (rubber)
