@@ -405,7 +405,7 @@ print(json.dumps({"seconds": best}))
 """
 
 
-def sweep(ref, plain: PlainLoop, log, repeats: int = 2, tile: int = 64, rounds: int = 3) -> list:
+def sweep(ref, plain: PlainLoop, log, repeats: int = 2, tile: int = 64, rounds: int = 5) -> list:
     """Issue 13's kernel figures: N = 23 on a 6-speed sweep (10-80 km/h), one
     thread, dry and wet (the paper's bearing, the drainage film and the
     Reynolds film), the core
@@ -790,7 +790,7 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
         results = {
             "sweep": section("sweep", sweep(ref, plain, log, repeats=1 if quick else 2,
                                             tile=4 if quick else 64,
-                                            rounds=1 if quick else 3)),
+                                            rounds=1 if quick else 5)),
             "program": section("program", whole_program(
                 plain, log, points=40_000 if quick else 400_000, repeats=1 if quick else 3)),
         }
