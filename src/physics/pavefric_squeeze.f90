@@ -165,7 +165,7 @@ contains
       real(wp), intent(in) :: pressure(:), element_length
       real(wp), intent(out) :: share(:), thickness(:)
       real(wp) :: p_sum, b, c, h
-      integer :: n, i, j, e, q
+      integer :: n, i, j, e, q, k
       n = size(pressure)
       share = 1.0_wp
       thickness = 0.0_wp
@@ -186,13 +186,20 @@ contains
          b = min(real(j - i, wp) * element_length, self%width)
          c = step%coef(1) * (p_sum / real(j - i, wp)) / b**2       ! 2 p dt / (eta b**2)
          do e = i, j - 1
-            do q = 1, footprint
-               associate(s => state(1, samples((e - 1) * footprint + q)))
-                  s = s + c
-               end associate
-            end do
+            if (footprint == 1) then
+               ! one sample an element (the paper's grid): no inner loop
+               k = samples(e)
+               state(1, k) = state(1, k) + c
+            else
+               do q = 1, footprint
+                  associate(s => state(1, samples((e - 1) * footprint + q)))
+                     s = s + c
+                  end associate
+               end do
+               k = samples((e - 1) * footprint + 1)
+            end if
             ! the film's thickness on the element's first sample: h = (h**-2)**-1/2
-            h = 1.0_wp / sqrt(state(1, samples((e - 1) * footprint + 1)))
+            h = 1.0_wp / sqrt(state(1, k))
             thickness(e) = h
             if (step%coef(3) > 0.0_wp) then
                share(e) = erfc(h * step%coef(3))

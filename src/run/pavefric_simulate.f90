@@ -2322,8 +2322,10 @@ contains
                   do k = lead_prev + 1, lead
                      call film%enter(fstep(j), fstate(:, :, j), physical(k))
                   end do
-                  pl = push(j, :)
-                  pressure = rstep%k_eff(j) * pl
+                  do i = 1, n
+                     pl(i) = push(j, i)
+                     pressure(i) = rstep%k_eff(j) * pl(i)
+                  end do
                   call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
                      & geo%dx_el, share, thick)
                   film_sum = 0.0_wp
@@ -2332,6 +2334,9 @@ contains
                   sum_fa(j) = 0.0_wp
                   n_clamp_j(j) = 0
                   do i = 1, n
+                     ! an element out of contact adds nothing below (+0 to
+                     ! each sum, and it has no film between): skipped
+                     if (.not. pl(i) > 0.0_wp) cycle
                      k = k1 + (i-1) * geo%spacing
                      if (share(i) >= 1.0_wp) then
                         tan_el(i) = geo%tan_theta(k)
