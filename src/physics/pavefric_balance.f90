@@ -174,8 +174,10 @@ contains
    !> tol W. Each lane's decisions are its own (its numbers do not depend on
    !> the other lanes); the evaluations of all lanes still iterating run as
    !> one pass over the lanes (their sums interleave). x holds the dry roots
-   !> on entry and, for the wet lanes, the wet ones on exit; wh the film's
-   !> load and evaluations the count added, per lane.
+   !> on entry (for a wet lane, an upper bound of its dry root will do:
+   !> engaged_by_level's; x_dry below stands for it) and, for the wet lanes,
+   !> the wet roots on exit; wh the film's load and evaluations the count
+   !> added, per lane.
    !> Warm start: a lane whose guess x0 lies strictly inside its bracket
    !> (lo, x_dry) starts there (the previous position's wet root, in this
    !> position's shifted coordinates), else at x_dry. The guess changes only
@@ -406,9 +408,9 @@ contains
       end do
    end subroutine wet_roots_on_pieces
 
-   !> The wet lanes' brackets [lo, x_dry] (lo from the film) and their
-   !> starting points: the guess x0 where it lies strictly inside, else
-   !> x_dry; `running` the wet lanes, wh zero.
+   !> The wet lanes' brackets [lo, x] (lo from the film, x the dry root or an
+   !> upper bound of it) and their starting points: the guess x0 where it
+   !> lies strictly inside, else x; `running` the wet lanes, wh zero.
    pure subroutine start_brackets(nl, n, d, film, fsteps, wet, x0, x, lo, hi, wh, running, &
       & sum_d_in)
       integer, intent(in) :: nl, n

@@ -831,6 +831,23 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "(src/run/pavefric_simulate.f90): estimated / measured on the test scenes 1.00-2.04 "
         "in the first, 0.83-1.52 in the second.",
         "",
+        "Later on 2026-11-29 the paper's wet balance took whether its film engages and "
+        "its lower bracket from the lanes' sums, and skipped the dry roots where every "
+        "speed's film carried load at the previous position (above, \"Wet balance\"): the "
+        "wet run of `tools/profile_kernel.sh --callgrind` 497 M instructions before, 434 M "
+        "after. The drainage film's step lost an inner loop and the elements out of "
+        "contact (the same numbers to the bit; that workload with `wet_model = 'squeeze'` "
+        "714 M before, 632 M after). From then on the sweep times the core and the plain "
+        "loop in five alternating rounds, not three: the same build's fine-surface wet "
+        "rate read 52.8 and 30.7 M element-steps/s in two sweeps minutes apart. The run "
+        "with the wet balance's changes and not yet the drainage film's: wet (`kane2017`) "
+        "8.8-10.5x the plain loop, dry 2.17-2.43x (the dry kernel unchanged, 213 M "
+        "instructions), the drainage film 3.05x the paper's bearing, its own rate 14-27 M "
+        "element-steps/s as before and its denominator faster. The drainage film's time "
+        "over the bearing's, timed side by side in one process (best of five), on the "
+        "fine, medium and coarse surfaces: 2.27, 2.02 and 1.91 before its change, 2.32, "
+        "1.93 and 1.59 after; on the fine surface `erfc` takes a fifth of its time (perf).",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
