@@ -253,27 +253,13 @@ def test_the_lanes_film_loads_are_hydro_loads(tmp_path):
     assert touched == 0
 
 
-ENGAGE_CHECK = """
-module plain_bearing_mod2
-   use pavefric_film, only: pseudo_bearing_film
-   implicit none
-   !> The same film, saying its sums do not suffice (each lane's field).
-   type, extends(pseudo_bearing_film) :: plain_bearing
-   contains
-      procedure :: sums_suffice => no
-   end type plain_bearing
-contains
-   pure logical function no(self)
-      class(plain_bearing), intent(in) :: self
-      no = .false.
-   end function no
-end module plain_bearing_mod2
-
+# the first program's module (the bearing saying its sums do not suffice)
+ENGAGE_CHECK = CHECK[:CHECK.index("program check")] + """
 program check
    use pavefric_kinds, only: wp, lanes
    use pavefric_film, only: pseudo_bearing_film, film_step_type
    use pavefric_balance, only: engaged_lanes, gap_field
-   use plain_bearing_mod2, only: plain_bearing
+   use plain_bearing_mod, only: plain_bearing
    implicit none
    type(pseudo_bearing_film) :: film
    type(plain_bearing) :: plain

@@ -424,21 +424,15 @@ contains
       !> Per lane, sum(d) in element order, if the caller has it.
       real(wp), intent(in), optional :: sum_d_in(nl)
       real(wp) :: sum_d(lanes)
-      integer :: i, j
+      integer :: j
       wh = 0.0_wp
       running = .false.
       running(1:nl) = wet
       if (film%sums_suffice() .and. present(sum_d_in)) then
          sum_d(1:nl) = sum_d_in
       else if (film%sums_suffice()) then
-         ! each lane's sum of d in element order, all lanes in one vector
-         ! pass (lower_bound's row by row was a strided copy per lane)
-         sum_d = 0.0_wp
-         do i = 1, n
-            do j = 1, nl
-               sum_d(j) = sum_d(j) + d(j, i)
-            end do
-         end do
+         ! (lower_bound's row by row was a strided copy per lane)
+         call lane_sums(nl, n, d, sum_d)
       end if
       do j = 1, nl
          if (.not. wet(j)) cycle
@@ -525,12 +519,7 @@ contains
       real(wp), intent(out) :: upper(nl)
       real(wp), dimension(lanes) :: level, pushed, touching
       integer :: i, j
-      sum_d = 0.0_wp
-      do i = 1, n
-         do j = 1, nl
-            sum_d(j) = sum_d(j) + d(j, i)
-         end do
-      end do
+      call lane_sums(nl, n, d, sum_d)
       do j = 1, nl
          level(j) = film%engage_level(fsteps(j), n, sum_d(j), s(j))
          if (.not. mask(j)) level(j) = 0.0_wp
@@ -553,6 +542,20 @@ contains
             & (level(j) + (s(j) - pushed(j)) / touching(j)) * (1.0_wp + 8.0_wp * epsilon(1.0_wp)))
       end do
    end subroutine engaged_by_level
+
+   !> Each lane's sum of d in element order, all lanes in one vector pass.
+   pure subroutine lane_sums(nl, n, d, total)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: d(nl, n)
+      real(wp), intent(out) :: total(nl)
+      integer :: i, j
+      total = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            total(j) = total(j) + d(j, i)
+         end do
+      end do
+   end subroutine lane_sums
 
    !> Newton's step from x (f, df there) inside the bracket (lo, hi), taken
    !> (`taken`) only where df is positive and finite, |f| at most half the
