@@ -521,8 +521,8 @@ contains
       integer :: i, j
       call lane_sums(nl, n, d, sum_d)
       do j = 1, nl
-         level(j) = film%engage_level(fsteps(j), n, sum_d(j), s(j))
-         if (.not. mask(j)) level(j) = 0.0_wp
+         level(j) = 0.0_wp                     ! (a lane not asked pushes nothing there)
+         if (mask(j)) level(j) = film%engage_level(fsteps(j), n, sum_d(j), s(j))
       end do
       pushed = 0.0_wp
       touching = 0.0_wp
