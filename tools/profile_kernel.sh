@@ -13,12 +13,14 @@
 #   dry    the benchmark's coarse surface (rms 1 mm, 65,536 points, closed),
 #          6 speeds 10-80 km/h, 20 runs;
 #   wet    the same at 1 mm of water (the paper's bearing), 10 runs;
+#   squeeze  the same with the drainage film (wet_model = 'squeeze'), 10
+#          runs (with --callgrind only);
 #   calls  500 runs on a 64-point profile (the fixed cost of one call:
 #          reading the scene, echoing it, building the outputs).
 # --callgrind counts instructions instead (slow, but the counts do not move
-# with the load of a shared host as times do): one dry and one wet run on
-# 16,384 points of the same surface; the instructions in the core (and
-# libm's logarithm) per function and in total.
+# with the load of a shared host as times do): one dry, one wet and one
+# squeeze run on 16,384 points of the same surface; the instructions in the
+# core (and libm's logarithm and erfc) per function and in total.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 mode=perf
@@ -44,6 +46,8 @@ if kind == "calls":
     z, runs = z0[:64], 500
 elif kind == "wet":
     kw, runs = {"depth": 1e-3}, 10
+elif kind == "squeeze":
+    kw, runs = {"depth": 1e-3, "wet_model": "squeeze"}, 10
 if len(sys.argv) > 2:                      # --callgrind: one run, 16,384 points
     z, runs = np.tile(z0, 16), 1
 best = float("inf")
@@ -56,12 +60,13 @@ PYEOF
 
 if [ "$mode" = callgrind ]; then
     command -v valgrind >/dev/null || { echo "profile_kernel.sh: valgrind not found" >&2; exit 2; }
-    for kind in dry wet; do
+    for kind in dry wet squeeze; do
         OMP_NUM_THREADS=1 valgrind -q --tool=callgrind --callgrind-out-file="$work/$kind.cg" \
             "$py" "$work/load.py" "$kind" once >/dev/null 2>&1
         echo "== $kind: instructions (one run, 16,384 points, 6 speeds) =="
-        callgrind_annotate "$work/$kind.cg" 2>/dev/null | grep -E '_core\.|e_log' \
-            | sed -e 's/ *\[.*//' -e 's/???://' -e 's/[^ ]*e_log\.c://' > "$work/$kind.rows" || true
+        callgrind_annotate "$work/$kind.cg" 2>/dev/null | grep -E '_core\.|e_log|s_erf' \
+            | sed -e 's/ *\[.*//' -e 's/???://' -e 's/[^ ]*e_log\.c://' -e 's/[^ ]*s_erf\.c://' \
+            > "$work/$kind.rows" || true
         awk '{gsub(",", "", $1); s += $1} END {printf "-- the core and libm: %.0f M\n", s / 1e6}' \
             "$work/$kind.rows"
         head -8 "$work/$kind.rows"

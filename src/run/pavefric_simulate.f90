@@ -1987,7 +1987,8 @@ contains
       !> from this position's dry root).
       real(wp), dimension(lanes) :: delta_dry_prev
       real(wp), dimension(lanes) :: guess
-      !> Per lane, the sum of the shifted clearances d (engaged_lanes').
+      !> Per lane, the sum of the shifted clearances d (engaged_lanes' or
+      !> engaged_by_level's; wet_roots takes it).
       real(wp), dimension(lanes) :: sum_d
       real(wp), dimension(lanes) :: kel, s_load, cmin, x, delta_prev, wh, sum_f, sum_ft, v
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
