@@ -2755,7 +2755,6 @@ contains
       sum_f = 0.0_wp
       contacts = 0.0_wp
       sum_fa = 0.0_wp
-      clamps = 0.0_wp
       w = 0.0_wp
       total = 0.0_wp
       do i = 1, n
@@ -2767,7 +2766,6 @@ contains
             sum_f(j) = sum_f(j) + p
             contacts(j) = contacts(j) + in_contact
             sum_fa(j) = sum_fa(j) + p * adhesion(i)
-            clamps(j) = clamps(j) + in_contact * clamped(i)
             u_max(j) = max(u_max(j), u_free(j, i) + p)
             u = u_free(j, i) + p
             u_prev = state(j, i)
@@ -2779,7 +2777,24 @@ contains
             state(j, i) = u
          end do
       end do
+      call lane_clamps(nl, n, push, clamped, clamps)
    end subroutine lane_step_kv
+
+   !> Per lane, the contacts on clamped facets: a pass over the few elements
+   !> on one (clamped(i) /= 0), not a sum over every element and lane.
+   pure subroutine lane_clamps(nl, n, push, clamped, clamps)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: push(nl, n), clamped(n)
+      real(wp), intent(out) :: clamps(nl)
+      integer :: i, j
+      clamps = 0.0_wp
+      do i = 1, n
+         if (clamped(i) == 0.0_wp) cycle
+         do j = 1, nl
+            clamps(j) = clamps(j) + merge(1.0_wp, 0.0_wp, push(j, i) > 0.0_wp) * clamped(i)
+         end do
+      end do
+   end subroutine lane_clamps
 
    !> Per lane at penetration x: each element's push max(0, x - d) (its
    !> compression beyond u_free), their sum, the contacts, the sum weighted
@@ -2827,7 +2842,6 @@ contains
       contacts = 0.0_wp
       sum_ft = 0.0_wp
       sum_fa = 0.0_wp
-      clamps = 0.0_wp
       do i = 1, n
          do j = 1, nl
             p = max(0.0_wp, x(j) - d(j, i))
@@ -2837,10 +2851,10 @@ contains
             contacts(j) = contacts(j) + in_contact
             sum_ft(j) = sum_ft(j) + p * tan_t(i)
             sum_fa(j) = sum_fa(j) + p * adhesion(i)
-            clamps(j) = clamps(j) + in_contact * clamped(i)
             u_max(j) = max(u_max(j), u_free(j, i) + p)
          end do
       end do
+      call lane_clamps(nl, n, push, clamped, clamps)
    end subroutine lane_contacts
 
    !> Per lane: the work of one step on the elements, in units of kel (the
