@@ -1985,7 +1985,7 @@ contains
       !> The previous position's dry root (the dry balance's warm start: under
       !> a film the penetration taken, delta_prev, is the wet root, further
       !> from this position's dry root).
-      real(wp), dimension(lanes) :: delta_dry_prev
+      real(wp), dimension(lanes) :: delta_dry_prev, delta_dry_prev2
       real(wp), dimension(lanes) :: guess
       !> Per lane, the sum of the shifted clearances d (engaged_lanes' or
       !> engaged_by_level's; wet_roots takes it).
@@ -2030,6 +2030,7 @@ contains
       delta_prev = -huge(1.0_wp)
       delta_prev2 = -huge(1.0_wp)
       delta_dry_prev = -huge(1.0_wp)
+      delta_dry_prev2 = -huge(1.0_wp)
       wh_prev = 0.0_wp
       have_prev = .false.
       contact_before = .false.
@@ -2097,8 +2098,14 @@ contains
          end if
          wh = 0.0_wp
          if (.not. skip_dry) then
-            ! warm start from the previous position's dry root
-            call dry_roots(nl, n, d, s_load, delta_dry_prev - cmin, x, work, dl)
+            ! warm start from the previous position's dry root, extrapolated
+            ! linearly from the two before where there are two (the start
+            ! only: the root is the same)
+            guess = delta_dry_prev
+            where (delta_dry_prev2 > -huge(1.0_wp)) guess = 2.0_wp * delta_dry_prev - &
+               & delta_dry_prev2
+            call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
+            delta_dry_prev2 = delta_dry_prev
             delta_dry_prev = cmin + x
          end if
          if (any_load) then
@@ -2293,6 +2300,7 @@ contains
                delta_prev(j) = -huge(1.0_wp)
                delta_prev2(j) = -huge(1.0_wp)
                delta_dry_prev(j) = -huge(1.0_wp)
+               delta_dry_prev2(j) = -huge(1.0_wp)
                wh_prev(j) = 0.0_wp
                if (allocated(fwork)) fwork(:, j) = 0.0_wp
                have_prev(j) = .false.
