@@ -683,7 +683,8 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "arithmetic is the scalar algorithm's, sums in element order, so neither the "
         "chunking nor the thread count changes a bit (tests/test_effects.py).",
         "- Dry balance: Newton's method on the convex piecewise-linear load "
-        "function, warm-started from the previous position's penetration; it "
+        "function, warm-started from the previous position's dry root (extrapolated "
+        "linearly from the two before where there are two); it "
         "stops when its active set repeats, which gives the exact closed-form "
         "root in 2–4 passes over the elements (no sort; LAPACK `dlasrt` only as "
         "a fallback).",
@@ -847,6 +848,33 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "over the bearing's, timed by hand side by side in one process (best of five), on the "
         "fine, medium and coarse surfaces: 2.27, 2.02 and 1.91 before its change, 2.32, "
         "1.93 and 1.59 after; on the fine surface `erfc` takes a fifth of its time (perf).",
+        "",
+        "In the session after (2026-11-29, tenth) the dry kernel lost two costs, each "
+        "keeping every number's bits (hashes of 12 dry, 12 wet and 24 squeeze scenes): "
+        "the contacts on clamped facets are counted in a pass over the few elements on "
+        "one, not summed over every element and lane inside the step's pass, and the "
+        "dry balance's warm start is extrapolated from the two previous positions' "
+        "roots (most positions already took two passes: the first and the one that "
+        "finds its active set repeated). "
+        "`tools/profile_kernel.sh --callgrind`: dry 214 M instructions before, 200 M "
+        "after; wet 434 M and 422 M; squeeze 630 M and 617 M (the table above is the "
+        "run after them). Two more tries were dropped: the dry root's sums two lanes at "
+        "a time with the elements inner (fewer instructions, but slower on the medium "
+        "and coarse surfaces, timed by hand), and an integrator exact in time under the "
+        "paper's film (its load taken linear in time over each part of a step and "
+        "solved for at the part's end; the contact events found as on a dry road). On "
+        "the default wet scene it came far closer to the converged friction than "
+        "backward Euler at one step per sample, but the events it decides from the "
+        "interpolated load disagree near a grazing contact (a contact's force and the "
+        "same element's gap, each from its own interpolation), and on random scenes it "
+        "ran away or settled far from backward Euler's limit; it is not in the code "
+        "(the git branch `wip-wet-exact` keeps it). In the run above the drainage film "
+        "read 3.33x the paper's bearing and the 3-arm Maxwell rubber 2.39x Kelvin-Voigt "
+        "(2.29x and 1.76x the run before): timed by hand side by side (best of seven "
+        "runs in one process each; 65,536 points, 4 speeds), this build ran the paper's "
+        "rubber, the elastic pad and the 3-arm Maxwell rubber in 0.056, 0.062 and "
+        "0.100 s, the build before it in 0.061, 0.065 and 0.121 s: those rows moved "
+        "with the host's load.",
         "",
         "## Where the time goes",
         "",
