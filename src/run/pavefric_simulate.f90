@@ -1982,9 +1982,9 @@ contains
       !> The penetration two positions back and the film's load at the
       !> previous position: the wet balance's warm start.
       real(wp), dimension(lanes) :: delta_prev2, wh_prev
-      !> The previous position's dry root (the dry balance's warm start: under
-      !> a film the penetration taken, delta_prev, is the wet root, further
-      !> from this position's dry root).
+      !> The previous two positions' dry roots (the dry balance's warm start,
+      !> extrapolated: under a film the penetration taken, delta_prev, is the
+      !> wet root, further from this position's dry root).
       real(wp), dimension(lanes) :: delta_dry_prev, delta_dry_prev2
       real(wp), dimension(lanes) :: guess
       !> Per lane, the sum of the shifted clearances d (engaged_lanes' or
