@@ -2101,9 +2101,7 @@ contains
             ! warm start from the previous position's dry root, extrapolated
             ! linearly from the two before where there are two (the start
             ! only: the root is the same)
-            guess = delta_dry_prev
-            where (delta_dry_prev2 > -huge(1.0_wp)) guess = 2.0_wp * delta_dry_prev - &
-               & delta_dry_prev2
+            guess = extrapolated(delta_dry_prev, delta_dry_prev2)
             call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
             delta_dry_prev2 = delta_dry_prev
             delta_dry_prev = cmin + x
@@ -2121,10 +2119,7 @@ contains
             do j = 1, nl
                guess(j) = -huge(1.0_wp)
                if (wh_prev(j) <= 0.0_wp .or. delta_prev(j) <= -huge(1.0_wp)) cycle
-               guess(j) = delta_prev(j)
-               if (delta_prev2(j) > -huge(1.0_wp)) guess(j) = 2.0_wp * delta_prev(j) - &
-                  & delta_prev2(j)
-               guess(j) = guess(j) - cmin(j)
+               guess(j) = extrapolated(delta_prev(j), delta_prev2(j)) - cmin(j)
             end do
             call wet_roots(nl, n, d, kel, m%load, film, fstep, wet_lane, m%wet_tolerance, &
                & guess, x, wh, n_eval, gaps, fwork, sum_d)
@@ -2787,6 +2782,14 @@ contains
       end do
       call lane_clamps(nl, n, push, clamped, clamps)
    end subroutine lane_step_kv
+
+   !> The next value of a sequence from its last two, linearly; the last
+   !> alone where there is none before it (-huge): the balances' warm starts.
+   elemental real(wp) function extrapolated(last, before)
+      real(wp), intent(in) :: last, before
+      extrapolated = last
+      if (before > -huge(1.0_wp)) extrapolated = 2.0_wp * last - before
+   end function extrapolated
 
    !> Per lane, the contacts on clamped facets: a pass over the few elements
    !> on one (clamped(i) /= 0), not a sum over every element and lane.
