@@ -870,11 +870,12 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "ran away or settled far from backward Euler's limit; it is not in the code "
         "(the git branch `wip-wet-exact` keeps it). In the run above the drainage film "
         "read 3.33x the paper's bearing and the 3-arm Maxwell rubber 2.39x Kelvin-Voigt "
-        "(2.29x and 1.76x the run before): timed by hand side by side (best of seven "
-        "runs in one process each; 65,536 points, 4 speeds), this build ran the paper's "
-        "rubber, the elastic pad and the 3-arm Maxwell rubber in 0.056, 0.062 and "
-        "0.100 s, the build before it in 0.061, 0.065 and 0.121 s: those rows moved "
-        "with the host's load.",
+        "(2.29x and 1.76x the run before): timed side by side (`python "
+        "tools/compare_builds.py <the build before> <this build>`, best of three rounds "
+        "of seven runs; 65,536 points, 4 speeds), this build ran the paper's rubber, the "
+        "elastic pad and the 3-arm Maxwell rubber in 0.060, 0.060 and 0.110 s, the "
+        "build of 08ab7fc in 0.063, 0.069 and 0.115 s: those rows moved with the "
+        "host's load.",
         "",
         "## Where the time goes",
         "",
