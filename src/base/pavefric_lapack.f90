@@ -5,7 +5,7 @@ module pavefric_lapack
    implicit none
    private
 
-   public :: dlasrt, dgels, dgtsv
+   public :: dlasrt, dgels
 
    interface
       !> Sort d(1:n): increasing with id = 'I', decreasing with 'D'.
@@ -26,16 +26,6 @@ module pavefric_lapack
          real(wp), intent(out) :: work(*)
          integer, intent(out) :: info
       end subroutine dgels
-
-      !> Solve a tridiagonal system (sub-diagonal dl, diagonal d, super-
-      !> diagonal du; overwritten) by Gaussian elimination with partial
-      !> pivoting; b holds the right-hand sides, then the solutions.
-      pure subroutine dgtsv(n, nrhs, dl, d, du, b, ldb, info)
-         import :: wp
-         integer, intent(in) :: n, nrhs, ldb
-         real(wp), intent(inout) :: dl(*), d(*), du(*), b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dgtsv
    end interface
 
 end module pavefric_lapack

@@ -24,7 +24,9 @@
 !> Elrod-Adams form: at each node either the film is full (theta = 1,
 !> p >= 0) or partial (p = 0, 0 <= theta <= 1), solved as a complementarity
 !> problem by a primal-dual active-set iteration, one tridiagonal solve
-!> (LAPACK dgtsv) per iteration, started from the set of the lane's last
+!> (pavefric_tridiagonal: elimination with partial pivoting, its factors
+!> kept for the load's derivative) per iteration, started from the set of
+!> the lane's last
 !> solve (its workspace; the complementarity solution does not depend on
 !> where the iteration starts, so neither do the numbers).
 !> Inlet: the water on the road (depth H_in, moving at V) brings V H_in per
@@ -42,7 +44,7 @@ module pavefric_reynolds
    use pavefric_kinds, only: wp
    use pavefric_film, only: film_model, film_step_type, film_context_type, film_entry_type
    use pavefric_params, only: param_spec_type, param_value_type, real_param, real_value
-   use pavefric_lapack, only: dgtsv
+   use pavefric_tridiagonal, only: tridiagonal_factor, tridiagonal_solve
    use pavefric_output_spec, only: output_var, dim_position_speed, when_film_report_series
    implicit none
    private
@@ -70,11 +72,13 @@ module pavefric_reynolds
    !> (n values), then arrays of n values: the gap's terms h_T, c, k, run,
    !> the derivatives of c and k with respect to the penetration, the
    !> derivative's right side, the nodes' pressure and fill, the solver's
-   !> right side and three diagonals.
+   !> right side and three diagonals (its factors after a solve), the
+   !> factors' second super-diagonal and their row swaps.
    integer, parameter :: w_ht = 1, w_c = 2, w_k = 3, w_run = 4, w_dc = 5, w_dk = 6, &
-      & w_rhs = 7, w_p = 8, w_theta = 9, w_y = 10, w_dl = 11, w_dd = 12, w_du = 13
+      & w_rhs = 7, w_p = 8, w_theta = 9, w_y = 10, w_dl = 11, w_dd = 12, w_du = 13, &
+      & w_du2 = 14, w_swap = 15
    !> Arrays of n values in a lane's workspace, the set's included.
-   integer, parameter :: n_work_arrays = 14
+   integer, parameter :: n_work_arrays = 16
 
    !> The Reynolds film.
    type, extends(film_model) :: reynolds_film
@@ -235,7 +239,8 @@ contains
    !> with A y = b the settled system, dy/dx = A**-1 (db/dx - dA/dx y), from
    !> the cell terms' analytic derivatives (an open gap narrows as x grows; a
    !> contact's stays shut; the drainage lengths held), one more tridiagonal
-   !> solve and no more transcendental functions. Where the load jumps (an
+   !> solve with the settled system's factors (A refactored only where the
+   !> set did not settle) and no more transcendental functions. Where the load jumps (an
    !> element touching) or kinks (a node leaving the set), this is the
    !> slope of the side the settled set holds; the balance is bracketed.
    pure subroutine load_in_work(self, speed, gap, w, wh, dwh_dx)
@@ -247,7 +252,7 @@ contains
       integer :: n, info, m
       logical :: converged
       n = size(gap)
-      call solve_in_work(self, speed, gap, w, wh, converged, tc0, p0, dtc0, dp0)
+      call solve_in_work(self, speed, gap, w, wh, converged, tc0, p0, dtc0, dp0, info)
       dwh_dx = 0.0_wp
       if (n < 2) then
          dwh_dx = max(0.0_wp, self%width * self%length * 0.5_wp * dp0)
@@ -264,11 +269,21 @@ contains
          & y => w(at(w_y, n) : at(w_y, n) + n - 1), &
          & dl => w(at(w_dl, n) : at(w_dl, n) + n - 1), &
          & dd => w(at(w_dd, n) : at(w_dd, n) + n - 1), &
-         & du => w(at(w_du, n) : at(w_du, n) + n - 1))
-         call derivative_rhs(self%length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, rhs)
-         call assemble_and_solve(self%length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
-            & info, rhs)
+         & du => w(at(w_du, n) : at(w_du, n) + n - 1), &
+         & du2 => w(at(w_du2, n) : at(w_du2, n) + n - 1), &
+         & swap => w(at(w_swap, n) : at(w_swap, n) + n - 1))
          if (info /= 0) return
+         call derivative_rhs(self%length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, rhs)
+         if (converged) then
+            ! the last iteration's system is the settled set's: its factors
+            y(1:n - 1) = rhs(1:n - 1)
+            call tridiagonal_solve(n - 1, dl, dd, du, du2, swap, y)
+         else
+            ! (the set was flipped after the last solve)
+            call assemble_and_solve(self%length, speed, c, k, run, tc0, p0, set, y, dl, dd, &
+               & du, du2, swap, info, rhs)
+            if (info /= 0) return
+         end if
          ! the load's nodes: the full ones at a positive pressure (p, as the
          ! solve left it, is 0 at the others)
          total = 0.0_wp
@@ -283,7 +298,7 @@ contains
    !> the gap's terms (w_ht .. w_run), the nodes' pressure and fill (w_p,
    !> w_theta), the load (N), whether the set settled, and the inlet's flux
    !> coefficient tc0 and pressure p0.
-   pure subroutine solve_in_work(self, speed, gap, w, load, settled, tc0, p0, dtc0, dp0)
+   pure subroutine solve_in_work(self, speed, gap, w, load, settled, tc0, p0, dtc0, dp0, info)
       class(reynolds_film), intent(in) :: self
       real(wp), intent(in) :: speed, gap(:)
       real(wp), intent(inout) :: w(:)
@@ -292,7 +307,9 @@ contains
       !> If present: the derivatives of tc0 and p0 with respect to the
       !> penetration, and those of c and k in the workspace (w_dc, w_dk).
       real(wp), intent(out), optional :: dtc0, dp0
-      integer :: iterations, n
+      !> If present: 0, or the solver's (a singular system: no solution).
+      integer, intent(out), optional :: info
+      integer :: iterations, n, solver_info
       n = size(gap)
       associate (c => w(at(w_c, n) : at(w_c, n) + n - 1), &
          & k => w(at(w_k, n) : at(w_k, n) + n - 1), &
@@ -311,8 +328,11 @@ contains
             & w(at(w_p, n) : at(w_p, n) + n - 1), w(at(w_theta, n) : at(w_theta, n) + n - 1), &
             & w(2 : n + 1), w(1), load, iterations, settled, &
             & w(at(w_y, n) : at(w_y, n) + n - 1), w(at(w_dl, n) : at(w_dl, n) + n - 1), &
-            & w(at(w_dd, n) : at(w_dd, n) + n - 1), w(at(w_du, n) : at(w_du, n) + n - 1))
+            & w(at(w_dd, n) : at(w_dd, n) + n - 1), w(at(w_du, n) : at(w_du, n) + n - 1), &
+            & w(at(w_du2, n) : at(w_du2, n) + n - 1), w(at(w_swap, n) : at(w_swap, n) + n - 1), &
+            & solver_info)
       end associate
+      if (present(info)) info = solver_info
    end subroutine solve_in_work
 
    !> Where the workspace's array i (w_ht .. w_gap2) of a pad of n elements
@@ -374,6 +394,11 @@ contains
       real(wp), intent(out), optional :: dc, dk
       real(wp), parameter :: inv_sqrt2 = 0.70710678118654752_wp
       real(wp), parameter :: inv_sqrt2pi = 0.39894228040143268_wp
+      !> h / sigma from which Phi = 1 and h_t = h in double precision:
+      !> erfc(-8.5 / sqrt(2)) = 2 - 2e-17 rounds to 2, and
+      !> phi(8.5) / 8.5 = 1e-17 is below half an ulp of 1 (and both fall
+      !> as h / sigma grows).
+      real(wp), parameter :: far_gap = 8.5_wp
       real(wp) :: hs, phi_x, phi_s, big_phi, e_x, dphi_s
       if (h <= 0.0_wp) then
          ! an element in contact (most of them, often): the same numbers as
@@ -387,8 +412,16 @@ contains
          return
       end if
       hs = h / sigma
-      big_phi = 0.5_wp * erfc(-hs * inv_sqrt2)
-      h_t = h * big_phi + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
+      if (hs >= far_gap) then
+         ! far above the microtexture: Phi(hs) rounds to 1 and sigma phi(hs)
+         ! to nothing beside h (below half an ulp of it), so these are the
+         ! numbers the formulas give, to the bit, without erfc and an exp
+         big_phi = 1.0_wp
+         h_t = h
+      else
+         big_phi = 0.5_wp * erfc(-hs * inv_sqrt2)
+         h_t = h * big_phi + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
+      end if
       e_x = exp(-0.56_wp * hs)
       phi_x = 1.0_wp - 0.90_wp * e_x
       if (hs <= 5.0_wp) then
@@ -422,12 +455,13 @@ contains
       logical, intent(out) :: converged
       real(wp) :: p0, tc0, warm
       real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap)), set(size(gap))
-      real(wp), dimension(max(1, size(gap))) :: y, dl, dd, du
+      real(wp), dimension(max(1, size(gap))) :: y, dl, dd, du, du2, swap
+      integer :: info
       call film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, k, run, &
          & tc0, p0)
       warm = 0.0_wp
       call solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, set, warm, load, &
-         & iterations, converged, y, dl, dd, du)
+         & iterations, converged, y, dl, dd, du, du2, swap, info)
       full = set > 0.5_wp
    end subroutine reynolds_solve
 
@@ -436,17 +470,21 @@ contains
    !> where it starts when warm > 0 (else every node full) and the settled
    !> set on return; warm is 1 on return when it settled (else 0). A warm
    !> start that does not settle in max_warm iterations starts again cold.
-   !> y, dl, dd, du: scratch of at least size(c).
+   !> y, dl, dd, du, du2, swap: scratch of at least size(c); on return
+   !> where it settled, y the last solution and dl .. swap the factors of its
+   !> system (the settled set's). info: 0, or the solver's (a singular
+   !> system: not settled, no load).
    pure subroutine solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, set, warm, &
-         & load, iterations, converged, y, dl, dd, du)
+         & load, iterations, converged, y, dl, dd, du, du2, swap, info)
       real(wp), intent(in) :: width, length, speed, c(:), k(:), run(:), tc0, p0
       real(wp), intent(out) :: p(:), theta(:), load
       real(wp), intent(inout) :: set(:), warm
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
-      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
+      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:), du2(:), swap(:)
+      integer, intent(out) :: info
       logical :: changed
-      integer :: j, n, info, attempt, budget, it
+      integer :: j, n, attempt, budget, it
       ! nodes 1 .. n-1 between the elements (node j behind element j from the
       ! leading edge); p(j), theta(j), set(j) are node j's; p(n) = 0 (outlet)
       n = size(c)
@@ -461,7 +499,8 @@ contains
          budget = merge(max_warm, max_active_set, attempt == 1)
          do it = 1, budget
             iterations = iterations + 1
-            call assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, info)
+            call assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
+               & du2, swap, info)
             if (info /= 0) exit
             changed = .false.
             do j = 1, n - 1
@@ -566,12 +605,14 @@ contains
    !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
    !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
    !> y: the full nodes' pressure, the partial nodes' 1 - theta (set: 1
-   !> full, 0 partial). dl, dd, du: scratch of at least size(c).
-   !> With rhs present, the system's matrix solved for rhs(1:n-1) instead.
+   !> full, 0 partial). dl, dd, du, du2, swap: scratch of at least size(c),
+   !> the system's factors on return (tridiagonal_factor's; info its
+   !> status). With rhs present, the system's matrix solved for rhs(1:n-1)
+   !> instead.
    pure subroutine assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
-         & info, rhs)
+         & du2, swap, info, rhs)
       real(wp), intent(in) :: length, speed, c(:), k(:), run(:), tc0, p0, set(:)
-      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
+      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:), du2(:), swap(:)
       integer, intent(out) :: info
       real(wp), intent(in), optional :: rhs(:)
       real(wp) :: ds, half_v, lam
@@ -599,7 +640,8 @@ contains
          if (m < n - 1) du(m) = merge(-k(m + 1) / ds, 0.0_wp, set(m + 1) > 0.5_wp)
       end do
       if (present(rhs)) y(1:n - 1) = rhs(1:n - 1)
-      call dgtsv(n - 1, 1, dl, dd, du, y, n, info)
+      call tridiagonal_factor(n - 1, dl, dd, du, du2, swap, info)
+      if (info == 0) call tridiagonal_solve(n - 1, dl, dd, du, du2, swap, y)
    end subroutine assemble_and_solve
 
    !> The derivative's right side db/dx - (dA/dx) y of the system
