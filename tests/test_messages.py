@@ -126,6 +126,63 @@ def test_profile_shorter_than_the_pad(tmp_path):
     assert "give a profile of at least 23 points, or &pad length <= 0.00696 m" in line
 
 
+def open_profile(tmp_path, lines, extra=""):
+    p = profile_file(tmp_path, "x.txt", lines)
+    return scene_text(tmp_path, f"&surface profile_file = 'p/{p.name}', closed = .false. /\n"
+                                f"&operation speeds_kmh = 10 /\n{extra}")
+
+
+@pytest.mark.parametrize("scheme", ["euler", "extrapolated", "exact", "auto"])
+def test_an_open_profile_one_pad_long_is_refused(tmp_path, scheme):
+    """An attack's reproducer: an open profile exactly as long as the pad
+    (23 points, 23 elements) has one position, where the pad lands and never
+    slides; time_scheme = 'exact' reported mu = 0 with mu_inst 3.7, backward
+    Euler a mu that grew with substeps (1.19 at 1, 3.42 at 4096). Friction
+    is the work done over the distance slid: it is refused, naming the
+    remedy; one more point runs, and so does the same profile closed."""
+    line = one_error(tmp_path, open_profile(tmp_path, HEIGHTS[:23],
+                                            f"&numerics time_scheme = '{scheme}' /\n"))
+    assert "the profile has 23 points (0.02001 m): the pad's 23 elements (&pad length = " \
+        "0.02 m at dx = 0.00087 m) stand on it at one averaged position only" in line
+    assert "give a profile of at least 24 points, or &pad length <= 0.0191 m" in line
+    z = np.array([float(h) for h in HEIGHTS[:24]]) * 1e-3
+    for n, closed in ((24, False), (23, True)):
+        ds = pavefric.simulate(z[:n], DX, [20.0], closed=closed, time_scheme=scheme,
+                               error_estimate=False, min_contacts=0)
+        assert 0.1 < float(ds["mu"][0]) < 2.0
+
+
+def test_the_short_profile_message_names_the_knobs_that_made_the_pad(tmp_path):
+    """An attack's reproducers: a pad of 1471 elements was blamed on &pad
+    length alone (elements_per_sample = 64 made it), and a profile resampled
+    to &pad element_length was said to have 22 points where the file had
+    23 (the resampled count, the variable unnamed)."""
+    line = one_error(tmp_path, open_profile(tmp_path, HEIGHTS[:23],
+                                            "&numerics elements_per_sample = 64 /\n"))
+    assert "fewer than the pad's 1471 elements (&pad length = 0.02 m at dx = 0.00087 m / " \
+        "&numerics elements_per_sample = 64); give a profile of at least 24 points" in line
+    line = one_error(tmp_path, open_profile(tmp_path, HEIGHTS[:23],
+                                            "&pad element_length = 0.5e-3 /\n"))
+    assert "the profile resampled to &pad element_length = 0.0005 m has 39 points " \
+        "(0.0195 m), fewer than the pad's 40 elements" in line
+    assert "give a profile of at least 41 points at that spacing (0.0205 m), or &pad " \
+        "length <= 0.019 m" in line
+    # the lengths it names fit: the longest pad runs on the profile as given
+    z = np.array([float(h) for h in HEIGHTS[:23]]) * 1e-3
+    ds = pavefric.simulate(z, DX, [20.0], closed=False, element_length=0.5e-3, length=0.019,
+                           error_estimate=False, min_contacts=0)
+    assert int(ds.attrs["averaged_positions"]) >= 2
+
+
+def test_one_averaged_position_of_a_long_stride_is_refused(tmp_path):
+    """position_stride can leave an open profile one averaged position:
+    refused too, naming it."""
+    line = one_error(tmp_path, open_profile(tmp_path, HEIGHTS[:46],
+                                            "&numerics position_stride = 40 /\n"))
+    assert "stand on it at one averaged position only (&numerics position_stride = 40)" in line
+    assert "give a profile of at least 63 points" in line and "a smaller position_stride" in line
+
+
 def test_empty_and_all_dropout_profiles(tmp_path):
     line = one_error(tmp_path, with_profile(tmp_path, ["# nothing"]))
     assert "holds no heights (only comments or blank lines); give one height a line" in line

@@ -201,6 +201,80 @@ contains
       end if
    end function averaged_positions
 
+   !> The averaged positions a run needs: on an open profile two, since
+   !> friction is the work done over the distance the pad slides from its
+   !> first position (one position is a pad that lands and never slides);
+   !> a closed profile's one position has the whole loop behind it (the
+   !> spin-up).
+   pure integer function positions_needed(closed)
+      logical, intent(in) :: closed
+      positions_needed = merge(1, 2, closed)
+   end function positions_needed
+
+   !> Why a profile of np samples at spacing dx is too short for the pad at
+   !> m's knobs (averaged_positions below positions_needed), and what would
+   !> do: the fewest samples at that spacing, or the longest pad. `resampled`:
+   !> the profile was resampled to that &pad element_length (m; 0: not).
+   pure function short_profile_message(m, np, dx, closed, resampled) result(text)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: np
+      real(wp), intent(in) :: dx, resampled
+      logical, intent(in) :: closed
+      character(len=:), allocatable :: text
+      character(len=:), allocatable :: pad, spacing
+      real(wp) :: fine, s, stride, need, np_min, el_max, longest, unit
+      integer :: n_el, n_avg
+      n_el = pad_elements(m, dx)
+      n_avg = averaged_positions(m, np, dx, closed)
+      s = real(m%substeps, wp)
+      fine = real(m%elements_per_sample, wp) * s
+      stride = real(m%position_stride, wp)
+      need = real(positions_needed(closed), wp)
+      ! the fewest samples and the most elements that give `need` positions
+      ! (averaged_positions solved for np, and for the pad's elements)
+      if (closed) then
+         np_min = ceiling(real(n_el, wp) * s / fine)
+         el_max = floor(real(np, wp) * fine / s)
+      else
+         np_min = 1.0_wp + ceiling(((real(n_el, wp) - 1.0_wp) * s + stride * (need - 1.0_wp)) &
+            & / fine)
+         el_max = 1.0_wp + floor(((real(np, wp) - 1.0_wp) * fine - stride * (need - 1.0_wp)) / s)
+      end if
+      spacing = "dx = " // to_str(dx) // " m"
+      if (m%elements_per_sample > 1) spacing = spacing // " / &numerics elements_per_sample = " // &
+         & to_str(m%elements_per_sample)
+      pad = "the pad's " // to_str(n_el) // " elements (&pad length = " // to_str(m%length) // &
+         & " m at " // spacing // ")"
+      if (resampled > 0.0_wp) then
+         text = "the profile resampled to &pad element_length = " // to_str(resampled) // &
+            & " m has " // to_str(np) // " points (" // to_str(round_sig(np * dx, 4)) // " m)"
+      else
+         text = "the profile has " // to_str(np) // " points (" // &
+            & to_str(round_sig(np * dx, 4)) // " m)"
+      end if
+      if (n_avg < 1) then
+         text = text // ", fewer than " // pad
+      else
+         text = text // ": " // pad // " stand on it at one averaged position only"
+         if (m%position_stride > 1) text = text // " (&numerics position_stride = " // &
+            & to_str(m%position_stride) // ")"
+         text = text // ", and on an open profile friction needs two (it is the work " // &
+            & "done over the distance the pad slides)"
+      end if
+      text = text // "; give a profile of at least " // to_str(nint(np_min)) // " points"
+      if (resampled > 0.0_wp) text = text // " at that spacing (" // &
+         & to_str(round_sig(np_min * dx, 4)) // " m)"
+      if (el_max >= 1.0_wp) then
+         ! three digits, rounded down: a longer pad would not fit
+         longest = el_max * dx / real(m%elements_per_sample, wp)
+         unit = 10.0_wp**(floor(log10(longest)) - 2)
+         text = text // ", or &pad length <= " // &
+            & to_str(round_sig(floor(longest / unit) * unit, 3)) // " m"
+      end if
+      if (m%position_stride > 1 .and. .not. closed .and. n_avg >= 1) text = text // &
+         & ", or a smaller position_stride"
+   end function short_profile_message
+
    !> The profile the pad slides over: np points at spacing dx become npe at
    !> dxe with &pad element_length (resample_to_length, at the grid's first
    !> phase), else stay. `phases`: how many phases of the grid run
@@ -231,7 +305,7 @@ contains
          else
             d = m%element_length
          end if
-         if (averaged_positions(m, n, d, closed) < 1 .and. k > 0) exit
+         if (averaged_positions(m, n, d, closed) < positions_needed(closed) .and. k > 0) exit
          total = total + averaged_positions(m, n, d, closed)
          if (present(phases)) phases = k + 1
       end do
@@ -310,7 +384,7 @@ contains
       type(sim_result_type) :: r
       real(wp), allocatable :: ze(:)
       real(wp) :: dxe, phase
-      integer :: stat, k
+      integer :: stat, k, npe
       if (.not. resamples(mm, dx)) then
          call simulate_spaced(mm, z, dx, speeds, series, out, err)
          return
@@ -329,6 +403,14 @@ contains
       end if
       me = mm
       me%element_length = 0.0_wp
+      ! the first phase's grid too short for the pad: said of the resampled
+      ! profile (the run's own check would name a spacing the user never gave)
+      call element_grid(mm, size(z), dx, closed, npe, dxe)
+      if (averaged_positions(me, npe, dxe, closed) < positions_needed(closed) .and. &
+            & pad_elements(me, dxe) < huge(1)) then
+         call fatal_error(err, short_profile_message(me, npe, dxe, closed, mm%element_length))
+         return
+      end if
       ! the pad's grid at each phase; an open profile too short for a phase
       ! (the last start beyond its end) has fewer phases
       do k = 0, element_phases - 1
@@ -1542,7 +1624,7 @@ contains
             & to_str(dx / real(m%elements_per_sample, wp)) // " m)")
          return
       end if
-      if (averaged_positions(m, size(z), dx, closed) < 1) then
+      if (averaged_positions(m, size(z), dx, closed) < positions_needed(closed)) then
          if (n_el >= huge(1) .or. real(size(z), wp) * real(m%elements_per_sample, wp) * &
                & real(m%substeps, wp) > 2.0e9_wp) then
             call fatal_error(error, "&numerics elements_per_sample = " // &
@@ -1550,12 +1632,7 @@ contains
                & ": the refined profile of " // to_str(size(z)) // " points would have more " // &
                & "than 2e9 samples, or the pad more than 2e9 elements", stat_memory)
          else
-            call fatal_error(error, "the profile has " // to_str(size(z)) // " points (" // &
-               & to_str(round_sig(size(z) * dx, 4)) // " m), fewer than the pad's " // &
-               & to_str(n_el) // " elements (&pad length = " // to_str(m%length) // &
-               & " m at dx = " // to_str(dx) // " m); give a profile of at least " // &
-               & to_str(n_el) // " points, or &pad length <= " // &
-               & to_str(round_sig(size(z) * dx, 3)) // " m")
+            call fatal_error(error, short_profile_message(m, size(z), dx, closed, 0.0_wp))
          end if
          return
       end if
