@@ -15,6 +15,13 @@ from conftest import ROOT, cold_compound_batch, run_cold_batch, run_program, wri
 
 SURFACES = ["GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"]
 
+# A pad of 22 elements at the profile's spacing and 45 at elements_per_sample
+# = 2 (nint(22.4) and nint(44.8)): on 23 open points it stands at two
+# positions, twice its elements at one, which is refused (an open profile
+# needs two): the elements' pass cannot be made. (A profile exactly one pad
+# long, the earlier case, is now refused itself.)
+SHORT_PAD = 22.4 * 0.87e-3
+
 
 @pytest.mark.parametrize("name", SURFACES)
 @pytest.mark.parametrize("depth", [0.0, 1e-3])
@@ -35,6 +42,7 @@ def test_default_estimate_bounds_the_actual_error(name, depth):
     assert np.all(estimate <= 25.0 * actual + 1e-4), (name, depth, actual, estimate)
     assert np.all(default["substeps_used"].values == 1)
     assert not default["mu_extrapolated"].values.any()
+
 
 
 def _contacts(ds, k=0):
@@ -275,13 +283,13 @@ def test_no_room_for_the_half_step_pass_halves_the_elements(short_profile_m):
 
 
 def test_no_pass_possible_says_so():
-    """An open profile one pad long (no room for twice the elements) at
+    """An open profile with no room for twice the elements (SHORT_PAD) at
     substeps = 4096 (no room for half the step): no pass can be made, so the
     run stands without an estimate, and the warnings say why, naming
     error_estimate, the limit and the pass that could not be made."""
     from make_regression import read_heights
     z = read_heights("synthetic_200.txt")[:23]
-    kw = dict(substeps=4096, closed=False, element_length=0.0)
+    kw = dict(substeps=4096, closed=False, element_length=0.0, length=SHORT_PAD)
     with pytest.warns(pavefric.PavefricWarning, match="error_estimate: no estimate.*4096"):
         ds = pavefric.simulate(z, 0.87e-3, [40.0], **kw)
     assert "mu_error_estimate" not in ds and "substeps_used" not in ds
@@ -509,13 +517,14 @@ def test_the_exact_integrator_has_its_elements_estimated(profile_m):
 
 
 def test_a_failed_elements_pass_falls_back_to_the_step(profile_m):
-    """An open profile exactly one pad long has no room for twice the
-    elements: that pass fails, and the speed keeps the estimate of the pass
+    """An open profile with no room for twice the elements (SHORT_PAD):
+    that pass fails, and the speed keeps the estimate of the pass
     at half the step, with a warning saying so in its own words (the pass's
     input check, quoted, had advised a longer profile for "the pad's 46
-    elements": review reproducer). At min_contacts = 0: the default's own
+    elements": review reproducer; here 45). At min_contacts = 0: the default's own
     refinement fails there first, and says so in its words."""
-    kw = dict(mu_loc=0.0, temperature=0.0, closed=False, min_contacts=0, **_compound())
+    kw = dict(mu_loc=0.0, temperature=0.0, closed=False, min_contacts=0, length=SHORT_PAD,
+              **_compound())
     with pytest.warns(pavefric.PavefricWarning,
                       match="could not be refined beyond elements_per_sample = 1") as said:
         ds = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], **kw)
@@ -542,11 +551,11 @@ def test_two_warnings_of_a_run_stay_two(profile_m):
 
 
 def test_exact_speeds_whose_elements_cannot_be_halved_say_so(profile_m):
-    """The exact integrator on an open profile exactly one pad long: its
-    only pass (the elements halved) cannot be made, and it has no step to
+    """The exact integrator on an open profile with no room for twice the
+    elements (SHORT_PAD): its only pass (the elements halved) cannot be made, and it has no step to
     halve; the run keeps an estimate that leaves out the elements'
     resolution (0 here, nothing was refined), and a warning says so."""
-    kw = dict(closed=False, time_scheme="exact", element_length=0.0)
+    kw = dict(closed=False, time_scheme="exact", element_length=0.0, length=SHORT_PAD)
     with pytest.warns(pavefric.PavefricWarning, match="leaves out their resolution"):
         ds = pavefric.simulate(profile_m[:23], 0.87e-3, [20.0], **kw)
     assert bool(ds["exact_integrator_ran"].values[0])

@@ -164,11 +164,13 @@ def test_a_target_out_of_reach_says_so(profile_m, cold):
 
 
 def test_a_profile_too_short_to_refine_keeps_its_elements_and_says_so(profile_m, cold):
-    """An open profile one pad long has no room for twice the elements: the
-    default's refinement cannot be made, the results are those of the
-    elements given (bit for bit the run at min_contacts = 0), and a warning
-    names min_contacts, the speed and the input check that refused it."""
-    kw = dict(closed=False, error_estimate=False, **cold)
+    """An open profile with no room for twice the elements (a pad of 22.4
+    samples: 22 elements, 45 at elements_per_sample = 2, which stand on 23
+    open points at one position, refused): the default's refinement cannot
+    be made, the results are those of the elements given (bit for bit the
+    run at min_contacts = 0), and a warning names min_contacts, the speed
+    and the input check that refused it."""
+    kw = dict(closed=False, error_estimate=False, length=22.4 * 0.87e-3, **cold)
     with pytest.warns(pavefric.PavefricWarning,
                       match=r"&numerics min_contacts = 4: the pad's elements could not be "
                             r"refined beyond elements_per_sample = 1 at 20 km/h.*its check said"):

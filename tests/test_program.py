@@ -132,3 +132,31 @@ def test_python_cli_run_and_plot(tmp_path):
     assert png.stat().st_size > 10_000 and png.read_bytes()[:4] == b"\x89PNG"
     ds = pavefric.open(out)
     assert ds.attrs["history"].split(": ", 1)[1].startswith("python -m pavefric run")
+
+
+def test_the_table_keeps_its_columns_for_a_huge_mu(tmp_path):
+    """An attack's reproducer: with &numerics theta_max_deg = 89.999999 mu
+    reached 4e5 and the printed table ran the speed and mu columns together
+    ('1.000408767.51831'); mu is printed in exponent form from 1e4 on, and
+    each row keeps one field per column (the values those of the output)."""
+    import netCDF4
+
+    z = np.random.default_rng(1).normal(0.0, 0.6e-3, 256)   # a facet near vertical
+    prof = tmp_path / "p.txt"
+    np.savetxt(prof, z)
+    scene = tmp_path / "s.nml"
+    scene.write_text(f"&surface profile_file = '{prof}', height_unit = 'm', dx = 0.87e-3, "
+                     "closed = .true., mu_loc = 0.6 /\n&operation speeds_kmh = 1, 20, 80 /\n"
+                     "&numerics theta_max_deg = 89.999999 /\n")
+    out = tmp_path / "r.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    head = next(i for i, ln in enumerate(lines) if ln.strip().startswith("speed_kmh"))
+    rows = [ln.split() for ln in lines[head + 1:head + 4]]
+    with netCDF4.Dataset(out) as ds:
+        mu = ds["mu"][:]
+    assert max(abs(mu)) >= 1e4
+    for row, m in zip(rows, mu):
+        assert len(row) == len(lines[head].split())
+        assert float(row[1]) == pytest.approx(float(m), rel=1e-4)

@@ -195,6 +195,7 @@ contains
    end subroutine print_warnings
 
    subroutine report_scene()
+   character(len=12) :: mu_text
 
    call print_warnings(warnings)
    write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
@@ -209,11 +210,18 @@ contains
       write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
    end if
    do j = 1, size(res%mu)
-      if (allocated(res%mu_error)) then
-         write(output_unit, '(f11.3, f12.5, f15.4, f14.4, es19.2)') res%speed_kmh(j), &
-            & res%mu(j), res%wet_fraction(j), res%hydroplaning_fraction(j), res%mu_error(j)
+      ! mu in 12 columns: fixed point, or exponent form from 1e4 on (a
+      ! wider number ran into the speed's column)
+      if (abs(res%mu(j)) < 1.0d4) then
+         write(mu_text, '(f12.5)') res%mu(j)
       else
-         write(output_unit, '(f11.3, f12.5, f15.4, f14.4)') res%speed_kmh(j), res%mu(j), &
+         write(mu_text, '(es12.4)') res%mu(j)
+      end if
+      if (allocated(res%mu_error)) then
+         write(output_unit, '(f11.3, a12, f15.4, f14.4, es19.2)') res%speed_kmh(j), &
+            & mu_text, res%wet_fraction(j), res%hydroplaning_fraction(j), res%mu_error(j)
+      else
+         write(output_unit, '(f11.3, a12, f15.4, f14.4)') res%speed_kmh(j), mu_text, &
             & res%wet_fraction(j), res%hydroplaning_fraction(j)
       end if
    end do

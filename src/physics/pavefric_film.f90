@@ -392,13 +392,18 @@ contains
       integer, intent(in) :: sample
    end subroutine film_enter_nothing
 
-   pure subroutine film_friction_unchanged(self, step, state, samples, footprint, pressure, &
-         & element_length, share, thickness)
+   pure subroutine film_friction_unchanged(self, step, state, first, footprint, closed, &
+         & pressure, element_length, share, thickness)
       class(film_model), intent(in) :: self
       type(film_step_type), intent(in) :: step
+      !> Per road sample (its second index, the profile's refined samples).
       real(wp), intent(inout) :: state(:, :)
-      !> Road samples under the elements, `footprint` per element, in order.
-      integer, intent(in) :: samples(:), footprint
+      !> The road sample under each element's start; the element stands on
+      !> `footprint` samples from it, in order (a closed profile's wrap
+      !> round its end; an open profile's beyond its last sample are that
+      !> sample).
+      integer, intent(in) :: first(:), footprint
+      logical, intent(in) :: closed
       !> Contact pressure of each element (Pa; 0 out of contact), element length (m).
       real(wp), intent(in) :: pressure(:), element_length
       !> Each element's share of mu_loc, and the film's thickness (m) under

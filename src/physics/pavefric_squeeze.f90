@@ -156,16 +156,17 @@ contains
    !> Squeeze the film under each plateau for one step, then the share of
    !> microtexture piercing it under each element in contact (1 elsewhere:
    !> an element out of contact pushes on nothing).
-   pure subroutine squeeze_friction(self, step, state, samples, footprint, pressure, &
+   pure subroutine squeeze_friction(self, step, state, first, footprint, closed, pressure, &
          & element_length, share, thickness)
       class(squeeze_film), intent(in) :: self
       type(film_step_type), intent(in) :: step
       real(wp), intent(inout) :: state(:, :)
-      integer, intent(in) :: samples(:), footprint
+      integer, intent(in) :: first(:), footprint
+      logical, intent(in) :: closed
       real(wp), intent(in) :: pressure(:), element_length
       real(wp), intent(out) :: share(:), thickness(:)
       real(wp) :: p_sum, b, c, h
-      integer :: n, i, j, e, q, k
+      integer :: n, i, j, e, k, a, z, np
       n = size(pressure)
       share = 1.0_wp
       thickness = 0.0_wp
@@ -185,19 +186,29 @@ contains
          end do
          b = min(real(j - i, wp) * element_length, self%width)
          c = step%coef(1) * (p_sum / real(j - i, wp)) / b**2       ! 2 p dt / (eta b**2)
-         do e = i, j - 1
-            if (footprint == 1) then
-               ! one sample an element (the paper's grid): no inner loop
-               k = samples(e)
-               state(1, k) = state(1, k) + c
+         if (footprint > 1) then
+            ! the plateau's samples, one run of the road from its first
+            ! element's start: vector adds (a closed profile's run may wrap
+            ! round its end; an open profile's samples beyond its last are
+            ! that sample, once each)
+            np = size(state, 2)
+            a = first(i)
+            z = a + (j - i) * footprint - 1
+            if (z <= np) then
+               state(1, a:z) = state(1, a:z) + c
+            else if (closed) then
+               state(1, a:np) = state(1, a:np) + c
+               state(1, 1:z - np) = state(1, 1:z - np) + c
             else
-               do q = 1, footprint
-                  associate(s => state(1, samples((e - 1) * footprint + q)))
-                     s = s + c
-                  end associate
-               end do
-               k = samples((e - 1) * footprint + 1)
+               state(1, a:np) = state(1, a:np) + c
+               state(1, np) = state(1, np) + real(z - np, wp) * c
             end if
+         end if
+         do e = i, j - 1
+            ! the film's state on the element's first sample
+            k = first(e)
+            ! one sample an element (the paper's grid): no run above
+            if (footprint == 1) state(1, k) = state(1, k) + c
             ! the film's thickness on the element's first sample: h = (h**-2)**-1/2
             h = 1.0_wp / sqrt(state(1, k))
             thickness(e) = h

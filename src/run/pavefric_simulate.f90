@@ -85,6 +85,12 @@ module pavefric_simulate
    !> 7.1e-7 before; those runs' estimated / measured were 1.31-1.53).
    real(wp), parameter :: sec_bearing_step = 8.1e-9_wp, sec_bearing_position = 5.0e-7_wp
    real(wp), parameter :: sec_squeeze_step = 4.1e-8_wp, sec_squeeze_position = 0.0_wp
+   !> The drainage film's update per road sample under an element (a vector
+   !> add over the footprint, substeps samples an element): set on
+   !> 2026-12-06 from a 256-point profile at substeps 64-1024 (1024: 2.0 s
+   !> measured, 0.45 s estimated without it), where it is the larger part;
+   !> below about 100 substeps it is under half of sec_squeeze_step.
+   real(wp), parameter :: sec_squeeze_sample = 1.5e-10_wp
    !> The Reynolds film (wet_model = 'reynolds'; before 2026-11-27 it was
    !> costed as the paper's bearing, 25 times too cheap): the section's
    !> refit of 2026-11-27 on its two Reynolds training runs (9.5e-7; the
@@ -215,12 +221,14 @@ contains
    !> m's knobs (averaged_positions below positions_needed), and what would
    !> do: the fewest samples at that spacing, or the longest pad. `resampled`:
    !> the profile was resampled to that &pad element_length (m; 0: not).
-   pure function short_profile_message(m, np, dx, closed, resampled) result(text)
+   !> (A subroutine: a deferred-length function result costs a static
+   !> length per call site, shared by threads; tests/test_threads.py.)
+   pure subroutine short_profile_message(m, np, dx, closed, resampled, text)
       type(model_type), intent(in) :: m
       integer, intent(in) :: np
       real(wp), intent(in) :: dx, resampled
       logical, intent(in) :: closed
-      character(len=:), allocatable :: text
+      character(len=:), allocatable, intent(out) :: text
       character(len=:), allocatable :: pad, spacing
       real(wp) :: fine, s, stride, need, np_min, el_max, longest, unit
       integer :: n_el, n_avg
@@ -273,7 +281,7 @@ contains
       end if
       if (m%position_stride > 1 .and. .not. closed .and. n_avg >= 1) text = text // &
          & ", or a smaller position_stride"
-   end function short_profile_message
+   end subroutine short_profile_message
 
    !> The profile the pad slides over: np points at spacing dx become npe at
    !> dxe with &pad element_length (resample_to_length, at the grid's first
@@ -385,6 +393,7 @@ contains
       real(wp), allocatable :: ze(:)
       real(wp) :: dxe, phase
       integer :: stat, k, npe
+      character(len=:), allocatable :: text
       if (.not. resamples(mm, dx)) then
          call simulate_spaced(mm, z, dx, speeds, series, out, err)
          return
@@ -408,7 +417,8 @@ contains
       call element_grid(mm, size(z), dx, closed, npe, dxe)
       if (averaged_positions(me, npe, dxe, closed) < positions_needed(closed) .and. &
             & pad_elements(me, dxe) < huge(1)) then
-         call fatal_error(err, short_profile_message(me, npe, dxe, closed, mm%element_length))
+         call short_profile_message(me, npe, dxe, closed, mm%element_length, text)
+         call fatal_error(err, text)
          return
       end if
       ! the pad's grid at each phase; an open profile too short for a phase
@@ -901,7 +911,7 @@ contains
       integer :: ns, j, k, e, level, cap
       real(wp) :: rich, rich_h, rich_a
       logical :: usable
-      character(len=:), allocatable :: why
+      character(len=:), allocatable :: why, last_why
       ns = size(speeds_kmh)
       allocate(res%mu_error(ns), res%substeps_used(ns), res%extrapolated(ns), &
          & res%estimate_elements_per_sample(ns), res%refined_elements_per_sample(ns), &
@@ -1025,14 +1035,14 @@ contains
                mc%elements_per_sample = e
                if (elements_kind) then
                   if (2 * e > max_elements_per_sample) then
-                     why = " (elements_per_sample = " // to_str(e) // " cannot be doubled)"
+                     call reason(" (elements_per_sample = " // to_str(e) // " cannot be doubled)")
                      cycle
                   end if
                   mc%elements_per_sample = 2 * e
                else
                   if (2 * m%substeps > max_substeps) then
-                     why = " at substeps = " // to_str(m%substeps) // " (its pass at half " // &
-                        & "the step would pass " // to_str(max_substeps) // ")"
+                     call reason(" at substeps = " // to_str(m%substeps) // " (its pass at " // &
+                        & "half the step would pass " // to_str(max_substeps) // ")")
                      cycle
                   end if
                   mc%time_scheme = "euler"
@@ -1041,16 +1051,17 @@ contains
                call run_grids(mc, z, dx, closed, speeds_kmh(group), .false., r, err)
                if (allocated(err)) then
                   if (elements_kind) then
-                     why = ": its pass with the pad's elements halved (elements_per_sample = " &
-                        & // to_str(mc%elements_per_sample) // ") could not be made on this " &
-                        & // "profile (its check said: " // err%message // ")"
+                     call reason(": its pass with the pad's elements halved " // &
+                        & "(elements_per_sample = " // to_str(mc%elements_per_sample) // &
+                        & ") could not be made on this profile (its check said: " // &
+                        & err%message // ")")
                      blocked(group) = .true.
                   else
-                     why = ": its pass at half the step (substeps = " // to_str(mc%substeps) // &
-                        & ") could not be made (" // err%message // ")"
+                     call reason(": its pass at half the step (substeps = " // &
+                        & to_str(mc%substeps) // ") could not be made (" // err%message // ")")
                   end if
                   call add_warning(res%warnings, "&numerics error_estimate at " // &
-                     & to_str(speeds_kmh(group(1))) // " km/h" // why)
+                     & to_str(speeds_kmh(group(1))) // " km/h" // last_why)
                   deallocate(err)
                   cycle
                end if
@@ -1065,6 +1076,20 @@ contains
             end do
          end do
       end subroutine last_passes
+
+      !> Why a pass could not be made: the last reason (its own warning's)
+      !> and all of them (the no-estimate warning's), joined.
+      subroutine reason(text)
+         character(len=*), intent(in) :: text
+         last_why = text
+         if (.not. allocated(why)) then
+            why = text
+         else if (text(1:1) == ":") then
+            why = why // ";" // text(2:)
+         else
+            why = why // ";" // text
+         end if
+      end subroutine reason
 
       subroutine no_estimate(text)
          character(len=*), intent(in) :: text
@@ -1377,7 +1402,7 @@ contains
       integer, allocatable :: spinups(:), exact_bad(:)
       logical, allocatable :: shorts(:)
       logical :: friction_film, reporting_film
-      character(len=:), allocatable :: effect
+      character(len=:), allocatable :: effect, others
 
       res%warnings = ""
       res%effects = ""
@@ -1564,13 +1589,14 @@ contains
          & then
          j = findloc(res%mu_hysteresis < -max(negative_hysteresis, negative_share * &
             & abs(res%mu)), .true., dim=1)
+         call others_negative(j, others)
          call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
             & " < 0 at " // to_str(speeds_kmh(j)) // " km/h: the rubber cannot dissipate " // &
             & "less than nothing, so the pad did not reach a state that repeats round the " // &
             & "profile (largest compression " // to_str(res%max_compression(j)) // " m; " // &
             & "its drift is in the energy balance) and mu = " // to_str(res%mu(j)) // &
             & " there is not a friction: check &rubber stiffness and viscosity " // &
-            & "(docs/model.md, 'Known limits')")
+            & "(docs/model.md, 'Known limits')" // others)
       end if
       res%effects = "elastic_contact,facet_friction"
       if (any(res%viscous_memory_ran)) then
@@ -1584,6 +1610,27 @@ contains
          end if
       end if
       call check_results(res, error)
+   contains
+      !> The other speeds after the j-th whose mu_hysteresis is negative
+      !> beyond the warning's bound, named ("" if none). (A subroutine: see
+      !> short_profile_message.)
+      subroutine others_negative(j, text)
+         integer, intent(in) :: j
+         character(len=:), allocatable, intent(out) :: text
+         integer :: k
+         text = ""
+         do k = j + 1, size(res%mu_hysteresis)
+            if (.not. res%mu_hysteresis(k) < -max(negative_hysteresis, &
+               & negative_share * abs(res%mu(k)))) cycle
+            if (len(text) == 0) then
+               text = "; also at "
+            else
+               text = text // ", "
+            end if
+            text = text // to_str(speeds_kmh(k)) // " km/h (mu_hysteresis = " // &
+               & to_str(res%mu_hysteresis(k)) // ")"
+         end do
+      end subroutine others_negative
    end subroutine simulate_fixed
 
    !> Checks that need the profile and speeds as well as the parameters.
@@ -1593,6 +1640,7 @@ contains
       logical, intent(in) :: closed
       type(error_type), allocatable, intent(out) :: error
       integer :: j, n_el
+      character(len=:), allocatable :: text
       if (.not. (dx > 0.0_wp .and. dx <= huge(dx))) then
          call fatal_error(error, "&surface dx = " // to_str(dx) // ": must be finite and > 0")
          return
@@ -1632,7 +1680,8 @@ contains
                & ": the refined profile of " // to_str(size(z)) // " points would have more " // &
                & "than 2e9 samples, or the pad more than 2e9 elements", stat_memory)
          else
-            call fatal_error(error, short_profile_message(m, size(z), dx, closed, 0.0_wp))
+            call short_profile_message(m, size(z), dx, closed, 0.0_wp, text)
+            call fatal_error(error, text)
          end if
          return
       end if
@@ -1678,7 +1727,9 @@ contains
       per_position = 0.0_wp
       if (m%depth > 0.0_wp) then
          if (m%wet_model == "squeeze") then
-            per_step = per_step + sec_squeeze_step
+            ! the film thins on every road sample under a touching element:
+            ! substeps of them an element (its footprint on the refined road)
+            per_step = per_step + sec_squeeze_step + sec_squeeze_sample * real(m%substeps, wp)
             per_position = sec_squeeze_position
          else if (m%wet_model == "reynolds") then
             per_step = per_step + sec_reynolds_step
@@ -2326,7 +2377,7 @@ contains
          if (stat == 0 .and. any_load) allocate(gaps(nl, n), &
             & fwork(film%work_size(n), nl), source=0.0_wp, stat=stat)
          if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
-            & pressure(n), share(n), thick(n), tan_el(n), pl(n), samples(n * geo%spacing), &
+            & pressure(n), share(n), thick(n), tan_el(n), pl(n), samples(n), &
             & stat=stat)
          if (stat /= 0) then
             out%failed = 1
@@ -2387,16 +2438,15 @@ contains
       !> tangents and work with it, and the film's series.
       subroutine friction_films(t, k1)
          integer, intent(in) :: t, k1
-         integer :: i, j, k, q
+         integer :: i, j, k
             if (any_friction) then
                ! the film on the road samples entering under the leading edge
                ! (counted without wrapping round a closed profile)
                lead = t * geo%stride + n * geo%spacing + merge(1, 0, geo%closed)
                if (lead_prev == -huge(1)) lead_prev = lead
+               ! the road sample under each element's start
                do i = 1, n
-                  do q = 1, geo%spacing
-                     samples((i-1) * geo%spacing + q) = physical(k1 + (i-1) * geo%spacing + q - 1)
-                  end do
+                  samples(i) = physical(k1 + (i-1) * geo%spacing)
                end do
                do j = 1, nl
                   if (.not. friction_film(j)) cycle
@@ -2407,8 +2457,8 @@ contains
                      pl(i) = push(j, i)
                      pressure(i) = rstep%k_eff(j) * pl(i)
                   end do
-                  call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, pressure, &
-                     & geo%dx_el, share, thick)
+                  call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, &
+                     & geo%closed, pressure, geo%dx_el, share, thick)
                   film_sum = 0.0_wp
                   film_count = 0
                   sum_ft(j) = 0.0_wp
