@@ -118,7 +118,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
         if closed and 0.0 < decay < 1.0 and friction_scheme == "energy":
             speed_steps = range(1 - spin_up(n, n_p, dx, decay, load / kel), n_p + 1)
         u = np.zeros(n)
-        mus, deltas, whs, means = [], [], [], []
+        mus, deltas, whs, means, works, adhesions = [], [], [], [], [], []
         prev = None
         for j in speed_steps:
             k = (j + i - 1) % n_p if closed else j + i - 1
@@ -168,6 +168,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                 adhesion = (force * adh[k]).sum() / load
                 mu_j = work / (load * dx) + adhesion             # the facets' work (series)
                 mean_j = (work - film) / (load * dx) + adhesion  # the dissipation (mean)
+                stepped = prev is not None
             prev = (force, delta, wh)
             if closed and j < 1:
                 continue
@@ -175,7 +176,16 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             means.append(mean_j)
             deltas.append(delta)
             whs.append(wh)
-        out_mu.append(np.mean(means))
+            if friction_scheme != "paper":
+                adhesions.append(adhesion)
+                if stepped:
+                    works.append(mean_j - adhesion)
+        if friction_scheme != "paper" and not closed and len(works) < len(means):
+            # an open profile's first position has no step before it: the
+            # steps' work is over the steps there are (docs/model.md)
+            out_mu.append(np.mean(works) + np.mean(adhesions))
+        else:
+            out_mu.append(np.mean(means))
         out_series.append((np.array(mus), np.array(deltas), np.array(whs)))
     if series:
         return np.array(out_mu), out_series

@@ -2628,6 +2628,14 @@ contains
                ! mu is the dissipation: the rubber's and the local friction's
                ! (the mean of mu_inst, the facets' work, differs from it by the
                ! film's work round the profile over W and the distance)
+               if (.not. geo%closed .and. geo%n_avg > 1) then
+                  ! An open profile's first position has no step before it
+                  ! (the pad lands there): its n_avg positions bound n_avg - 1
+                  ! steps, and the work of those is over their distance (the
+                  ! mean over n_avg read it (n_avg - 1) / n_avg of that: half
+                  ! on a profile one sample longer than the pad)
+                  out(j)%mu_hysteresis = hyst_sum(j) / real(geo%n_avg - 1, wp)
+               end if
                if (geo%closed .and. .not. rstep%memory(j)) then
                   ! An elastic rubber dissipates nothing: round a closed profile
                   ! its work returns exactly, and the sum of the steps' work
