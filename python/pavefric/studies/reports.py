@@ -879,6 +879,34 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "build of 08ab7fc in 0.063, 0.069 and 0.115 s: those rows moved with the "
         "host's load.",
         "",
+        "In the session of 2026-12-06 the Reynolds film's tridiagonal systems moved from "
+        "LAPACK's `dgtsv` to an elimination of our own that keeps its factors "
+        "(`src/base/pavefric_tridiagonal.f90`): the load's derivative is one more solve "
+        "with them, where it re-assembled and re-factored the system. Side by side with "
+        "the build before (`python tools/compare_builds.py <before> <after> --runs "
+        "reynolds_wet paper_wet kelvin_voigt`, best of three rounds of three runs): the "
+        "Reynolds film 2.015 s and 1.686 s a run, the paper's wet model 0.073 and 0.074 "
+        "s, the dry pad 0.035 s both. What is left of the Reynolds film's time is its "
+        "3-6 balance evaluations a position, each at least one factorisation and the "
+        "cell terms' transcendental functions; a Newton step that takes the pad's push "
+        "whole and one on the logarithm of the film's load were tried: the first saved "
+        "about 3 % of the evaluations and the second cost more, and both moved mu by up "
+        "to 1 %, because where the film's balance has several roots (docs/model.md) the "
+        "root a position takes depends on the iteration's path (measured once with "
+        "builds changed so, not a command of the repository). The drainage film's cost "
+        "per element-step no longer grows with `substeps` (an attack found a 256-point "
+        "profile at substeps 1024 taking 12-26 s, estimated 0.45 s): the film updates a "
+        "plateau's road samples as vector runs from each element's first sample, where "
+        "the driver rebuilt an index of every sample under the pad each step; the cost "
+        "estimate counts that update per sample (`sec_squeeze_sample`). This session's "
+        "first run of the benchmark was on an Intel Xeon host that ran the cost "
+        "section's scenes in about half their estimate (estimated / measured 1.50-2.73; "
+        "the AMD host the rates were fitted on read 0.73-1.65 in its last run): the "
+        "estimate is now scaled by 0.71, the middle of the two hosts "
+        "(`hosts_scale`, src/run/pavefric_simulate.f90), and the table above is the run "
+        "after. A host more than about 1.4 times faster or slower than both reads "
+        "outside the factor 2.",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
