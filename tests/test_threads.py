@@ -41,6 +41,19 @@ def test_no_hidden_string_lengths_in_the_library():
         assert "pavefric_api_lock" not in symbols, lib
 
 
+def test_no_vector_math_library_calls():
+    """The compiler may turn a loop of erfc or exp calls into calls of
+    glibc's vector math library (libmvec, symbols _ZGV...): the .ci/run
+    stage that runs the repaired wheel without the system's libraries
+    found it (a squeeze loop's erfc, 2026-12-06), and its last bits differ
+    from libm's. The library and the extension call none."""
+    for lib in _libraries():
+        symbols = _run(["nm", "-D", lib]).stdout
+        assert "pavefric" in symbols or "PyInit" in symbols, lib
+        vector = [line for line in symbols.splitlines() if "_ZGV" in line]
+        assert not vector, f"{lib.name}: {vector[:3]}"
+
+
 def test_many_scenes_on_four_threads_equal_the_serial_run(tmp_path, pc_env):  # noqa: F811
     """80 small scenes (their own speeds, heights, parameters) on 4 threads
     at once, set_parameter / get_parameter / run / results / warnings

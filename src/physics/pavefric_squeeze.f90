@@ -204,6 +204,9 @@ contains
                state(1, np) = state(1, np) + real(z - np, wp) * c
             end if
          end if
+         ! (not vectorised: a vector erfc is libmvec's, a library a wheel
+         ! may not find, with other last bits than libm's)
+         !GCC$ novector
          do e = i, j - 1
             ! the film's state on the element's first sample
             k = first(e)
