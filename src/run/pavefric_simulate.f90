@@ -77,20 +77,33 @@ module pavefric_simulate
    ! rates refitted on its own training runs (non-negative least squares on
    ! the relative error), which is how these were obtained (2026-11-26, with
    ! the error estimate's pass).
-   real(wp), parameter :: sec_point = 5.9e-7_wp, sec_step = 9.3e-9_wp, sec_arm = 1.2e-9_wp
+   !> Every rate below is that host's times hosts_scale: on 2026-12-06 the
+   !> benchmark ran on an Intel Xeon host about twice as fast (estimated /
+   !> measured 1.50-2.73 over the cost section's scenes, where the AMD
+   !> host's last run read 0.73-1.65). The rates are scaled to the middle of
+   !> the two (0.71: both hosts then within a factor 2, 1.07-1.94 and
+   !> 0.52-1.17); a host more than about 1.4 times faster or slower than
+   !> both reads outside it. The seconds are a host's, the element-steps and
+   !> bytes are not. (Scaled here, the rates, so that every use of them,
+   !> the run's, the spin-up's and the probe's, takes the same seconds.)
+   real(wp), parameter :: hosts_scale = 0.71_wp
+   real(wp), parameter :: sec_point = hosts_scale * 5.9e-7_wp, &
+      & sec_step = hosts_scale * 9.3e-9_wp, sec_arm = hosts_scale * 1.2e-9_wp
    !> The paper's bearing: refitted on 2026-11-29 on the section's five
    !> kane2017 training runs alone, the other rates held (non-negative least
    !> squares on the relative error of what they leave), after its balance
    !> took the roots of its pieces without a checking pass (1.7e-8 and
    !> 7.1e-7 before; those runs' estimated / measured were 1.31-1.53).
-   real(wp), parameter :: sec_bearing_step = 8.1e-9_wp, sec_bearing_position = 5.0e-7_wp
-   real(wp), parameter :: sec_squeeze_step = 4.1e-8_wp, sec_squeeze_position = 0.0_wp
+   real(wp), parameter :: sec_bearing_step = hosts_scale * 8.1e-9_wp, &
+      & sec_bearing_position = hosts_scale * 5.0e-7_wp
+   real(wp), parameter :: sec_squeeze_step = hosts_scale * 4.1e-8_wp, &
+      & sec_squeeze_position = 0.0_wp
    !> The drainage film's update per road sample under an element (a vector
    !> add over the footprint, substeps samples an element): set on
    !> 2026-12-06 from a 256-point profile at substeps 64-1024 (1024: 2.0 s
    !> measured, 0.45 s estimated without it), where it is the larger part;
    !> below about 100 substeps it is under half of sec_squeeze_step.
-   real(wp), parameter :: sec_squeeze_sample = 1.5e-10_wp
+   real(wp), parameter :: sec_squeeze_sample = hosts_scale * 1.5e-10_wp
    !> The Reynolds film (wet_model = 'reynolds'; before 2026-11-27 it was
    !> costed as the paper's bearing, 25 times too cheap): the section's
    !> refit of 2026-11-27 on its two Reynolds training runs (9.5e-7; the
@@ -98,17 +111,10 @@ module pavefric_simulate
    !> mean estimated / measured of those two runs after the film's balance
    !> took fewer and cheaper evaluations (1.56 and 1.92; the other models'
    !> rows 0.79-1.59 in the same run).
-   real(wp), parameter :: sec_reynolds_step = 5.5e-7_wp, sec_reynolds_position = 0.0_wp
-   real(wp), parameter :: sec_run = 1.0e-3_wp, sec_point_pass = 4.5e-7_wp
-   !> The rates above were fitted on the AMD EPYC development host; on
-   !> 2026-12-06 the benchmark ran on an Intel Xeon host about twice as
-   !> fast (estimated / measured 1.50-2.73 over the cost section's scenes,
-   !> where the AMD host's last run read 0.73-1.65). The estimate is scaled
-   !> to the middle of the two (0.71: both hosts then within a factor 2,
-   !> 1.07-1.94 and 0.52-1.17); a host more than about 1.4 times faster or
-   !> slower than both reads outside it. The seconds are a host's, the
-   !> element-steps and bytes are not.
-   real(wp), parameter :: hosts_scale = 0.71_wp
+   real(wp), parameter :: sec_reynolds_step = hosts_scale * 5.5e-7_wp, &
+      & sec_reynolds_position = 0.0_wp
+   real(wp), parameter :: sec_run = hosts_scale * 1.0e-3_wp, &
+      & sec_point_pass = hosts_scale * 4.5e-7_wp
    !> mu's estimated error from the time step, as a share of mu, above
    !> which a run at tolerance = 0 warns (&numerics error_estimate); an
    !> estimate below `estimate_floor` never warns (mu itself near 0).
@@ -1409,7 +1415,7 @@ contains
       class(film_model), allocatable :: film
       integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
       integer, allocatable :: spinups(:), exact_bad(:)
-      logical, allocatable :: shorts(:)
+      logical, allocatable :: shorts(:), negative(:)
       logical :: friction_film, reporting_film
       character(len=:), allocatable :: effect, others
 
@@ -1594,10 +1600,9 @@ contains
       ! is a pad that has not reached a state that repeats round the profile
       ! (a very soft or very slow rubber creeping through the run), whose
       ! drift the energy balance counts. Finite, but not a friction: say so.
-      if (any(res%mu_hysteresis < -max(negative_hysteresis, negative_share * abs(res%mu)))) &
-         & then
-         j = findloc(res%mu_hysteresis < -max(negative_hysteresis, negative_share * &
-            & abs(res%mu)), .true., dim=1)
+      negative = res%mu_hysteresis < -max(negative_hysteresis, negative_share * abs(res%mu))
+      if (any(negative)) then
+         j = findloc(negative, .true., dim=1)
          call others_negative(j, others)
          call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
             & " < 0 at " // to_str(speeds_kmh(j)) // " km/h: the rubber cannot dissipate " // &
@@ -1621,16 +1626,15 @@ contains
       call check_results(res, error)
    contains
       !> The other speeds after the j-th whose mu_hysteresis is negative
-      !> beyond the warning's bound, named ("" if none). (A subroutine: see
-      !> short_profile_message.)
+      !> beyond the warning's bound (`negative`), named ("" if none). (A
+      !> subroutine: see short_profile_message.)
       subroutine others_negative(j, text)
          integer, intent(in) :: j
          character(len=:), allocatable, intent(out) :: text
          integer :: k
          text = ""
-         do k = j + 1, size(res%mu_hysteresis)
-            if (.not. res%mu_hysteresis(k) < -max(negative_hysteresis, &
-               & negative_share * abs(res%mu(k)))) cycle
+         do k = j + 1, size(negative)
+            if (.not. negative(k)) cycle
             if (len(text) == 0) then
                text = "; also at "
             else
@@ -1752,7 +1756,6 @@ contains
          & (sec_point_pass * real(np, wp) * fine + per_step * real(c%total_element_steps, wp))
       if (n_el > 0.0_wp) c%seconds = c%seconds + step_passes(m, n_state) * per_position * &
          & real(c%element_steps, wp) / n_el
-      c%seconds = hosts_scale * c%seconds
    end function estimate_cost
 
    !> The cost of a run's element-steps in backward-Euler passes at its
