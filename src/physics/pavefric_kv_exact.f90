@@ -27,6 +27,7 @@
 !> linearly between nodes, integrated exactly.
 module pavefric_kv_exact
    use pavefric_kinds, only: wp, i8
+   use pavefric_balance, only: dry_root
    implicit none
    private
 
@@ -58,13 +59,17 @@ contains
    !> it out (closed profiles extended by the pad's length); element i at
    !> position t stands on index k1(t) + (i - 1) spacing.
    subroutine kv_exact_lane(z, h, adhesion, clamped_at, n, spacing, npf, closed, n_avg, &
-         & n_spin, k, tau, dt, advance, load, res, mu_inst, penetration, contact_count)
+         & n_spin, k, tau, dt, advance, load, k_land, res, mu_inst, penetration, contact_count)
       real(wp), intent(in) :: z(:), h(:), adhesion(:), clamped_at(:)
       integer, intent(in) :: n, spacing, npf, n_avg, n_spin
       logical, intent(in) :: closed
       !> Element spring l dx K (N m-1), retardation time C / K (s), time
       !> step advance / V (s), step (m) and load (N).
       real(wp), intent(in) :: k, tau, dt, advance, load
+      !> The landing's element spring (N m-1): l dx (K + C / dt_land), the
+      !> backward-Euler step over the time the road takes to move one element
+      !> length, as the driver's landing (docs/model.md, "The landing").
+      real(wp), intent(in) :: k_land
       type(kv_exact_type), intent(out) :: res
       real(wp), intent(out), optional :: mu_inst(:), penetration(:)
       integer, intent(out), optional :: contact_count(:)
@@ -85,19 +90,29 @@ contains
       tolf = 1.0e-12_wp * load
       wk = load / k
 
-      ! the first position: relaxed elements, and the pad landing on the
-      ! highest of them (its dashpots take the load from there, as backward
-      ! Euler's first step does in the limit of small steps)
+      ! the first position: the pad lands on relaxed elements in one
+      ! backward-Euler step of the time the road takes to move one element
+      ! length (the driver's landing, the same whatever the substeps): its
+      ! balance with the landing's spring, the elements it presses then
+      ! compressed to the road
       kp = node(-n_spin)
       do i = 1, n
          zc(i) = z(kp + (i - 1) * spacing)
       end do
-      u = 0.0_wp
       f = 0.0_wp
-      touch = .false.
-      i_ev = minloc(h - zc, dim=1)
-      delta = h(i_ev) - zc(i_ev)
-      touch(i_ev) = .true.
+      do i = 1, n
+         a0(i) = h(i) - zc(i)
+      end do
+      theta = minval(a0)
+      do i = 1, n
+         a1(i) = a0(i) - theta
+      end do
+      call dry_root(a1, load / k_land, 0.0_wp, delta, sl)
+      do i = 1, n
+         u(i) = max(0.0_wp, delta - a1(i))
+      end do
+      touch = u > 0.0_wp
+      delta = theta + delta
 
       hyst_sum = 0.0_wp
       adh_sum = 0.0_wp

@@ -2110,6 +2110,18 @@ contains
       real(wp), intent(inout), optional :: film_pressure_max(:,:), water_thickness(:,:)
 
       type(rubber_step_type) :: rstep
+      !> The landing: a lane's first step, from relaxed elements, takes the
+      !> time the road needs to move one element length whatever the
+      !> substeps (and position_stride), so that every pass starts from the
+      !> same state (docs/model.md, "The landing"); its coefficients, its
+      !> stiffness kel_land and load s_land, and the run's (kel_run, s_run)
+      !> to come back to. `land_differs`: the landing's step is not the
+      !> run's (substeps or position_stride > 1, a rubber with memory).
+      type(rubber_step_type) :: rstep_land
+      real(wp), dimension(lanes) :: kel_land, s_land, kel_run, s_run
+      logical :: land_differs
+      logical, dimension(lanes) :: landing
+      real(wp), allocatable :: state_land(:,:,:)
       type(film_step_type), allocatable :: fstep(:)
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
       real(wp), allocatable :: work(:), dl(:), gap(:), fstate(:,:,:), pressure(:), share(:)
@@ -2207,6 +2219,14 @@ contains
       lead_prev = -huge(1)
       do t = -maxval(spin(1:nl)), geo%n_avg - 1
          call restart_lanes(t)
+         if (land_differs .and. t <= 1) then
+            ! a lane's landing step takes the landing's stiffness (and the
+            ! step after the last landing, the run's again)
+            landing(1:nl) = t == -spin(1:nl)
+            landing(nl+1:) = .false.
+            kel = merge(kel_land, kel_run, landing)
+            s_load = merge(s_land, s_run, landing)
+         end if
          if (geo%closed) then
             k1 = modulo(t * geo%stride + 1, geo%npf) + 1
          else
@@ -2310,7 +2330,21 @@ contains
 
             call friction_films(t, k1)
             if (energy) call energy_step(.false.)
-            if (any_memory) call rubber%update(rstep, state, u_free, push)
+            if (any_memory) then
+               if (land_differs .and. t <= 0) then
+                  if (any(landing(1:nl))) then
+                     ! the landing lanes' state from the landing's step
+                     state_land = state
+                     call rubber%update(rstep_land, state_land, u_free, push)
+                  end if
+               end if
+               call rubber%update(rstep, state, u_free, push)
+               if (land_differs .and. t <= 0) then
+                  do j = 1, nl
+                     if (landing(j)) state(j, :, :) = state_land(j, :, :)
+                  end do
+               end if
+            end if
          end if
          delta_prev2 = merge(delta_prev, -huge(1.0_wp), delta_prev > -huge(1.0_wp))
          wh_prev = wh
@@ -2346,6 +2380,23 @@ contains
          kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
          kel(nl+1:) = kel(nl)
          s_load = m%load / kel
+         kel_run = kel
+         s_run = s_load
+         landing = .false.
+         ! the landing's step: one element length of travel (the run's step
+         ! at substeps = 1 and position_stride = 1, where nothing changes)
+         land_differs = any(rstep%memory) .and. geo%advance /= geo%dx_el
+         if (land_differs) then
+            call rubber%prepare(v(1:nl), geo%dx_el, n, rstep_land, stat)
+            if (stat /= 0) then
+               out%failed = 1
+               done = .true.
+               return
+            end if
+            kel_land(1:nl) = m%width * geo%dx_el * rstep_land%k_eff
+            kel_land(nl+1:) = kel_land(nl)
+            s_land = m%load / kel_land
+         end if
          any_memory = any(rstep%memory)
          ! Simulate only the effects the scene calls for: a film needs water and
          ! motion (Sect. 3); the rubber's memory needs viscosity and motion.
@@ -3175,12 +3226,15 @@ contains
       real(wp), intent(out), optional :: film_thickness(:,:), local_friction(:,:)
       type(kv_exact_type) :: r
       type(rubber_step_type) :: decay
-      real(wp) :: k, tau, dt
+      real(wp) :: k, tau, dt, k_land
       integer :: spin
       logical :: short
       k = m%width * geo%dx_el * rubber%stiffness
       tau = rubber%viscosity / rubber%stiffness
       dt = geo%advance / v
+      ! the landing: backward Euler over one element length of travel, as
+      ! slide's (kv_prepare's K + C V / advance at advance = dx_el)
+      k_land = m%width * geo%dx_el * (rubber%stiffness + rubber%viscosity * v / geo%dx_el)
       ! a closed profile spins up until the relaxed start no longer shows
       ! (the memory decays by exp(-dt / tau) a step)
       spin = geo%n_spin
@@ -3193,7 +3247,7 @@ contains
       end if
       if (present(mu_inst)) then
          call kv_exact_lane(geo%z, geo%h, geo%adhesion, geo%clamped_at, geo%n_el, geo%spacing, &
-            & geo%npf, geo%closed, geo%n_avg, spin, k, tau, dt, geo%advance, m%load, r, &
+            & geo%npf, geo%closed, geo%n_avg, spin, k, tau, dt, geo%advance, m%load, k_land, r, &
             & mu_inst(:, 1), penetration(:, 1), contact(:, 1))
          hydro_load(:, 1) = 0.0_wp
          if (present(film_thickness)) then
@@ -3202,7 +3256,7 @@ contains
          end if
       else
          call kv_exact_lane(geo%z, geo%h, geo%adhesion, geo%clamped_at, geo%n_el, geo%spacing, &
-            & geo%npf, geo%closed, geo%n_avg, spin, k, tau, dt, geo%advance, m%load, r)
+            & geo%npf, geo%closed, geo%n_avg, spin, k, tau, dt, geo%advance, m%load, k_land, r)
       end if
       if (r%status == 2) then
          out%failed = 1
