@@ -73,12 +73,19 @@ module pavefric_reynolds
    !> the derivatives of c and k with respect to the penetration, the
    !> derivative's right side, the nodes' pressure and fill, the solver's
    !> right side and three diagonals (its factors after a solve), the
-   !> factors' second super-diagonal and their row swaps.
+   !> factors' second super-diagonal and their row swaps, and the gap field
+   !> of the last load (load_in_work); then three values: whether that
+   !> load's solution is kept (0 no, 1 settled, 2 not settled) and its
+   !> inlet's tc0 and p0, so that the report at the balance's root, which
+   !> is where the balance evaluated the load last, reads it instead of
+   !> solving the film once more.
    integer, parameter :: w_ht = 1, w_c = 2, w_k = 3, w_run = 4, w_dc = 5, w_dk = 6, &
       & w_rhs = 7, w_p = 8, w_theta = 9, w_y = 10, w_dl = 11, w_dd = 12, w_du = 13, &
-      & w_du2 = 14, w_swap = 15
+      & w_du2 = 14, w_swap = 15, w_gap = 16
    !> Arrays of n values in a lane's workspace, the set's included.
-   integer, parameter :: n_work_arrays = 16
+   integer, parameter :: n_work_arrays = 17
+   !> Values after the arrays: the kept solution's flag, tc0 and p0.
+   integer, parameter :: n_work_values = 3
 
    !> The Reynolds film.
    type, extends(film_model) :: reynolds_film
@@ -191,12 +198,23 @@ contains
 
    !> Per lane: the warm-start flag (1: the set below is the last solve's,
    !> settled), the set of full nodes (1 full, 0 partial), and the scratch
-   !> arrays w_ht .. w_gap2.
+   !> arrays w_ht .. w_gap, then the kept solution's values.
    pure integer function reynolds_work_size(self, n)
       class(reynolds_film), intent(in) :: self
       integer, intent(in) :: n
-      reynolds_work_size = 1 + n_work_arrays * max(n, 1)
+      reynolds_work_size = work_size(n)
    end function reynolds_work_size
+
+   pure integer function work_size(n)
+      integer, intent(in) :: n
+      work_size = 1 + n_work_arrays * max(n, 1) + n_work_values
+   end function work_size
+
+   !> Where the kept solution's values start in a lane's workspace.
+   pure integer function kept(n)
+      integer, intent(in) :: n
+      kept = 2 + n_work_arrays * max(n, 1)
+   end function kept
 
    !> The film's load (N) on the gap field, and its derivative with respect
    !> to the penetration by a difference at the same full and partial nodes
@@ -206,7 +224,7 @@ contains
       type(film_step_type), intent(in) :: step
       real(wp), intent(in) :: gap(:)
       real(wp), intent(out) :: wh, dwh_dx
-      real(wp) :: work(1 + n_work_arrays * max(size(gap), 1))
+      real(wp) :: work(work_size(size(gap)))
       wh = 0.0_wp
       dwh_dx = 0.0_wp
       if (.not. step%active .or. size(gap) == 0) return
@@ -253,6 +271,12 @@ contains
       logical :: converged
       n = size(gap)
       call solve_in_work(self, speed, gap, w, wh, converged, tc0, p0, dtc0, dp0, info)
+      ! kept for the report (the derivative below leaves p and theta as the
+      ! solve made them)
+      w(at(w_gap, n) : at(w_gap, n) + n - 1) = gap
+      w(kept(n)) = merge(merge(1.0_wp, 2.0_wp, converged), 0.0_wp, info == 0)
+      w(kept(n) + 1) = tc0
+      w(kept(n) + 2) = p0
       dwh_dx = 0.0_wp
       if (n < 2) then
          dwh_dx = max(0.0_wp, self%width * self%length * 0.5_wp * dp0)
@@ -363,7 +387,16 @@ contains
       pressure_max = 0.0_wp
       n = size(gap)
       if (.not. step%active .or. n == 0) return
-      call solve_in_work(self, step%coef(1), gap, work, load, settled, tc0, p0)
+      if (work(kept(n)) > 0.0_wp .and. &
+         & all(work(at(w_gap, n) : at(w_gap, n) + n - 1) == gap)) then
+         ! the balance's last load was on this gap field: its solution
+         ! (the same numbers a solve from its settled set gives)
+         settled = work(kept(n)) == 1.0_wp
+         tc0 = work(kept(n) + 1)
+         p0 = work(kept(n) + 2)
+      else
+         call solve_in_work(self, step%coef(1), gap, work, load, settled, tc0, p0)
+      end if
       associate (h_t => work(at(w_ht, n) : at(w_ht, n) + n - 1), &
          & c => work(at(w_c, n) : at(w_c, n) + n - 1), &
          & p => work(at(w_p, n) : at(w_p, n) + n - 1), &
