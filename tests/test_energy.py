@@ -213,6 +213,17 @@ def test_element_length_resamples_a_closed_profile_whole(profile_m):
     same = run(profile_m, [20.0], element_length=DX)
     own = run(profile_m, [20.0], element_length=0.0)
     assert same["mu"].values[0] == own["mu"].values[0]
+    # nor where the whole number of elements round the loop is its points
+    # (an attack, 2026-12-06: element_length = dx (1 + 1e-7) ran four phases
+    # of an interpolated grid at the profile's own spacing, mu 0.8 % lower);
+    # one element fewer round the loop is resampled
+    n = profile_m.size
+    for near in (DX * (1 + 1e-7), DX * (1 - 1e-7), DX * n / (n + 0.49), DX * n / (n - 0.49)):
+        ds = run(profile_m, [20.0], element_length=near)
+        assert ds["mu"].values[0] == own["mu"].values[0], near
+        assert ds.attrs["averaged_positions"] == n
+    fewer = run(profile_m, [20.0], element_length=DX * n / (n - 1))
+    assert fewer.attrs["averaged_positions"] == 4 * (n - 1)
 
 
 def test_element_length_resampling_is_shift_invariant_and_averages(profile_m):

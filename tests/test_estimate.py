@@ -283,3 +283,44 @@ def test_a_memory_limit_is_honoured_with_a_clear_refusal(tmp_path, profile_m):
                        preexec_fn=_limited(1000), timeout=600)
     assert r.returncode == 0 and "MemoryError: the run needs about" in r.stdout, \
         (r.returncode, r.stdout[-300:], r.stderr[-500:])
+
+
+def test_a_tolerance_run_is_announced_by_its_refinements_guess():
+    """From an attack (2026-12-06): a CAPTIF profile at tolerance = 1e-12 ran
+    114 s with no warning: the estimate (0.029 s) was its first pass, and the
+    refinement doubles the step up to substeps 4096. The estimate now adds a
+    guess of the substeps the tolerance needs (tolerance_guess: the
+    Richardson value's error about 0.25 / s**2, backward Euler's 0.03 / s,
+    the exact integrator's met in two halvings; at least two halvings, at
+    most 4096) and of all the passes to there, each twice the one before;
+    the announcement (the program's from 1 s, Python's from
+    ANNOUNCE_SECONDS) weighs that guess where it is more. What the output
+    records as estimated_seconds stays the first pass's."""
+    from pavefric import _core
+    from pavefric.core import _format, _spec, _typed
+    from pavefric.surfaces import spectral_profile
+
+    z = spectral_profile(2048, DX, rms=0.5e-3, seed=7)
+
+    def estimate(**numerics):
+        settings = {("surface", "dx"): _format(_spec("surface", "dx"), DX, "dx"),
+                    ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"),
+                                                         [20.0, 80.0], "speeds_kmh")}
+        for name, value in numerics.items():
+            settings["numerics", name] = _format(_spec("numerics", name), value, name)
+        out, text, status, message = _core.pf_estimate(z, *_typed(settings))
+        assert status == 0, message
+        return float(out[2]), pavefric.core._text(text)
+
+    tight, said = estimate(tolerance=1e-12)
+    assert "tolerance = 1e-12 may need substeps 4096" in said, said
+    loose, said = estimate(tolerance=1e-3)
+    assert "may need substeps 16," in said, said        # sqrt(0.25 / 1e-3) = 15.8
+    # the same first pass, guessed to 4096 (8191 passes' worth) and to 16 (31)
+    assert tight / loose == pytest.approx(8191 / 31, rel=1e-12)
+    euler, said = estimate(tolerance=1e-3, time_scheme="euler")
+    assert "may need substeps 32," in said and euler / loose == pytest.approx(63 / 31, rel=1e-12)
+    _, said = estimate(tolerance=1e-3, time_scheme="exact")     # (its own rate a pass)
+    assert "may need substeps 4," in said
+    _, said = estimate()
+    assert "may need" not in said

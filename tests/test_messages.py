@@ -5,6 +5,7 @@ the group and variable (or the file and line, or the option) and gives the
 remedy."""
 import math
 import subprocess
+import warnings
 import sys
 
 import numpy as np
@@ -110,8 +111,8 @@ def test_max_profiles_not_a_count(base):
              "&preprocess dropouts = 'interpolate'"]),
     ("0,5", ["p/x.txt:11: 2 columns where earlier lines have 1",
              "a height, or a distance and a height (a decimal comma? write 0.5)"]),
-    ("2e9", ["height 11 = 2e6 m", "are the heights in the unit declared (&surface "
-                                      "height_unit"]),
+    ("2e9", ["p/x.txt:11: height 2e6 m", "are the heights in the unit declared (&surface "
+                                            "height_unit"]),
 ])
 def test_profile_lines(tmp_path, bad, needles):
     line = one_error(tmp_path, with_profile(tmp_path, HEIGHTS[:10] + [bad] + HEIGHTS[10:]))
@@ -332,3 +333,83 @@ def test_calibration_with_more_parameters_than_data(tmp_path):
     assert r.returncode != 0 and "Traceback" not in r.stderr
     assert "--fit gives 3 parameters (alpha, beta, viscosity) but the data hold 2 " \
            "measurement(s): fit at most 2, or add measurements" in r.stderr
+
+
+# From an attack on 2026-12-06 (its reproducers, each a test)
+
+def test_a_pad_shorter_than_half_its_element_length_is_named(tmp_path):
+    """&pad element_length more than twice &pad length gave a pad of 0
+    elements and the short-profile message ("fewer than the pad's 0
+    elements ... give a profile of at least 0 points"). Now the message
+    names the pad's length and what set the element's."""
+    profile_file(tmp_path, "ok.txt", HEIGHTS)
+    line = one_error(tmp_path, scene_text(
+        tmp_path, BASE + "&pad length = 0.02, element_length = 0.041 /\n"))
+    assert "&pad length = 0.02 m is less than half an element" in line, line
+    assert "&pad element_length = 0.041 m" in line and "no element" in line, line
+    assert "0 points" not in line and "0 elements" not in line, line
+    # no resampling: the profile's own spacing made the element
+    line = one_error(tmp_path, scene_text(
+        tmp_path, "&surface profile_file = 'p/ok.txt', dx = 0.05 /\n&operation speeds_kmh = 10 /\n"
+        "&pad length = 0.02, element_length = 0 /\n", name="t.nml"))
+    assert "&pad length = 0.02 m is less than half an element" in line, line
+    assert "the profile's spacing dx = 0.05 m" in line, line
+
+
+def test_an_element_longer_than_the_pad_warns(profile_m):
+    """element_length between &pad length and twice it made a pad of one
+    element longer than the pad given, with no word of it."""
+    with pytest.warns(pavefric.PavefricWarning, match="element_length = 0.03 m is longer than "
+                      "&pad length = 0.02 m: the pad is one element"):
+        ds = pavefric.simulate(profile_m, 0.87e-3, [20.0], element_length=0.03,
+                               error_estimate=False)
+    assert int(ds.attrs["pad_elements"]) == 1
+
+
+def test_a_needlessly_fine_element_length_warns_and_its_memory_refusal_names_it(tmp_path):
+    """element_length = 1e-9 m (inside its range, no warning) was refused
+    for memory with a message naming elements_per_sample, substeps and
+    series (all at their defaults); 1e-6 m ran a 1448 s estimate with no
+    warning. Below 1e-5 m (finer than profilometers sample) it warns, and
+    the refusal names &pad element_length."""
+    profile_file(tmp_path, "ok.txt", [f"{math.sin(i) * 0.5:.3f}" for i in range(1024)])
+    # (ten speeds with series: beyond any machine's memory)
+    line = one_error(tmp_path, scene_text(
+        tmp_path, "&surface profile_file = 'p/ok.txt' /\n&operation speeds_kmh = 10, 20, 30, "
+        "40, 50, 60, 70, 80, 90, 100 /\n&output series = .true. /\n"
+        "&pad element_length = 1e-9 /\n"))
+    assert "a longer &pad element_length (now 1e-9 m)" in line, line
+    assert "&output series = .false." in line, line
+    assert "elements_per_sample" not in line and "substeps" not in line, line
+    z = np.sin(np.arange(32) * 0.7) * 0.5e-3
+    with pytest.warns(pavefric.PavefricWarning, match=r"element_length = 5e-6 m: finer than "
+                      r"0.00001 m.*the pad has 4000 elements"):
+        pavefric.simulate(z, 0.87e-3, [20.0], element_length=5e-6, error_estimate=False,
+                          min_contacts=0)
+
+
+def test_a_height_beyond_any_road_names_its_file_and_line(tmp_path):
+    """A height of 1e300 mm was refused as "profile height 499 = 1e297 m"
+    (an index, not the line, and no file); every other error in a profile's
+    contents names file:line."""
+    line = one_error(tmp_path, with_profile(tmp_path, ["height_mm"] + HEIGHTS[:98] + ["1e300"]
+                                            + HEIGHTS[:10]))
+    assert "x.txt:100: height 1e297 m: beyond +-1e6 m, not a texture" in line, line
+    # read_profile shows what the file holds: the run refuses it
+    p = pavefric.read_profile(tmp_path / "p" / "x.txt", trim_plates=False)
+    assert p.raw_heights[98] == 1e297
+
+
+def test_a_stride_that_does_not_close_the_lap_is_named():
+    """A closed profile's positions at a position_stride that does not
+    divide its points do not close the lap: with mu_loc = 0 mu came out
+    negative (-4.8e-5) with only the generic negative-hysteresis warning."""
+    z = np.random.default_rng(5).normal(0, 3e-4, 512)
+    with pytest.warns(pavefric.PavefricWarning, match=r"position_stride = 7 does not divide "
+                      r"the 512 points.*74 positions do not close the lap \(they run 6 points"):
+        ds = pavefric.simulate(z, 0.87e-3, [0.01], closed=True, mu_loc=0.0, position_stride=7)
+    assert ds["mu"].values[0] < 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ds = pavefric.simulate(z, 0.87e-3, [0.01], closed=True, mu_loc=0.0, position_stride=8)
+    assert ds["mu"].values[0] >= 0

@@ -1,6 +1,8 @@
 """Accuracy on demand (&numerics tolerance, issue 13): the time step is refined
 until the estimated error meets the tolerance, and on the reference surfaces
 the reported error bounds the actual error (against a much finer step)."""
+import warnings
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -112,3 +114,26 @@ def test_an_unreachable_tolerance_warns(profile_m):
         ds = pavefric.simulate(profile_m[:300], 0.87e-3, [40.0], viscosity=3e3, tolerance=1e-12,
                                closed=False)
     assert ds["substeps_used"].values[0] == 4096
+
+
+@pytest.mark.parametrize("element_length", [0.0, 0.8e-3])
+def test_the_unreachable_tolerance_names_each_speed_with_its_error(profile_m, element_length):
+    """From an attack (2026-12-06): the warning paired the largest error of
+    the speeds not met with the first of them ("4.2e-7 at 20 km/h" where 20
+    km/h's was 1.2e-7 and 80 km/h's 4.2e-7), and a pad resampled to
+    &pad element_length gave one such warning per phase of its grid, each
+    naming the same first speed. Now one warning, every speed with its own
+    error (mu_error_estimate's, 3 significant digits)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = pavefric.simulate(profile_m[:120], 0.87e-3, [20.0, 80.0], tolerance=1e-12,
+                               time_scheme="euler", closed=False, element_length=element_length)
+    texts = [str(w.message) for w in caught if "tolerance = 1e-12: not met" in str(w.message)]
+    assert len(texts) == 1, texts
+    errors = ds["mu_error_estimate"].values
+    assert errors[0] != errors[1]
+    expect = ", ".join(f"{float(f'{e:.3g}')!r} at {s:g} km/h".replace("e-0", "e-")
+                       for e, s in zip(errors, (20, 80)))
+    assert texts[0].endswith("estimated error " + expect), (texts[0], expect)
+    assert "substeps = 4096" in texts[0]
+    assert " ".join(ds.attrs["warnings"].split()).count("tolerance = 1e-12: not met") == 1

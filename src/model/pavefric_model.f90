@@ -53,6 +53,9 @@ module pavefric_model
    !> The smallest &numerics tolerance (> 0) a run can meet in double
    !> precision: about 45 x machine epsilon, as mu's rounding is ~1e-15.
    real(wp), parameter :: tolerance_floor = 1.0e-14_wp
+   !> &pad element_length below this (and above 0) warns: finer than any
+   !> road profilometer samples (m).
+   real(wp), parameter :: element_length_finest = 1.0e-5_wp
    !> The largest &numerics substeps, also where accuracy on demand stops halving.
    integer, parameter, public :: max_substeps = 4096
    !> The largest &numerics elements_per_sample.
@@ -1575,6 +1578,28 @@ contains
             & to_str(set%v(p_microtexture_rms)%r) // " is not used with &water wet_model = '" // &
             & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' and 'reynolds' use the " // &
             & "microtexture)")
+      end if
+      ! 0 is the profile's own spacing (the plausible range starts there);
+      ! a positive length finer than any profilometer samples makes a pad of
+      ! tens of thousands of elements per centimetre
+      if (set%v(p_element_length)%r > 0.0_wp .and. &
+            & set%v(p_element_length)%r < element_length_finest) then
+         call add_warning(warnings, "&pad element_length = " // &
+            & to_str(set%v(p_element_length)%r) // " m: finer than " // &
+            & to_str(element_length_finest) // " m, the finest spacing a road profilometer " // &
+            & "samples (laser profilometers: 0.01 to 1 mm), so the pad has " // &
+            & to_str(nint(min(set%v(p_length)%r / set%v(p_element_length)%r, 2.0e9_wp))) // &
+            & " elements; its run's cost grows with their square (0 = the profile's own " // &
+            & "spacing)")
+      end if
+      ! longer than the pad: one element (or none: refused by the run), a
+      ! pad longer than &pad length
+      if (set%v(p_element_length)%r > set%v(p_length)%r .and. &
+            & set%v(p_element_length)%r <= 2.0_wp * set%v(p_length)%r) then
+         call add_warning(warnings, "&pad element_length = " // &
+            & to_str(set%v(p_element_length)%r) // " m is longer than &pad length = " // &
+            & to_str(set%v(p_length)%r) // " m: the pad is one element of that length, " // &
+            & "longer than the pad given")
       end if
    end subroutine plausibility_warnings
 

@@ -9,6 +9,11 @@ module pavefric_heights
    private
 
    public :: check_heights, refine_profile, resample_to_length, resampled_points
+   public :: max_profile_height
+
+   !> Heights beyond +- this (m) are no road texture: refused (the file's
+   !> reader names the line, the run the index).
+   real(wp), parameter :: max_profile_height = 1.0e6_wp
 
 contains
 

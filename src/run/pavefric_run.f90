@@ -9,7 +9,7 @@ module pavefric_run
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
       & element_grid, add_spinup_cost, add_refinement_cost, &
-      & cost_estimate_type, check_memory
+      & cost_estimate_type, check_memory, tolerance_guess
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
    use pavefric_outputs, only: output_metadata_type
@@ -18,6 +18,7 @@ module pavefric_run
       & check_output_path, release_temporary, setting
    use pavefric_texture, only: texture_metrics
    use pavefric_ifi, only: ifi_from_sweep
+   use pavefric_heights, only: max_profile_height
    use pavefric_model, only: parameter_table, parameters_namelist_text
    use pavefric_error, only: add_warning, add_warnings
    implicit none
@@ -77,6 +78,8 @@ contains
       ! that refine it (the same numbers simulate records)
       call add_refinement_cost(scene%model, clean%z, clean%dx, scene%closed, &
          & scene%speeds_kmh, c)
+      ! with a tolerance, its refinement's passes (a guess)
+      call tolerance_guess(scene%model, c)
    end function scene_estimate
 
    !> scene_estimate, refused (error) when the run would not fit in the
@@ -89,7 +92,7 @@ contains
       character(len=:), allocatable, intent(out) :: line
       type(error_type), allocatable, intent(out) :: error
       cost = scene_estimate(scene, clean)
-      call check_memory(cost, error)
+      call check_memory(cost, scene%model, scene%series, error)
       if (allocated(error)) return
       call estimate_text(cost, scene%model%tolerance, line)
    end subroutine checked_estimate
@@ -118,8 +121,16 @@ contains
             & listed // " km/h, where a probe found it on fewer " // &
             & "than 4 elements in contact (&numerics min_contacts, error_estimate)"
       end if
-      if (tolerance > 0.0_wp) text = text // " for the first pass (&numerics tolerance: " // &
-         & "each refinement doubles it)"
+      if (tolerance > 0.0_wp) then
+         text = text // " for the first pass (&numerics tolerance: each refinement doubles it)"
+         if (c%tolerance_substeps > 0) then
+            write(sec, '(f0.1)') c%tolerance_seconds
+            if (sec(1:1) == ".") sec = "0" // sec
+            text = text // "; tolerance = " // to_str(tolerance) // " may need substeps " // &
+               & to_str(c%tolerance_substeps) // ", about " // trim(sec) // " s in all (a " // &
+               & "guess from how the default scenes converge)"
+         end if
+      end if
    end subroutine estimate_text
 
    !> Speeds as "20, 50 and 80" (a subroutine: no deferred-length function
@@ -160,6 +171,13 @@ contains
             & scene%x_column, scene%z_column, raw, error, profile_name=scene%profile_name)
          if (allocated(error)) return
       end if
+      ! A height no road has, for a run (read_profile, raw_out, shows what
+      ! the file holds): named by its line where the file has lines (the
+      ! run's own check, after preprocessing, can name an index only)
+      if (.not. present(raw_out)) then
+         call check_raw_range(raw, scene%profile_file, error)
+         if (allocated(error)) return
+      end if
       ! The spacing: &surface dx, else the file's stated spacing (NetCDF dx),
       ! else a CTM's; distances in the file then set it (preprocessing).
       dx = ctm_dx
@@ -184,6 +202,30 @@ contains
       call preprocess(raw, dx, scene%preprocess, clean, error)
       if (present(raw_out)) call move_alloc_raw(raw, raw_out)
    contains
+      subroutine check_raw_range(r, path, err)
+         type(raw_profile_type), intent(in) :: r
+         character(len=*), intent(in) :: path
+         type(error_type), allocatable, intent(out) :: err
+         integer :: k
+         character(len=:), allocatable :: where
+         if (.not. allocated(r%z)) return
+         do k = 1, size(r%z)
+            if (allocated(r%valid)) then
+               if (.not. r%valid(k)) cycle
+            end if
+            if (.not. (abs(r%z(k)) > max_profile_height)) cycle
+            where = "&surface profile_file = '" // path // "': height " // to_str(k)
+            if (allocated(r%line)) then
+               if (size(r%line) == size(r%z)) where = path // ":" // to_str(r%line(k)) // &
+                  & ": height"
+            end if
+            call fatal_error(err, where // " " // to_str(r%z(k)) // " m: beyond +-" // &
+               & to_str(max_profile_height) // " m, not a texture; are the heights in the " // &
+               & "unit declared (&surface height_unit, or the file's header)?")
+            return
+         end do
+      end subroutine check_raw_range
+
       subroutine move_alloc_raw(a, b)
          type(raw_profile_type), intent(inout) :: a
          type(raw_profile_type), intent(out) :: b
@@ -294,7 +336,7 @@ contains
          ! a refusal is the one line, not after the estimate
          call checked_estimate(scene, clean, cost, line, error)
          if (allocated(error)) return
-         if (cost%seconds >= announce_seconds) call announce(line)
+         if (max(cost%seconds, cost%tolerance_seconds) >= announce_seconds) call announce(line)
          refine = cost%refine_seconds
       end if
       call run_profile(scene, clean, res, meta, error, refine)

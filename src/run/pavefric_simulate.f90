@@ -12,7 +12,8 @@ module pavefric_simulate
    use pavefric_model, only: model_type, validate_model, shape_code, max_substeps, &
       & max_elements_per_sample
    use pavefric_pad, only: pad_bottom
-   use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points
+   use pavefric_heights, only: refine_profile, check_heights, resample_to_length, resampled_points, &
+      & max_profile_height
    use pavefric_rubber, only: rubber_model, rubber_step_type, kelvin_voigt_rubber
    use pavefric_film, only: film_model, film_step_type
    use pavefric_results, only: cost_estimate_type, sim_result_type
@@ -27,11 +28,12 @@ module pavefric_simulate
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components, cost_estimate_type, estimate_cost, check_memory, element_grid
+   public :: tolerance_guess
    public :: add_spinup_cost, add_refinement_cost, richardson
 
    !> Largest height a profile may have (m): far beyond any texture, small
    !> enough that no difference of heights can overflow.
-   real(wp), parameter :: max_height = 1.0e6_wp
+   real(wp), parameter :: max_height = max_profile_height
 
    !> Phases of the pad's element grid on a resampled profile (&pad
    !> element_length): the grid starts at k / element_phases of an element,
@@ -184,6 +186,33 @@ module pavefric_simulate
 
 contains
 
+   !> Why the pad has no element: its length is under half the element's
+   !> (dx_el: the spacing the pad's elements get, `resampled` when that is
+   !> &pad element_length's grid), naming what set the element's length.
+   pure subroutine no_element_message(m, dx_el, resampled, text)
+      type(model_type), intent(in) :: m
+      real(wp), intent(in) :: dx_el
+      logical, intent(in) :: resampled
+      character(len=:), allocatable, intent(out) :: text
+      character(len=:), allocatable :: made
+      if (resampled) then
+         made = "&pad element_length = " // to_str(m%element_length) // " m"
+      else
+         made = "the profile's spacing dx = " // to_str(dx_el) // " m"
+      end if
+      if (m%elements_per_sample > 1) made = made // " / &numerics elements_per_sample = " // &
+         & to_str(m%elements_per_sample)
+      text = "&pad length = " // to_str(m%length) // " m is less than half an element (" // &
+         & made // ": elements of " // to_str(round_sig(dx_el / m%elements_per_sample, 4)) // &
+         & " m), so the pad would have no element; give a pad at least one element long " // &
+         & "(&pad length >= " // to_str(round_sig(dx_el / m%elements_per_sample, 4)) // " m)"
+      if (resampled) then
+         text = text // " or a shorter &pad element_length"
+      else
+         text = text // " or a finer profile (or &numerics elements_per_sample)"
+      end if
+   end subroutine no_element_message
+
    !> Pad elements N = nint(L / (dx / elements_per_sample)).
    pure function pad_elements(m, dx) result(n)
       type(model_type), intent(in) :: m
@@ -317,7 +346,7 @@ contains
       dxe = dx
       if (present(phases)) phases = 1
       if (present(positions)) positions = averaged_positions(m, np, dx, closed)
-      if (.not. resamples(m, dx)) return
+      if (.not. resamples(m, dx, np, closed)) return
       total = 0
       do k = 0, element_phases - 1
          n = resampled_points(np, dx, closed, m%element_length, &
@@ -341,12 +370,25 @@ contains
       end if
    end subroutine element_grid
 
-   !> Whether the profile of spacing dx is resampled to &pad element_length.
-   pure logical function resamples(m, dx)
+   !> Whether the profile of np points at spacing dx is resampled to &pad
+   !> element_length: not where the pad's grid would be the profile's own
+   !> (an open profile's element_length equal to dx; a closed one's whole
+   !> number of elements round the loop equal to its points, the spacing
+   !> then dx exactly: an element_length within about dx / (2 np) of dx gave
+   !> the four phases of an interpolated grid, 0.8 % below the profile's
+   !> own at 1e-7 from dx, an attack found).
+   pure logical function resamples(m, dx, np, closed)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: dx
+      integer, intent(in) :: np
+      logical, intent(in) :: closed
       resamples = m%element_length > 0.0_wp .and. dx > 0.0_wp .and. dx <= huge(dx)
-      if (resamples) resamples = abs(dx - m%element_length) > 1.0e-9_wp * m%element_length
+      if (.not. resamples) return
+      if (closed) then
+         resamples = resampled_points(np, dx, closed, m%element_length, 0.0_wp) /= np
+      else
+         resamples = abs(dx - m%element_length) > 1.0e-9_wp * m%element_length
+      end if
    end function resamples
 
    !> Run the friction model on heights `z` (m) at spacing `dx` (m) for each
@@ -409,8 +451,15 @@ contains
       real(wp) :: dxe, phase
       integer :: stat, k, npe
       character(len=:), allocatable :: text
-      if (.not. resamples(mm, dx)) then
+      if (.not. resamples(mm, dx, size(z), closed)) then
+         if (pad_elements(mm, dx) < 1) then
+            call no_element_message(mm, dx, .false., text)
+            call fatal_error(err, text)
+            return
+         end if
          call simulate_spaced(mm, z, dx, speeds, series, out, err)
+         if (.not. allocated(err) .and. mm%tolerance > 0.0_wp) &
+            & call tolerance_unmet_warning(mm%tolerance, out)
          return
       end if
       ! the pad's own elements: the profile filtered and resampled to them
@@ -430,6 +479,11 @@ contains
       ! the first phase's grid too short for the pad: said of the resampled
       ! profile (the run's own check would name a spacing the user never gave)
       call element_grid(mm, size(z), dx, closed, npe, dxe)
+      if (pad_elements(me, dxe) < 1) then
+         call no_element_message(mm, dxe, .true., text)
+         call fatal_error(err, text)
+         return
+      end if
       if (averaged_positions(me, npe, dxe, closed) < positions_needed(closed) .and. &
             & pad_elements(me, dxe) < huge(1)) then
          call short_profile_message(me, npe, dxe, closed, mm%element_length, text)
@@ -470,6 +524,9 @@ contains
             end if
          end if
       end do
+      ! the speeds the tolerance was not met at, over the phases (their
+      ! largest error, as mu_error)
+      if (mm%tolerance > 0.0_wp) call tolerance_unmet_warning(mm%tolerance, out)
    contains
       subroutine simulate_spaced(mm, zz, dd, speeds, series, out, err)
          type(model_type), intent(in) :: mm
@@ -478,7 +535,9 @@ contains
          type(sim_result_type), intent(out) :: out
          type(error_type), allocatable, intent(out) :: err
          if (mm%tolerance > 0.0_wp) then
-            call simulate_to_tolerance(mm, zz, dd, closed, speeds, series, out, err)
+            ! (the phases' unmet speeds: one warning for them all, below)
+            call simulate_to_tolerance(mm, zz, dd, closed, speeds, series, out, err, &
+               & quiet=.true.)
          else
             call simulate_fixed(mm, zz, dd, closed, speeds, series, out, err)
          end if
@@ -661,8 +720,12 @@ contains
    !> (with `series` every speed is refined together, so that the series
    !> share positions). The pad's elements (elements_per_sample) are a model
    !> choice, not refined here.
-   subroutine simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error)
+   subroutine simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error, &
+         & quiet)
       type(model_type), intent(in) :: m
+      !> Present: no warning for the speeds the tolerance was not met at
+      !> (run_grids gives one for its phases together).
+      logical, intent(in), optional :: quiet
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
       logical, intent(in) :: closed, want_series
       type(sim_result_type), intent(out) :: res
@@ -753,12 +816,9 @@ contains
          if (want_series) call move_series(r, res)
          if (.not. any(active)) exit
       end do
-      if (any(active)) call add_warning(res%warnings, "&numerics tolerance = " // &
-         & to_str(m%tolerance) // ": not met at substeps = " // to_str(mm%substeps) // &
-         & " (the largest allowed); estimated error " // &
-         & to_str(maxval(res%mu_error, mask=active)) // " at " // &
-         & to_str(res%speed_kmh(findloc(active, .true., dim=1))) // " km/h")
+      if (.not. present(quiet)) call tolerance_unmet_warning(m%tolerance, res)
    contains
+
       !> Two successive changes of a first-order sequence in its asymptotic
       !> range: one sign, the earlier 1.5 to 3 times the later.
       pure logical function asymptotic(d1, d2)
@@ -768,6 +828,31 @@ contains
          asymptotic = abs(d1) >= 1.5_wp * abs(d2) .and. abs(d1) <= 3.0_wp * abs(d2)
       end function asymptotic
    end subroutine simulate_to_tolerance
+
+   !> The warning for the speeds whose estimated error is above the
+   !> tolerance after the last pass, each with its own error (3 significant
+   !> digits) and the substeps it reached: "... not met at substeps = 4096 (the
+   !> largest allowed); estimated error 1.17e-07 at 20 km/h, 4.22e-07 at 80 km/h".
+   subroutine tolerance_unmet_warning(tolerance, res)
+      real(wp), intent(in) :: tolerance
+      type(sim_result_type), intent(inout) :: res
+      character(len=:), allocatable :: text
+      integer :: k, reached
+      if (.not. allocated(res%mu_error)) return
+      text = ""
+      reached = 0
+      do k = 1, size(res%mu_error)
+         if (.not. (res%mu_error(k) > tolerance)) cycle
+         if (len(text) > 0) text = text // ", "
+         text = text // to_str(round_sig(res%mu_error(k), 3)) // " at " // &
+            & to_str(res%speed_kmh(k)) // " km/h"
+         reached = max(reached, res%substeps_used(k))
+      end do
+      if (len(text) == 0) return
+      call add_warning(res%warnings, "&numerics tolerance = " // to_str(tolerance) // &
+         & ": not met at substeps = " // to_str(reached) // " (the largest allowed); " // &
+         & "estimated error " // text)
+   end subroutine tolerance_unmet_warning
 
    !> &numerics min_contacts: where the pad stood on fewer than
    !> m%min_contacts elements in contact on average at a speed
@@ -1435,7 +1520,8 @@ contains
       res%estimate = estimate_cost(m, size(z), dx, closed, size(speeds_kmh), want_series, &
          & friction_film, rubber%state_size())
       call add_spinup_cost(m, size(z), dx, closed, speeds_kmh, res%estimate)
-      call check_memory(res%estimate, error)
+      call tolerance_guess(m, res%estimate)
+      call check_memory(res%estimate, m, want_series, error)
       if (allocated(error)) return
       call build_geometry(m, z, dx, closed, friction_film, geo, error)
       if (allocated(error)) return
@@ -1596,6 +1682,19 @@ contains
             & " positions at " // to_str(speeds_kmh(j)) // " km/h (film_unsettled): its " // &
             & "last iterate was used there, and mu may be off by its share of the load")
       end if
+      ! A closed profile's positions close the lap only when the stride
+      ! divides the grid's points: else the last step runs past the start
+      ! and the elements' stored energy is not returned over the positions
+      ! averaged (with mu_loc = 0, mu can turn negative)
+      if (geo%closed .and. modulo(geo%npf, geo%stride) /= 0) &
+         & call add_warning(res%warnings, "&numerics position_stride = " // &
+         & to_str(geo%stride) // " does not divide the " // to_str(geo%npf) // &
+         & " points of the closed profile's grid: its " // to_str(geo%n_avg) // &
+         & " positions do not close the lap (they run " // &
+         & to_str(geo%n_avg * geo%stride - geo%npf) // " points past its start), so the " // &
+         & "energy the elements store is not all returned over them and mu is off by " // &
+         & "it (with mu_loc = 0 it can be negative); give a stride that divides " // &
+         & to_str(geo%npf))
       ! The rubber's dissipation is never negative: a negative mu_hysteresis
       ! is a pad that has not reached a state that repeats round the profile
       ! (a very soft or very slow rubber creeping through the run), whose
@@ -1922,19 +2021,65 @@ contains
 
    !> Refuse a run, before allocating, whose estimated memory exceeds what
    !> the machine has (a clear error instead of the process being killed).
-   subroutine check_memory(c, error)
+   !> With &numerics tolerance, a guess of where its refinement stops, from
+   !> how the default scenes converge (docs/performance.md, "The default
+   !> scenes to tolerance"): backward Euler's error about err_euler / s at
+   !> s steps a sample, the Richardson value's about err_richardson / s**2
+   !> ('extrapolated', 'richardson', 'auto'), the exact integrator's met at
+   !> the first two halvings. The substeps guessed: the power of two times
+   !> the scene's substeps that meets the tolerance so, at least two
+   !> halvings, at most max_substeps; the seconds: every pass to there, each
+   !> twice the one before (c%seconds the first's). A guess: a rough profile
+   !> or a stiff compound converges slower, and speeds that meet the
+   !> tolerance early stop.
+   pure subroutine tolerance_guess(m, c)
+      type(model_type), intent(in) :: m
+      type(cost_estimate_type), intent(inout) :: c
+      real(wp), parameter :: err_euler = 0.03_wp, err_richardson = 0.25_wp
+      real(wp) :: needed
+      integer :: s
+      c%tolerance_substeps = 0
+      c%tolerance_seconds = 0.0_wp
+      if (.not. (m%tolerance > 0.0_wp)) return
+      needed = sqrt(err_richardson / m%tolerance)
+      if (allocated(m%time_scheme)) then
+         if (m%time_scheme == "euler") needed = err_euler / m%tolerance
+         if (m%time_scheme == "exact") needed = 1.0_wp
+      end if
+      s = 4 * m%substeps
+      do while (s < max_substeps .and. real(s, wp) < needed)
+         s = 2 * s
+      end do
+      s = min(s, max_substeps)
+      c%tolerance_substeps = s
+      c%tolerance_seconds = c%seconds * real(2 * (s / m%substeps) - 1, wp)
+   end subroutine tolerance_guess
+
+   subroutine check_memory(c, m, series, error)
       type(cost_estimate_type), intent(in) :: c
+      !> The scene's model and whether it writes series: the message names
+      !> what the scene set that makes the run large.
+      type(model_type), intent(in) :: m
+      logical, intent(in) :: series
       type(error_type), allocatable, intent(out) :: error
       real(wp) :: limit
+      character(len=:), allocatable :: knobs
       limit = real(c_physical_memory(), wp)
       if (limit <= 0.0_wp) limit = 16.0_wp * 2.0_wp**30
       if (c%bytes > 0.8_wp * limit) then
+         knobs = ""
+         if (m%element_length > 0.0_wp) knobs = "a longer &pad element_length (now " // &
+            & to_str(m%element_length) // " m), "
+         if (m%elements_per_sample > 1) knobs = knobs // "a smaller &numerics " // &
+            & "elements_per_sample (now " // to_str(m%elements_per_sample) // "), "
+         if (m%substeps > 1) knobs = knobs // "fewer &numerics substeps (now " // &
+            & to_str(m%substeps) // "), "
+         if (series) knobs = knobs // "&output series = .false., "
+         knobs = knobs // "fewer speeds or a shorter profile"
          call fatal_error(error, "the run needs about " // to_str(nint(c%bytes / 2.0_wp**20, i8)) &
             & // " MiB, more than the memory this process may use (" // &
             & to_str(nint(limit / 2.0_wp**20, i8)) // " MiB: the machine's, or the " // &
-            & "limit of the job, ulimit or container): reduce &numerics " // &
-            & "elements_per_sample or substeps, the number of speeds, or set &output " // &
-            & "series = .false.", stat_memory)
+            & "limit of the job, ulimit or container): give " // knobs, stat_memory)
       end if
    end subroutine check_memory
 
@@ -2370,16 +2515,12 @@ contains
          v(1:nl) = speeds
          v(nl+1:) = speeds(nl)
          series = present(mu_inst)
-         call rubber%prepare(v(1:nl), geo%advance, n, rstep, stat)
+         call step_stiffness(geo%advance, rstep, kel, s_load)
          if (stat /= 0) then
             out%failed = 1
             done = .true.
             return
          end if
-         ! Eq. 2: F = l dx p, p = K_eff (g - u_free)
-         kel(1:nl) = m%width * geo%dx_el * rstep%k_eff
-         kel(nl+1:) = kel(nl)
-         s_load = m%load / kel
          kel_run = kel
          s_run = s_load
          landing = .false.
@@ -2387,15 +2528,12 @@ contains
          ! at substeps = 1 and position_stride = 1, where nothing changes)
          land_differs = any(rstep%memory) .and. geo%advance /= geo%dx_el
          if (land_differs) then
-            call rubber%prepare(v(1:nl), geo%dx_el, n, rstep_land, stat)
+            call step_stiffness(geo%dx_el, rstep_land, kel_land, s_land)
             if (stat /= 0) then
                out%failed = 1
                done = .true.
                return
             end if
-            kel_land(1:nl) = m%width * geo%dx_el * rstep_land%k_eff
-            kel_land(nl+1:) = kel_land(nl)
-            s_land = m%load / kel_land
          end if
          any_memory = any(rstep%memory)
          ! Simulate only the effects the scene calls for: a film needs water and
@@ -2470,6 +2608,20 @@ contains
          end if
 
       end subroutine prepare_lanes
+
+      !> The rubber's coefficients for steps of `advance` (m) per lane, and
+      !> the element's stiffness kl and the load's share sl = W / kl (Eq. 2:
+      !> F = l dx p, p = K_eff (g - u_free)); stat as the rubber's prepare.
+      subroutine step_stiffness(advance, step, kl, sl)
+         real(wp), intent(in) :: advance
+         type(rubber_step_type), intent(out) :: step
+         real(wp), intent(out) :: kl(lanes), sl(lanes)
+         call rubber%prepare(v(1:nl), advance, n, step, stat)
+         if (stat /= 0) return
+         kl(1:nl) = m%width * geo%dx_el * step%k_eff
+         kl(nl+1:) = kl(nl)
+         sl = m%load / kl
+      end subroutine step_stiffness
 
       !> A lane whose spin-up starts at step t begins from relaxed elements
       !> (what it did before is discarded): its numbers are its own,

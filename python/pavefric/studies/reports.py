@@ -907,6 +907,18 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "after. A host more than about 1.4 times faster or slower than both reads "
         "outside the factor 2.",
         "",
+        "Later the same day (a second session) the Reynolds film's report at each "
+        "position's root reads the solution of the balance's last load, kept in the "
+        "lane's workspace with its gap field, where it solved the film once more: the "
+        "same numbers to the bit, a Reynolds run 2.54 s and 2.23 s side by side with "
+        "the build before (`python tools/compare_builds.py <before> <after> --runs "
+        "reynolds_wet`, while the test suite ran beside it). A dry balance started from "
+        "the previous position's contacts moved with the road was tried and not kept: "
+        "slower (docs/numerics.md, \"Tried and not kept\"). With a tolerance, the cost "
+        "estimate now guesses the substeps the refinement will reach and the seconds of "
+        "all its passes, which the announcement before a run weighs; the rows above "
+        "are of runs without a tolerance, whose estimate did not change.",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "

@@ -159,7 +159,9 @@ end subroutine pf_layout
 
 !> The cost of running pf_simulate on heights z (m) with these settings,
 !> before it runs: estimate = element-steps (all speeds, first pass), bytes,
-!> seconds on one thread (the program's calibrated rate); `text` the
+!> seconds on one thread (the program's calibrated rate; with &numerics
+!> tolerance, the guess of all its refinement's passes where that is more:
+!> what the announcement weighs), the seconds refining the pad; `text` the
 !> program's announcement line. A run that would not fit in memory is
 !> refused here (status, message), as by the run.
 subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal, t_reals, &
@@ -197,8 +199,10 @@ subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    call checked_estimate(scene, clean, cost, line, error)
    if (allocated(error)) goto 99
    text = line
-   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds, &
-      & cost%refine_seconds]
+   ! (the seconds the announcement weighs: with a tolerance, its guessed
+   ! refinement's where they are more)
+   estimate = [real(cost%total_element_steps, c_double), cost%bytes, &
+      & max(cost%seconds, cost%tolerance_seconds), cost%refine_seconds]
 99 continue
    if (allocated(error)) then
       status = error%stat
@@ -367,8 +371,8 @@ subroutine pf_scene_estimate(path, estimate, text, status, message)
    call checked_estimate(scene, clean, cost, line, error)
    if (allocated(error)) goto 99
    text = line
-   estimate = [real(cost%total_element_steps, c_double), cost%bytes, cost%seconds, &
-      & cost%refine_seconds]
+   estimate = [real(cost%total_element_steps, c_double), cost%bytes, &
+      & max(cost%seconds, cost%tolerance_seconds), cost%refine_seconds]
 99 continue
    if (allocated(error)) then
       status = error%stat
