@@ -2673,6 +2673,8 @@ contains
                      pl(i) = push(j, i)
                      pressure(i) = rstep%k_eff(j) * pl(i)
                   end do
+                  ! (a landing step presses with the landing's stiffness)
+                  if (landing(j)) pressure(1:n) = rstep_land%k_eff(j) * pl(1:n)
                   call film%friction(fstep(j), fstate(:, :, j), samples, geo%spacing, &
                      & geo%closed, pressure, geo%dx_el, share, thick)
                   film_sum = 0.0_wp
