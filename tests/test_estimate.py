@@ -324,3 +324,7 @@ def test_a_tolerance_run_is_announced_by_its_refinements_guess():
     assert "may need substeps 4," in said
     _, said = estimate()
     assert "may need" not in said
+    # the refinement's own ladder from substeps = 3: 12, 24, ..., 3072 (6144
+    # would pass 4096)
+    _, said = estimate(tolerance=1e-12, substeps=3)
+    assert "may need substeps 3072," in said, said

@@ -2046,11 +2046,12 @@ contains
          if (m%time_scheme == "euler") needed = err_euler / m%tolerance
          if (m%time_scheme == "exact") needed = 1.0_wp
       end if
+      ! (the refinement's own ladder: doublings while they stay within
+      ! max_substeps; validate_model leaves room for the first two)
       s = 4 * m%substeps
-      do while (s < max_substeps .and. real(s, wp) < needed)
+      do while (2 * s <= max_substeps .and. real(s, wp) < needed)
          s = 2 * s
       end do
-      s = min(s, max_substeps)
       c%tolerance_substeps = s
       c%tolerance_seconds = c%seconds * real(2 * (s / m%substeps) - 1, wp)
    end subroutine tolerance_guess
