@@ -452,11 +452,6 @@ contains
       integer :: stat, k, npe
       character(len=:), allocatable :: text
       if (.not. resamples(mm, dx, size(z), closed)) then
-         if (pad_elements(mm, dx) < 1) then
-            call no_element_message(mm, dx, .false., text)
-            call fatal_error(err, text)
-            return
-         end if
          call simulate_spaced(mm, z, dx, speeds, series, out, err)
          if (.not. allocated(err) .and. mm%tolerance > 0.0_wp) &
             & call tolerance_unmet_warning(mm%tolerance, out)
@@ -535,9 +530,9 @@ contains
          type(sim_result_type), intent(out) :: out
          type(error_type), allocatable, intent(out) :: err
          if (mm%tolerance > 0.0_wp) then
-            ! (the phases' unmet speeds: one warning for them all, below)
-            call simulate_to_tolerance(mm, zz, dd, closed, speeds, series, out, err, &
-               & quiet=.true.)
+            ! (the speeds it does not meet: run_grids' one warning, over the
+            ! phases)
+            call simulate_to_tolerance(mm, zz, dd, closed, speeds, series, out, err)
          else
             call simulate_fixed(mm, zz, dd, closed, speeds, series, out, err)
          end if
@@ -720,12 +715,8 @@ contains
    !> (with `series` every speed is refined together, so that the series
    !> share positions). The pad's elements (elements_per_sample) are a model
    !> choice, not refined here.
-   subroutine simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error, &
-         & quiet)
+   subroutine simulate_to_tolerance(m, z, dx, closed, speeds_kmh, want_series, res, error)
       type(model_type), intent(in) :: m
-      !> Present: no warning for the speeds the tolerance was not met at
-      !> (run_grids gives one for its phases together).
-      logical, intent(in), optional :: quiet
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
       logical, intent(in) :: closed, want_series
       type(sim_result_type), intent(out) :: res
@@ -816,9 +807,7 @@ contains
          if (want_series) call move_series(r, res)
          if (.not. any(active)) exit
       end do
-      if (.not. present(quiet)) call tolerance_unmet_warning(m%tolerance, res)
    contains
-
       !> Two successive changes of a first-order sequence in its asymptotic
       !> range: one sign, the earlier 1.5 to 3 times the later.
       pure logical function asymptotic(d1, d2)
@@ -1779,9 +1768,8 @@ contains
       end if
       n_el = pad_elements(m, dx)
       if (n_el < 1) then
-         call fatal_error(error, "&pad length = " // to_str(m%length) // &
-            & ": shorter than half a pad element (dx / elements_per_sample = " // &
-            & to_str(dx / real(m%elements_per_sample, wp)) // " m)")
+         call no_element_message(m, dx, .false., text)
+         call fatal_error(error, text)
          return
       end if
       if (averaged_positions(m, size(z), dx, closed) < positions_needed(closed)) then
@@ -2019,8 +2007,6 @@ contains
       end function level_seconds
    end subroutine add_refinement_cost
 
-   !> Refuse a run, before allocating, whose estimated memory exceeds what
-   !> the machine has (a clear error instead of the process being killed).
    !> With &numerics tolerance, a guess of where its refinement stops, from
    !> how the default scenes converge (docs/performance.md, "The default
    !> scenes to tolerance"): backward Euler's error about err_euler / s at
@@ -2056,6 +2042,8 @@ contains
       c%tolerance_seconds = c%seconds * real(2 * (s / m%substeps) - 1, wp)
    end subroutine tolerance_guess
 
+   !> Refuse a run, before allocating, whose estimated memory exceeds what
+   !> the machine has (a clear error instead of the process being killed).
    subroutine check_memory(c, m, series, error)
       type(cost_estimate_type), intent(in) :: c
       !> The scene's model and whether it writes series: the message names
@@ -2265,7 +2253,7 @@ contains
       !> run's (substeps or position_stride > 1, a rubber with memory).
       type(rubber_step_type) :: rstep_land
       real(wp), dimension(lanes) :: kel_land, s_land, kel_run, s_run
-      logical :: land_differs
+      logical :: land_differs, landing_step
       logical, dimension(lanes) :: landing
       real(wp), allocatable :: state_land(:,:,:)
       type(film_step_type), allocatable :: fstep(:)
@@ -2370,6 +2358,7 @@ contains
             ! step after the last landing, the run's again)
             landing(1:nl) = t == -spin(1:nl)
             landing(nl+1:) = .false.
+            landing_step = any(landing(1:nl))
             kel = merge(kel_land, kel_run, landing)
             s_load = merge(s_land, s_run, landing)
          end if
@@ -2477,15 +2466,13 @@ contains
             call friction_films(t, k1)
             if (energy) call energy_step(.false.)
             if (any_memory) then
-               if (land_differs .and. t <= 0) then
-                  if (any(landing(1:nl))) then
-                     ! the landing lanes' state from the landing's step
-                     state_land = state
-                     call rubber%update(rstep_land, state_land, u_free, push)
-                  end if
+               ! the landing lanes' state from the landing's step
+               if (landing_step) then
+                  state_land = state
+                  call rubber%update(rstep_land, state_land, u_free, push)
                end if
                call rubber%update(rstep, state, u_free, push)
-               if (land_differs .and. t <= 0) then
+               if (landing_step) then
                   do j = 1, nl
                      if (landing(j)) state(j, :, :) = state_land(j, :, :)
                   end do
@@ -2525,6 +2512,7 @@ contains
          kel_run = kel
          s_run = s_load
          landing = .false.
+         landing_step = .false.
          ! the landing's step: one element length of travel (the run's step
          ! at substeps = 1 and position_stride = 1, where nothing changes)
          land_differs = any(rstep%memory) .and. geo%advance /= geo%dx_el
