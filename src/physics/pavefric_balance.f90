@@ -12,7 +12,7 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, wet_roots, gap_field, engaged_lanes, engaged_by_level, lanes
+   public :: dry_root, dry_roots, dry_roots_of_c, wet_roots, gap_field, engaged_lanes, engaged_by_level, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -110,6 +110,84 @@ contains
          call sorted_root(dl, s(j), x(j), work)
       end do
    end subroutine dry_roots
+
+   !> dry_roots on the clearances as they come, c (not shifted by their least
+   !> value cmin: each pass takes d = c - cmin, the shift's own subtraction,
+   !> so the root is dry_roots' to the bit where both find it from the same
+   !> active set), started from the first pass a caller took in its own pass
+   !> over c: the count of the c below a guess and their sum. The first
+   !> Newton step from there, (s + sum - count cmin) / count, is an iterate
+   !> only (its sum cancels); a pass accepts x where the active set repeats,
+   !> and x is then taken from that pass's own sums, the root's formula on
+   !> the shifted clearances. A lane with no c below the guess (no guess:
+   !> -huge), or whose first step rounding took to 0 or below, starts from
+   !> s, dry_roots' own start. x: the root, shifted by cmin.
+   pure subroutine dry_roots_of_c(nl, n, c, cmin, s, sums_c, counts, x, work, dl)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: c(nl, n), cmin(nl), s(nl), sums_c(nl), counts(nl)
+      real(wp), intent(out) :: x(nl)
+      !> Workspaces of size n, only touched by the fallback.
+      real(wp), intent(inout) :: work(:), dl(:)
+      real(wp), dimension(lanes) :: sum_active, x_new, count
+      integer, dimension(lanes) :: m, m_prev
+      logical, dimension(lanes) :: running
+      integer :: j, it
+      do j = 1, nl
+         m_prev(j) = nint(counts(j))
+         x(j) = s(j)
+         if (m_prev(j) > 0) x(j) = (s(j) + (sums_c(j) - real(m_prev(j), wp) * cmin(j))) &
+            & / real(m_prev(j), wp)
+         if (m_prev(j) == 0 .or. .not. x(j) > 0.0_wp) then
+            x(j) = s(j)
+            m_prev(j) = -1
+         end if
+      end do
+      running = .true.
+      do it = 1, max_newton_dry
+         call active_sums_of_c(nl, n, c, cmin, x, sum_active, count)
+         m(1:nl) = nint(count(1:nl))
+         do j = 1, nl
+            if (.not. running(j)) cycle
+            x_new(j) = (s(j) + sum_active(j)) / real(m(j), wp)
+            if (m(j) == m_prev(j)) then             ! active set repeats: x is the root
+               x(j) = x_new(j)
+               running(j) = .false.
+               cycle
+            end if
+            ! from above, a non-decreasing step means rounding has stalled
+            if (m(j) < m_prev(j) .and. x_new(j) >= x(j)) then
+               running(j) = .false.
+               cycle
+            end if
+            m_prev(j) = m(j)
+            x(j) = x_new(j)
+         end do
+         if (.not. any(running(1:nl))) return
+      end do
+      do j = 1, nl
+         if (.not. running(j)) cycle
+         dl = c(j, :) - cmin(j)
+         call sorted_root(dl, s(j), x(j), work)
+      end do
+   end subroutine dry_roots_of_c
+
+   !> active_sums on d = c - cmin, taken in the pass.
+   pure subroutine active_sums_of_c(nl, n, c, cmin, x, sum_active, count)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: c(nl, n), cmin(nl), x(nl)
+      real(wp), intent(out) :: sum_active(nl), count(nl)
+      integer :: i, j
+      real(wp) :: d
+      sum_active = 0.0_wp
+      count = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            d = c(j, i) - cmin(j)
+            sum_active(j) = sum_active(j) + merge(d, 0.0_wp, d < x(j))
+            count(j) = count(j) + merge(1.0_wp, 0.0_wp, d < x(j))
+         end do
+      end do
+   end subroutine active_sums_of_c
 
    !> Per lane, the sum and the count of the d below x: the loop over the
    !> lanes innermost, every shape explicit and given at run time, so that it

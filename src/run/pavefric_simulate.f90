@@ -19,7 +19,7 @@ module pavefric_simulate
    use pavefric_results, only: cost_estimate_type, sim_result_type
    use pavefric_components, only: make_components
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, wet_roots, gap_field, engaged_lanes, engaged_by_level, &
+   use pavefric_balance, only: dry_roots, dry_roots_of_c, wet_roots, gap_field, engaged_lanes, engaged_by_level, &
       & lanes
    use pavefric_kv_exact, only: kv_exact_lane, kv_exact_type
    !$ use omp_lib, only: omp_get_max_threads
@@ -183,6 +183,13 @@ module pavefric_simulate
       !> Element width (m) and pad advance per step (m).
       real(wp) :: dx_el = 0.0_wp, advance = 0.0_wp
    end type geometry_type
+
+   !> The dry balance's first pass, taken in lane_free_gaps_from's: per lane,
+   !> the guess of the penetration going in, the sum and count of the
+   !> clearances below it coming out.
+   type :: dry_start_type
+      real(wp), dimension(lanes) :: guess = 0.0_wp, sums = 0.0_wp, counts = 0.0_wp
+   end type dry_start_type
 
 contains
 
@@ -2274,6 +2281,12 @@ contains
       !> wet root, further from this position's dry root).
       real(wp), dimension(lanes) :: delta_dry_prev, delta_dry_prev2
       real(wp), dimension(lanes) :: guess
+      type(dry_start_type) :: dry_start
+      !> The dry pad's clearances and first balance pass in one pass
+      !> (lane_free_gaps_from), d then unshifted: dref, subtracted from d
+      !> where it is read after the balance (cmin there, else 0).
+      logical :: one_pass
+      real(wp), dimension(lanes) :: dref
       !> Per lane, the sum of the shifted clearances d (engaged_lanes' or
       !> engaged_by_level's; wet_roots takes it).
       real(wp), dimension(lanes) :: sum_d
@@ -2369,13 +2382,25 @@ contains
          end if
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
-         if (kv_fused) then
+         one_pass = kv_fused .and. .not. any_load
+         if (one_pass) then
+            ! a dry pad: the clearances unshifted (dref = cmin: the balance
+            ! and the step take d = c - cmin), the balance's first pass at
+            ! the extrapolated penetration in the same pass
+            dry_start%guess = extrapolated(delta_dry_prev, delta_dry_prev2)
+            call lane_free_gaps_from(nl, n, rstep%coef(:, 1), state, &
+               & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, d, cmin, &
+               & dry_start)
+            dref = cmin
+         else if (kv_fused) then
             call lane_free_gaps(nl, n, rstep%coef(:, 1), state, &
                & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, cmin, d)
+            dref = 0.0_wp
          else
             if (any_memory) call rubber%free_compression(rstep, state, u_free)
             call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
                & u_free, c, cmin, d)
+            dref = 0.0_wp
          end if
          ! Where every lane's film carried load at the previous position
          ! (and its sums suffice), whether it engages here is decided
@@ -2397,8 +2422,13 @@ contains
             ! warm start from the previous position's dry root, extrapolated
             ! linearly from the two before where there are two (the start
             ! only: the root is the same)
-            guess = extrapolated(delta_dry_prev, delta_dry_prev2)
-            call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
+            if (one_pass) then
+               call dry_roots_of_c(nl, n, d, cmin, s_load, dry_start%sums, dry_start%counts, &
+                  & x, work, dl)
+            else
+               guess = extrapolated(delta_dry_prev, delta_dry_prev2)
+               call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
+            end if
             delta_dry_prev2 = delta_dry_prev
             delta_dry_prev = cmin + x
          end if
@@ -2438,7 +2468,7 @@ contains
             ! lane_contacts, energy_step's lane_work_linear and kv_update in
             ! one pass (the first step's work, from no previous step, is
             ! discarded below as energy_step discards it)
-            call lane_step_kv(nl, n, x, d, u_free, &
+            call lane_step_kv(nl, n, x, d, dref, u_free, &
                & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & rstep%mean_weights, cmin + x - delta_last, push_prev, state, push, &
@@ -3049,6 +3079,35 @@ contains
       end do
    end subroutine lane_gaps
 
+   !> The dry Kelvin-Voigt pad's pass before its balance, once over the pad:
+   !> the free compression u_free = b u (kv_free), the clearances c_i = h_i -
+   !> z_i + u_free_i (not shifted by their least value cmin, which would take
+   !> a second pass: the balance and the step take d = c - cmin as they go),
+   !> cmin, and the dry balance's first pass at the guess g: the count of
+   !> the c below it and their sum (dry_roots_of_c goes on from there).
+   pure subroutine lane_free_gaps_from(nl, n, relax, state, z, h, u_free, c, cmin, start)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: relax(nl), state(nl, n), z(n), h(n)
+      real(wp), intent(out) :: u_free(nl, n), c(nl, n), cmin(nl)
+      type(dry_start_type), intent(inout) :: start
+      integer :: i, j
+      associate (g => start%guess, sums => start%sums, counts => start%counts)
+         cmin = huge(1.0_wp)
+         sums = 0.0_wp
+         counts = 0.0_wp
+         do i = 1, n
+            !GCC$ ivdep
+            do j = 1, nl
+               u_free(j, i) = relax(j) * state(j, i)
+               c(j, i) = h(i) - z(i) + u_free(j, i)
+               cmin(j) = min(cmin(j), c(j, i))
+               sums(j) = sums(j) + merge(c(j, i), 0.0_wp, c(j, i) < g(j))
+               counts(j) = counts(j) + merge(1.0_wp, 0.0_wp, c(j, i) < g(j))
+            end do
+         end do
+      end associate
+   end subroutine lane_free_gaps_from
+
    !> lane_gaps for the Kelvin-Voigt pad, with its free compression (kv_free:
    !> u_free = b u, b the lane's relaxation over a step) in the same pass:
    !> the same operations as the two, in one loop.
@@ -3086,10 +3145,12 @@ contains
    !> they hold, is discarded), and lane_contacts' sum of the pushes
    !> weighted by the facet tangents is not taken: the energy scheme, the
    !> only one fused, does not use it.
-   pure subroutine lane_step_kv(nl, n, x, d, u_free, clamped, adhesion, weights, &
+   pure subroutine lane_step_kv(nl, n, x, d, dref, u_free, clamped, adhesion, weights, &
          & ddelta, push_prev, state, push, sum_f, contacts, clamps, u_max, sum_fa, w, total)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), clamped(n), &
+      !> d - dref: the clearances shifted by their least value (dref that
+      !> value where d is unshifted, lane_free_gaps_from's, else 0).
+      real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), clamped(n), &
          & adhesion(n), weights(nl, 2), ddelta(nl)
       real(wp), intent(inout) :: push_prev(nl, n), state(nl, n)
       real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), clamps(nl), &
@@ -3105,7 +3166,7 @@ contains
       do i = 1, n
          !GCC$ ivdep
          do j = 1, nl
-            p = max(0.0_wp, x(j) - d(j, i))
+            p = max(0.0_wp, x(j) - (d(j, i) - dref(j)))
             push(j, i) = p
             in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
             sum_f(j) = sum_f(j) + p

@@ -740,8 +740,9 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "",
         "## Why 300 M (dry) and 60 M (wet) are not reached",
         "",
-        "The per-position work is a handful of passes over the pad (free recovery, "
-        "gaps, two to four Newton passes, contacts, update), each a short loop: with "
+        "The per-position work is a handful of passes over the pad (for the dry "
+        "Kelvin-Voigt pad three on average: the clearances with the balance's first "
+        "Newton pass, 1.2 more Newton passes, and the step), each a short loop: with "
         "six speeds a pass is three SSE2 vectors per element, so loop control and the "
         "serial sum chains, not arithmetic, set the pace. A build with "
         "`-Dnative=true` (AVX-512 on this machine) measured slower, not faster, at "
@@ -918,6 +919,22 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "estimate now guesses the substeps the refinement will reach and the seconds of "
         "all its passes, which the announcement before a run weighs; the rows above "
         "are of runs without a tolerance, whose estimate did not change.",
+        "",
+        "In the session after (2026-12-06, thirteenth) the dry Kelvin-Voigt pad's "
+        "balance lost two of its passes over the pad: its first Newton pass is taken in "
+        "the pass that forms the clearances (`lane_free_gaps_from`: their count and sum "
+        "below the extrapolated penetration), which no longer shifts them by their least "
+        "value; the balance's later passes and the step subtract it as they read them "
+        "(`dry_roots_of_c`), the same subtraction, and the root comes from the "
+        "confirming pass's sums, so every number of the regression record keeps its "
+        "bits. Passes a position: 3.18 (the clearances, 1.18 confirming, the step) where "
+        "they were 5.18 (the clearances, their shift, 2.18 of the balance, the step), "
+        "counted with callgrind on a `-g` build (a command of this session, not of the "
+        "repository). Side by side (`python tools/compare_builds.py <before> <after>`, "
+        "best of three rounds of seven runs): the paper's rubber 0.0350 s and 0.0316 s "
+        "a run, the elastic pad, the 3-arm Maxwell rubber and the paper's wet model "
+        "unchanged (0.036, 0.063, 0.074 s). Two cheaper variants lost the root's digits "
+        "at tiny compressions (docs/numerics.md, \"Tried and not kept\").",
         "",
         "## Where the time goes",
         "",
