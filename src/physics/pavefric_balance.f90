@@ -12,7 +12,8 @@ module pavefric_balance
    implicit none
    private
 
-   public :: dry_root, dry_roots, dry_roots_of_c, wet_roots, gap_field, engaged_lanes, engaged_by_level, lanes
+   public :: dry_root, dry_roots, dry_roots_of_c, wet_roots, gap_field, engaged_lanes, &
+      & engaged_by_level, lanes
 
    !> Newton-from-above iterations before the exact sort-and-scan fallback.
    integer, parameter :: max_newton_dry = 24
@@ -155,7 +156,11 @@ contains
                cycle
             end if
             ! from above, a non-decreasing step means rounding has stalled
+            ! (at the first pass x is the caller's step, whose sum cancels:
+            ! this pass's step, on the shifted clearances, is then the
+            ! better of the two)
             if (m(j) < m_prev(j) .and. x_new(j) >= x(j)) then
+               if (it == 1) x(j) = x_new(j)
                running(j) = .false.
                cycle
             end if
@@ -177,7 +182,20 @@ contains
       real(wp), intent(in) :: c(nl, n), cmin(nl), x(nl)
       real(wp), intent(out) :: sum_active(nl), count(nl)
       integer :: i, j
-      real(wp) :: d
+      real(wp) :: d, total, counted
+      if (nl == 1) then
+         ! one lane: plain loops (as active_sums), the same operations
+         total = 0.0_wp
+         counted = 0.0_wp
+         do i = 1, n
+            d = c(1, i) - cmin(1)
+            total = total + merge(d, 0.0_wp, d < x(1))
+            counted = counted + merge(1.0_wp, 0.0_wp, d < x(1))
+         end do
+         sum_active(1) = total
+         count(1) = counted
+         return
+      end if
       sum_active = 0.0_wp
       count = 0.0_wp
       do i = 1, n

@@ -19,8 +19,8 @@ module pavefric_simulate
    use pavefric_results, only: cost_estimate_type, sim_result_type
    use pavefric_components, only: make_components
    use pavefric_facet, only: facet_friction, facet_tangent
-   use pavefric_balance, only: dry_roots, dry_roots_of_c, wet_roots, gap_field, engaged_lanes, engaged_by_level, &
-      & lanes
+   use pavefric_balance, only: dry_roots, dry_roots_of_c, wet_roots, gap_field, engaged_lanes, &
+      & engaged_by_level, lanes
    use pavefric_kv_exact, only: kv_exact_lane, kv_exact_type
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
@@ -2382,8 +2382,8 @@ contains
          end if
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
-         one_pass = kv_fused .and. .not. any_load
-         if (one_pass) then
+         one_pass = .not. any_load
+         if (one_pass .and. kv_fused) then
             ! a dry pad: the clearances unshifted (dref = cmin: the balance
             ! and the step take d = c - cmin), the balance's first pass at
             ! the extrapolated penetration in the same pass
@@ -2396,6 +2396,13 @@ contains
             call lane_free_gaps(nl, n, rstep%coef(:, 1), state, &
                & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, cmin, d)
             dref = 0.0_wp
+         else if (one_pass) then
+            ! any other rubber, dry: the same without the rubber's update fused
+            if (any_memory) call rubber%free_compression(rstep, state, u_free)
+            dry_start%guess = extrapolated(delta_dry_prev, delta_dry_prev2)
+            call lane_gaps_from(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+               & geo%h, u_free, d, cmin, dry_start)
+            dref = cmin
          else
             if (any_memory) call rubber%free_compression(rstep, state, u_free)
             call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
@@ -2484,7 +2491,7 @@ contains
             call energy_step(.true.)
          else
             sum_f = 0.0_wp
-            call lane_contacts(nl, n, x, d, u_free, &
+            call lane_contacts(nl, n, x, d, dref, u_free, &
                & geo%tan_theta(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), push, sum_f, &
@@ -3091,6 +3098,14 @@ contains
       real(wp), intent(out) :: u_free(nl, n), c(nl, n), cmin(nl)
       type(dry_start_type), intent(inout) :: start
       integer :: i, j
+      if (nl == 1) then
+         ! one lane: lane_gaps_from's plain loops
+         do i = 1, n
+            u_free(1, i) = relax(1) * state(1, i)
+         end do
+         call lane_gaps_from(nl, n, z, h, u_free, c, cmin, start)
+         return
+      end if
       associate (g => start%guess, sums => start%sums, counts => start%counts)
          cmin = huge(1.0_wp)
          sums = 0.0_wp
@@ -3107,6 +3122,50 @@ contains
          end do
       end associate
    end subroutine lane_free_gaps_from
+
+   !> lane_gaps without the shift, and the dry balance's first pass at the
+   !> guess in the same pass (lane_free_gaps_from's, for any rubber's u_free):
+   !> c_i = h_i - z_i + u_free_i (lane_gaps' c, the same operations), its
+   !> least value cmin, and the count of the c below the guess and their sum.
+   pure subroutine lane_gaps_from(nl, n, z, h, u_free, c, cmin, start)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: z(n), h(n), u_free(nl, n)
+      real(wp), intent(out) :: c(nl, n), cmin(nl)
+      type(dry_start_type), intent(inout) :: start
+      integer :: i, j
+      real(wp) :: low, total, counted, ci
+      associate (g => start%guess, sums => start%sums, counts => start%counts)
+         if (nl == 1) then
+            ! one lane: plain loops (a lane loop of one trip costs more than the work)
+            low = huge(1.0_wp)
+            total = 0.0_wp
+            counted = 0.0_wp
+            do i = 1, n
+               ci = h(i) - z(i) + u_free(1, i)
+               c(1, i) = ci
+               low = min(low, ci)
+               total = total + merge(ci, 0.0_wp, ci < g(1))
+               counted = counted + merge(1.0_wp, 0.0_wp, ci < g(1))
+            end do
+            cmin(1) = low
+            sums(1) = total
+            counts(1) = counted
+            return
+         end if
+         cmin = huge(1.0_wp)
+         sums = 0.0_wp
+         counts = 0.0_wp
+         do i = 1, n
+            !GCC$ ivdep
+            do j = 1, nl
+               c(j, i) = h(i) - z(i) + u_free(j, i)
+               cmin(j) = min(cmin(j), c(j, i))
+               sums(j) = sums(j) + merge(c(j, i), 0.0_wp, c(j, i) < g(j))
+               counts(j) = counts(j) + merge(1.0_wp, 0.0_wp, c(j, i) < g(j))
+            end do
+         end do
+      end associate
+   end subroutine lane_gaps_from
 
    !> lane_gaps for the Kelvin-Voigt pad, with its free compression (kv_free:
    !> u_free = b u, b the lane's relaxation over a step) in the same pass:
@@ -3215,10 +3274,12 @@ contains
    !> by the facet tangents (Eq. 10), the contacts on clamped facets and the
    !> largest compression max(g_i, u_free_i). Counts in reals (exact): one
    !> type in the vector loop.
-   pure subroutine lane_contacts(nl, n, x, d, u_free, tan_t, clamped, adhesion, push, sum_f, &
-      & contacts, sum_ft, clamps, u_max, sum_fa)
+   pure subroutine lane_contacts(nl, n, x, d, dref, u_free, tan_t, clamped, adhesion, push, &
+      & sum_f, contacts, sum_ft, clamps, u_max, sum_fa)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: x(nl), d(nl, n), u_free(nl, n), tan_t(n), clamped(n), adhesion(n)
+      !> d - dref: the clearances shifted by their least value (lane_step_kv's).
+      real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), tan_t(n), clamped(n), &
+         & adhesion(n)
       real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl)
       real(wp), intent(inout) :: u_max(nl)
       !> sum of push x (tan(theta) - tan(alpha)): the local friction's part
@@ -3234,7 +3295,7 @@ contains
          ncl = 0.0_wp
          um = u_max(1)
          do i = 1, n
-            p = max(0.0_wp, x(1) - d(1, i))
+            p = max(0.0_wp, x(1) - (d(1, i) - dref(1)))
             push(1, i) = p
             in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
             sf = sf + p
@@ -3258,7 +3319,7 @@ contains
       sum_fa = 0.0_wp
       do i = 1, n
          do j = 1, nl
-            p = max(0.0_wp, x(j) - d(j, i))
+            p = max(0.0_wp, x(j) - (d(j, i) - dref(j)))
             push(j, i) = p
             in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
             sum_f(j) = sum_f(j) + p

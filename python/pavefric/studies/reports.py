@@ -920,21 +920,22 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "all its passes, which the announcement before a run weighs; the rows above "
         "are of runs without a tolerance, whose estimate did not change.",
         "",
-        "In the session after (2026-12-06, thirteenth) the dry Kelvin-Voigt pad's "
-        "balance lost two of its passes over the pad: its first Newton pass is taken in "
-        "the pass that forms the clearances (`lane_free_gaps_from`: their count and sum "
+        "In the session after (2026-12-06, thirteenth) a dry pad's balance lost two of "
+        "its passes over the pad: its first Newton pass is taken in the pass that forms "
+        "the clearances (`lane_free_gaps_from`, `lane_gaps_from`: their count and sum "
         "below the extrapolated penetration), which no longer shifts them by their least "
-        "value; the balance's later passes and the step subtract it as they read them "
-        "(`dry_roots_of_c`), the same subtraction, and the root comes from the "
+        "value; the balance's later passes and the contacts' pass subtract it as they "
+        "read them (`dry_roots_of_c`), the same subtraction, and the root comes from the "
         "confirming pass's sums, so every number of the regression record keeps its "
-        "bits. Passes a position: 3.18 (the clearances, 1.18 confirming, the step) where "
-        "they were 5.18 (the clearances, their shift, 2.18 of the balance, the step), "
-        "counted with callgrind on a `-g` build (a command of this session, not of the "
-        "repository). Side by side (`python tools/compare_builds.py <before> <after>`, "
-        "best of three rounds of seven runs): the paper's rubber 0.0350 s and 0.0316 s "
-        "a run, the elastic pad, the 3-arm Maxwell rubber and the paper's wet model "
-        "unchanged (0.036, 0.063, 0.074 s). Two cheaper variants lost the root's digits "
-        "at tiny compressions (docs/numerics.md, \"Tried and not kept\").",
+        "bits. Passes a position for the Kelvin-Voigt pad: 3.18 (the clearances, 1.18 "
+        "confirming, the step) where they were 5.18 (the clearances, their shift, 2.18 "
+        "of the balance, the step), counted with callgrind on a `-g` build (a command of "
+        "this session, not of the repository). Side by side (`python "
+        "tools/compare_builds.py <before> <after>`, best of three rounds of seven runs): "
+        "the paper's rubber 0.0349 s and 0.0317 s a run, the elastic pad 0.0359 and "
+        "0.0331 s, the 3-arm Maxwell rubber 0.0627 and 0.0582 s, the paper's wet model "
+        "unchanged (0.074 s). Two cheaper variants lost the root's digits at tiny "
+        "compressions (docs/numerics.md, \"Tried and not kept\").",
         "",
         "## Where the time goes",
         "",
