@@ -17,12 +17,15 @@ def test_dry_scene_never_evaluates_the_bearing(profile_m):
     assert not dry["bearing_ran"].values.any()
     assert "hydrodynamic_bearing" not in dry.attrs["effects"]
     # the same scene with the bearing running at its neutral value (alpha = 0
-    # makes Eq. 15 carry nothing): the same numbers, bit for bit, but real
-    # work done (the wet balance starts from the dry root, where f = 0, at
-    # every position: it is warm-started only after a position where the film
-    # carried load).
+    # makes Eq. 15 carry nothing): the same numbers, but real work done (the
+    # wet balance starts from the dry root, where f = 0, at every position:
+    # it is warm-started only after a position where the film carried load).
+    # To rounding, not to the bit: a dry pad's balance may take its first
+    # Newton step as the root without the pass that confirms it (where no
+    # element lies between the guess and the step), the dry root under a
+    # film always takes that pass, and the two formulas round differently.
     neutral = pavefric.simulate(profile_m, DX, SPEEDS, depth=1e-3, alpha=0.0)
-    np.testing.assert_array_equal(neutral["mu"].values, dry["mu"].values)
+    np.testing.assert_allclose(neutral["mu"].values, dry["mu"].values, rtol=1e-14, atol=0)
     assert np.all(neutral["mean_hydro_load"].values == 0.0)
     assert np.all(neutral["bearing_evaluations"].values[1:] > 0)
     assert "hydrodynamic_bearing" in neutral.attrs["effects"]

@@ -113,37 +113,56 @@ contains
    end subroutine dry_roots
 
    !> dry_roots on the clearances as they come, c (not shifted by their least
-   !> value cmin: each pass takes d = c - cmin, the shift's own subtraction,
-   !> so the root is dry_roots' to the bit where both find it from the same
-   !> active set), started from the first pass a caller took in its own pass
-   !> over c: the count of the c below a guess and their sum. The first
-   !> Newton step from there, (s + sum - count cmin) / count, is an iterate
-   !> only (its sum cancels); a pass accepts x where the active set repeats,
-   !> and x is then taken from that pass's own sums, the root's formula on
-   !> the shifted clearances. A lane with no c below the guess (no guess:
-   !> -huge), or whose first step rounding took to 0 or below, starts from
-   !> s, dry_roots' own start. x: the root, shifted by cmin.
-   pure subroutine dry_roots_of_c(nl, n, c, cmin, s, sums_c, counts, x, work, dl)
+   !> value cmin: each pass takes d = c - cmin, the shift's own subtraction),
+   !> started from the first pass a caller took in its own pass over c at a
+   !> guess g: the count of the c below g, the sum of their c - g, the
+   !> largest of them (below) and the least of the others (above). The first
+   !> Newton step from there is x1 = (g - cmin) + (s + sum) / count. Where no
+   !> element lies between g and x1 (below < x1 <= above, shifted), the
+   !> active set repeats at x1, which is then the root without a pass; that
+   !> is taken only where the step's terms are within 4 times x1, so that
+   !> it keeps the digits of a tiny compression (a guess far off leaves
+   !> them short). Elsewhere passes follow as in dry_roots: one accepts x
+   !> where the active set repeats, and x is taken from that pass's own sums,
+   !> the root's formula on the shifted clearances (dry_roots' x, to the bit,
+   !> where both find it from the same set). Each lane decides alone, so a
+   !> lane's root does not depend on the lanes beside it. A lane with no c
+   !> below g (no guess: -huge), or whose first step rounding took to 0 or
+   !> below, starts from s, dry_roots' own start. x: the root, shifted by
+   !> cmin.
+   pure subroutine dry_roots_of_c(nl, n, c, cmin, s, g, sums_c, counts, below, above, x, &
+         & work, dl)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: c(nl, n), cmin(nl), s(nl), sums_c(nl), counts(nl)
+      real(wp), intent(in) :: c(nl, n), cmin(nl), s(nl), g(nl), sums_c(nl), counts(nl), &
+         & below(nl), above(nl)
       real(wp), intent(out) :: x(nl)
       !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
       real(wp), dimension(lanes) :: sum_active, x_new, count
       integer, dimension(lanes) :: m, m_prev
       logical, dimension(lanes) :: running
+      logical :: confirmed(lanes)
       integer :: j, it
       do j = 1, nl
          m_prev(j) = nint(counts(j))
          x(j) = s(j)
-         if (m_prev(j) > 0) x(j) = (s(j) + (sums_c(j) - real(m_prev(j), wp) * cmin(j))) &
-            & / real(m_prev(j), wp)
+         if (m_prev(j) > 0) x(j) = (g(j) - cmin(j)) + (s(j) + sums_c(j)) / real(m_prev(j), wp)
          if (m_prev(j) == 0 .or. .not. x(j) > 0.0_wp) then
             x(j) = s(j)
             m_prev(j) = -1
+            confirmed(j) = .false.
+         else
+            ! taken without a pass only where its terms are of the root's
+            ! size (a guess far off, or a tiny compression, would leave it
+            ! short of digits) and no element lies between the guess and it
+            confirmed(j) = abs(g(j) - cmin(j)) <= 4.0_wp * x(j) .and. &
+               & abs(sums_c(j)) <= 4.0_wp * real(m_prev(j), wp) * x(j) .and. &
+               & below(j) - cmin(j) < x(j) .and. above(j) - cmin(j) >= x(j)
          end if
       end do
-      running = .true.
+      ! each lane's root its own: a confirmed lane stops whatever the others do
+      running(1:nl) = .not. confirmed(1:nl)
+      if (.not. any(running(1:nl))) return
       do it = 1, max_newton_dry
          call active_sums_of_c(nl, n, c, cmin, x, sum_active, count)
          m(1:nl) = nint(count(1:nl))

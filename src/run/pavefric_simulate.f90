@@ -185,10 +185,12 @@ module pavefric_simulate
    end type geometry_type
 
    !> The dry balance's first pass, taken in lane_free_gaps_from's: per lane,
-   !> the guess of the penetration going in, the sum and count of the
-   !> clearances below it coming out.
+   !> the guess g of the penetration going in; the count of the clearances
+   !> below it, the sum of their c - g, the largest of them and the least of
+   !> the others coming out (dry_roots_of_c).
    type :: dry_start_type
-      real(wp), dimension(lanes) :: guess = 0.0_wp, sums = 0.0_wp, counts = 0.0_wp
+      real(wp), dimension(lanes) :: guess = 0.0_wp, sums = 0.0_wp, counts = 0.0_wp, &
+         & below = 0.0_wp, above = 0.0_wp
    end type dry_start_type
 
 contains
@@ -2430,8 +2432,8 @@ contains
             ! linearly from the two before where there are two (the start
             ! only: the root is the same)
             if (one_pass) then
-               call dry_roots_of_c(nl, n, d, cmin, s_load, dry_start%sums, dry_start%counts, &
-                  & x, work, dl)
+               call dry_roots_of_c(nl, n, d, cmin, s_load, dry_start%guess, dry_start%sums, &
+                  & dry_start%counts, dry_start%below, dry_start%above, x, work, dl)
             else
                guess = extrapolated(delta_dry_prev, delta_dry_prev2)
                call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
@@ -3090,8 +3092,8 @@ contains
    !> the free compression u_free = b u (kv_free), the clearances c_i = h_i -
    !> z_i + u_free_i (not shifted by their least value cmin, which would take
    !> a second pass: the balance and the step take d = c - cmin as they go),
-   !> cmin, and the dry balance's first pass at the guess g: the count of
-   !> the c below it and their sum (dry_roots_of_c goes on from there).
+   !> cmin, and the dry balance's first pass at the guess g (dry_start_type's;
+   !> dry_roots_of_c goes on from there).
    pure subroutine lane_free_gaps_from(nl, n, relax, state, z, h, u_free, c, cmin, start)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: relax(nl), state(nl, n), z(n), h(n)
@@ -3106,18 +3108,23 @@ contains
          call lane_gaps_from(nl, n, z, h, u_free, c, cmin, start)
          return
       end if
-      associate (g => start%guess, sums => start%sums, counts => start%counts)
+      associate (g => start%guess, sums => start%sums, counts => start%counts, &
+            & below => start%below, above => start%above)
          cmin = huge(1.0_wp)
          sums = 0.0_wp
          counts = 0.0_wp
+         below = -huge(1.0_wp)
+         above = huge(1.0_wp)
          do i = 1, n
             !GCC$ ivdep
             do j = 1, nl
                u_free(j, i) = relax(j) * state(j, i)
                c(j, i) = h(i) - z(i) + u_free(j, i)
                cmin(j) = min(cmin(j), c(j, i))
-               sums(j) = sums(j) + merge(c(j, i), 0.0_wp, c(j, i) < g(j))
+               sums(j) = sums(j) + merge(c(j, i) - g(j), 0.0_wp, c(j, i) < g(j))
                counts(j) = counts(j) + merge(1.0_wp, 0.0_wp, c(j, i) < g(j))
+               below(j) = max(below(j), merge(c(j, i), -huge(1.0_wp), c(j, i) < g(j)))
+               above(j) = min(above(j), merge(huge(1.0_wp), c(j, i), c(j, i) < g(j)))
             end do
          end do
       end associate
@@ -3126,7 +3133,7 @@ contains
    !> lane_gaps without the shift, and the dry balance's first pass at the
    !> guess in the same pass (lane_free_gaps_from's, for any rubber's u_free):
    !> c_i = h_i - z_i + u_free_i (lane_gaps' c, the same operations), its
-   !> least value cmin, and the count of the c below the guess and their sum.
+   !> least value cmin, and the first pass at the guess (dry_start_type's).
    pure subroutine lane_gaps_from(nl, n, z, h, u_free, c, cmin, start)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: z(n), h(n), u_free(nl, n)
@@ -3134,18 +3141,23 @@ contains
       type(dry_start_type), intent(inout) :: start
       integer :: i, j
       real(wp) :: low, total, counted, ci
-      associate (g => start%guess, sums => start%sums, counts => start%counts)
+      associate (g => start%guess, sums => start%sums, counts => start%counts, &
+            & below => start%below, above => start%above)
          if (nl == 1) then
             ! one lane: plain loops (a lane loop of one trip costs more than the work)
             low = huge(1.0_wp)
             total = 0.0_wp
             counted = 0.0_wp
+            below(1) = -huge(1.0_wp)
+            above(1) = huge(1.0_wp)
             do i = 1, n
                ci = h(i) - z(i) + u_free(1, i)
                c(1, i) = ci
                low = min(low, ci)
-               total = total + merge(ci, 0.0_wp, ci < g(1))
+               total = total + merge(ci - g(1), 0.0_wp, ci < g(1))
                counted = counted + merge(1.0_wp, 0.0_wp, ci < g(1))
+               below(1) = max(below(1), merge(ci, -huge(1.0_wp), ci < g(1)))
+               above(1) = min(above(1), merge(huge(1.0_wp), ci, ci < g(1)))
             end do
             cmin(1) = low
             sums(1) = total
@@ -3155,13 +3167,17 @@ contains
          cmin = huge(1.0_wp)
          sums = 0.0_wp
          counts = 0.0_wp
+         below = -huge(1.0_wp)
+         above = huge(1.0_wp)
          do i = 1, n
             !GCC$ ivdep
             do j = 1, nl
                c(j, i) = h(i) - z(i) + u_free(j, i)
                cmin(j) = min(cmin(j), c(j, i))
-               sums(j) = sums(j) + merge(c(j, i), 0.0_wp, c(j, i) < g(j))
+               sums(j) = sums(j) + merge(c(j, i) - g(j), 0.0_wp, c(j, i) < g(j))
                counts(j) = counts(j) + merge(1.0_wp, 0.0_wp, c(j, i) < g(j))
+               below(j) = max(below(j), merge(c(j, i), -huge(1.0_wp), c(j, i) < g(j)))
+               above(j) = min(above(j), merge(huge(1.0_wp), c(j, i), c(j, i) < g(j)))
             end do
          end do
       end associate

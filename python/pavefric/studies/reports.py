@@ -741,8 +741,9 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "## Why 300 M (dry) and 60 M (wet) are not reached",
         "",
         "The per-position work is a handful of passes over the pad (for the dry "
-        "Kelvin-Voigt pad three on average: the clearances with the balance's first "
-        "Newton pass, 1.2 more Newton passes, and the step), each a short loop: with "
+        "Kelvin-Voigt pad two or three: the clearances with the balance's first "
+        "Newton pass, a confirming pass where the first step cannot be taken as it "
+        "stands, and the step), each a short loop: with "
         "six speeds a pass is three SSE2 vectors per element, so loop control and the "
         "serial sum chains, not arithmetic, set the pace. A build with "
         "`-Dnative=true` (AVX-512 on this machine) measured slower, not faster, at "
@@ -934,7 +935,14 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "tools/compare_builds.py <before> <after>`, best of three rounds of seven runs): "
         "the paper's rubber 0.0349 s and 0.0317 s a run, the elastic pad 0.0359 and "
         "0.0331 s, the 3-arm Maxwell rubber 0.0627 and 0.0582 s, the paper's wet model "
-        "unchanged (0.074 s). Two cheaper variants lost the root's digits at tiny "
+        "unchanged (0.074 s). Then the first Newton step is taken as the root without "
+        "its confirming pass where no element lies between the guess and it (the first "
+        "pass also takes the largest clearance below the guess and the least above) and "
+        "its terms are within four times the root, which keeps a tiny compression's "
+        "digits: the paper's rubber 0.0332 and 0.0322 s a run, 0.0329 and 0.0312 s in "
+        "a second comparison; dry numbers move by rounding (the regression record "
+        "regenerated: mu by at most 1.2e-15 of its scale). A variant that measured the "
+        "clearances from the previous penetration lost the root's digits at tiny "
         "compressions (docs/numerics.md, \"Tried and not kept\").",
         "",
         "## Where the time goes",
