@@ -33,11 +33,14 @@ def test_refinement_converges(profile_m, knob, values, scene):
 def test_position_stride_is_sampling_for_elastic_dry(profile_m):
     # the paper's scheme: friction at a position is the facets' at that
     # position, so elastic and dry (no memory) a strided run samples the same
-    # positions
+    # positions (to rounding: the dry balance's root may be its first Newton
+    # step from the warm start, taken without the confirming pass, and the
+    # strided run starts each position from another guess)
     paper = dict(viscosity=0.0, series=True, friction_scheme="paper")
     full = pavefric.simulate(profile_m, DX, [20.0], **paper)
     every4 = pavefric.simulate(profile_m, DX, [20.0], position_stride=4, **paper)
-    np.testing.assert_array_equal(every4["mu_inst"].values[0], full["mu_inst"].values[0][::4])
+    np.testing.assert_allclose(every4["mu_inst"].values[0], full["mu_inst"].values[0][::4],
+                               rtol=1e-14, atol=0)
     assert every4.attrs["averaged_positions"] == 256
     # the energy scheme: a step's friction is the work over it, so a longer
     # step is another step, but the facets' work still returns round the

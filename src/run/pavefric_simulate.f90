@@ -2430,7 +2430,8 @@ contains
          if (.not. skip_dry) then
             ! warm start from the previous position's dry root, extrapolated
             ! linearly from the two before where there are two (the start
-            ! only: the root is the same)
+            ! only: the root is the same, to rounding where dry_roots_of_c
+            ! takes its first step as the root)
             if (one_pass) then
                call dry_roots_of_c(nl, n, d, cmin, s_load, dry_start%guess, dry_start%sums, &
                   & dry_start%counts, dry_start%below, dry_start%above, x, work, dl)
