@@ -77,39 +77,13 @@ contains
       real(wp), intent(out) :: x(nl)
       !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
-      real(wp), dimension(lanes) :: sum_active, x_new, count
-      integer, dimension(lanes) :: m, m_prev
+      integer, dimension(lanes) :: m_prev
       logical, dimension(lanes) :: running
-      integer :: j, it
       x = s
       where (x0 > 0.0_wp .and. x0 < s) x = x0
       m_prev = -1
       running = .true.
-      do it = 1, max_newton_dry
-         call active_sums(nl, n, d, x, sum_active, count)
-         m(1:nl) = nint(count(1:nl))
-         do j = 1, nl
-            if (.not. running(j)) cycle
-            if (m(j) == m_prev(j)) then             ! active set repeats: x is the root
-               running(j) = .false.
-               cycle
-            end if
-            x_new(j) = (s(j) + sum_active(j)) / real(m(j), wp)
-            ! from above, a non-decreasing step means rounding has stalled
-            if (it > 1 .and. m(j) < m_prev(j) .and. x_new(j) >= x(j)) then
-               running(j) = .false.
-               cycle
-            end if
-            m_prev(j) = m(j)
-            x(j) = x_new(j)
-         end do
-         if (.not. any(running(1:nl))) return
-      end do
-      do j = 1, nl
-         if (.not. running(j)) cycle
-         dl = d(j, :)
-         call sorted_root(dl, s(j), x(j), work)
-      end do
+      call newton_passes(nl, n, d, s, x, m_prev, running, work, dl)
    end subroutine dry_roots
 
    !> dry_roots on the clearances as they come, c (not shifted by their least
@@ -138,11 +112,9 @@ contains
       real(wp), intent(out) :: x(nl)
       !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
-      real(wp), dimension(lanes) :: sum_active, x_new, count
-      integer, dimension(lanes) :: m, m_prev
-      logical, dimension(lanes) :: running
-      logical :: confirmed(lanes)
-      integer :: j, it
+      integer, dimension(lanes) :: m_prev
+      logical, dimension(lanes) :: running, confirmed
+      integer :: j
       do j = 1, nl
          m_prev(j) = nint(counts(j))
          x(j) = s(j)
@@ -163,8 +135,36 @@ contains
       ! each lane's root its own: a confirmed lane stops whatever the others do
       running(1:nl) = .not. confirmed(1:nl)
       if (.not. any(running(1:nl))) return
+      call newton_passes(nl, n, c, s, x, m_prev, running, work, dl, cmin)
+   end subroutine dry_roots_of_c
+
+   !> The dry balance's Newton passes from x (per lane, the lanes `running`),
+   !> m_prev the count of the set x was taken from (-1: none). Each pass
+   !> takes the sum and count of the clearances below x (d, or c - cmin where
+   !> cmin is given: the shift's own subtraction, taken in the pass); a lane
+   !> stops where the set repeats, x then taken from this pass's sums (the
+   !> previous step's x to the bit where it came from a pass: the same set
+   !> summed in the same order), or where a step from above does not descend
+   !> (rounding has stalled: x stays, but a first x that did not come from a
+   !> pass, dry_roots_of_c's, gives way to this pass's step); after
+   !> max_newton_dry passes, the sort-and-scan root.
+   pure subroutine newton_passes(nl, n, c, s, x, m_prev, running, work, dl, cmin)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: c(nl, n), s(nl)
+      real(wp), intent(inout) :: x(nl)
+      integer, intent(inout) :: m_prev(lanes)
+      logical, intent(inout) :: running(lanes)
+      real(wp), intent(inout) :: work(:), dl(:)
+      real(wp), intent(in), optional :: cmin(nl)
+      real(wp), dimension(lanes) :: sum_active, x_new, count
+      integer, dimension(lanes) :: m
+      integer :: j, it
       do it = 1, max_newton_dry
-         call active_sums_of_c(nl, n, c, cmin, x, sum_active, count)
+         if (present(cmin)) then
+            call active_sums_of_c(nl, n, c, cmin, x, sum_active, count)
+         else
+            call active_sums(nl, n, c, x, sum_active, count)
+         end if
          m(1:nl) = nint(count(1:nl))
          do j = 1, nl
             if (.not. running(j)) cycle
@@ -175,9 +175,6 @@ contains
                cycle
             end if
             ! from above, a non-decreasing step means rounding has stalled
-            ! (at the first pass x is the caller's step, whose sum cancels:
-            ! this pass's step, on the shifted clearances, is then the
-            ! better of the two)
             if (m(j) < m_prev(j) .and. x_new(j) >= x(j)) then
                if (it == 1) x(j) = x_new(j)
                running(j) = .false.
@@ -190,10 +187,14 @@ contains
       end do
       do j = 1, nl
          if (.not. running(j)) cycle
-         dl = c(j, :) - cmin(j)
+         if (present(cmin)) then
+            dl = c(j, :) - cmin(j)
+         else
+            dl = c(j, :)
+         end if
          call sorted_root(dl, s(j), x(j), work)
       end do
-   end subroutine dry_roots_of_c
+   end subroutine newton_passes
 
    !> active_sums on d = c - cmin, taken in the pass.
    pure subroutine active_sums_of_c(nl, n, c, cmin, x, sum_active, count)
