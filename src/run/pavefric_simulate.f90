@@ -2384,33 +2384,29 @@ contains
          end if
          ! c_i = h_i - z_k + u_free_i: the penetration at which element i
          ! starts to push (Eqs. 4, 8).
+         ! A dry pad (one_pass): the clearances unshifted (dref = cmin: the
+         ! balance and the step take d = c - cmin), the balance's first pass
+         ! at the extrapolated penetration in the same pass.
          one_pass = .not. any_load
+         if (one_pass) dry_start%guess = extrapolated(delta_dry_prev, delta_dry_prev2)
          if (one_pass .and. kv_fused) then
-            ! a dry pad: the clearances unshifted (dref = cmin: the balance
-            ! and the step take d = c - cmin), the balance's first pass at
-            ! the extrapolated penetration in the same pass
-            dry_start%guess = extrapolated(delta_dry_prev, delta_dry_prev2)
             call lane_free_gaps_from(nl, n, rstep%coef(:, 1), state, &
                & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, d, cmin, &
                & dry_start)
-            dref = cmin
          else if (kv_fused) then
             call lane_free_gaps(nl, n, rstep%coef(:, 1), state, &
                & geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, u_free, cmin, d)
-            dref = 0.0_wp
-         else if (one_pass) then
-            ! any other rubber, dry: the same without the rubber's update fused
-            if (any_memory) call rubber%free_compression(rstep, state, u_free)
-            dry_start%guess = extrapolated(delta_dry_prev, delta_dry_prev2)
-            call lane_gaps_from(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
-               & geo%h, u_free, d, cmin, dry_start)
-            dref = cmin
          else
             if (any_memory) call rubber%free_compression(rstep, state, u_free)
-            call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), geo%h, &
-               & u_free, c, cmin, d)
-            dref = 0.0_wp
+            if (one_pass) then
+               call lane_gaps_from(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+                  & geo%h, u_free, d, cmin, dry_start)
+            else
+               call lane_gaps(nl, n, geo%z(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
+                  & geo%h, u_free, c, cmin, d)
+            end if
          end if
+         dref = merge(cmin, 0.0_wp, one_pass)
          ! Where every lane's film carried load at the previous position
          ! (and its sums suffice), whether it engages here is decided
          ! without the dry roots (engaged_by_level); where all engage, their
