@@ -44,3 +44,48 @@ def test_accuracy_command_writes_report(tmp_path):
     assert "run the command from the repository's root for the table" in text
     assert (tmp_path / "docs" / "figures" / "accuracy.png").stat().st_size > 10_000
     assert (tmp_path / "out" / "accuracy_ctm_dry.nc").exists()
+
+
+def test_accuracy_report_measures_each_wet_model(tmp_path, monkeypatch):
+    """--wet-models: the order study and the default run's estimate of every
+    wet scene under each named wet model too (issue 23: error against time
+    for dry and each wet model), beside the scene's own; the scene's own
+    model is not run twice, and the command line recorded in the report
+    names the option (a reduced run: fewer settings, one speed)."""
+    from pavefric.studies import accuracy
+    from pavefric.studies.reports import accuracy_report
+
+    monkeypatch.setattr(accuracy, "KNOBS", {"substeps": [1, 2, 4]})
+    monkeypatch.setattr(accuracy, "TOLERANCES", [1e-2])
+    monkeypatch.setattr(accuracy, "ORDER_SUBSTEPS", [1, 2, 4, 8, 16, 32])
+    monkeypatch.chdir(tmp_path)            # no pad-resolution study (minutes)
+    report = tmp_path / "docs" / "accuracy.md"
+    accuracy_report([str(ROOT / "inputs" / "ctm_wet.nml")], str(tmp_path / "out"),
+                    speeds=[40.0], repeats=1, report=str(report),
+                    wet_models=("kane2017", "reynolds"), quiet=True)
+    text = report.read_text()
+    assert "--wet-models kane2017 reynolds --report" in text
+    rows = [line for line in text.splitlines() if line.startswith("| ctm_wet")]
+    # the order table and the default run's table: the scene's own model
+    # (kane2017) once each, the Reynolds film once each
+    assert sum(r.startswith("| ctm_wet | kane2017 |") for r in rows) == 2, rows
+    assert sum(r.startswith("| ctm_wet_reynolds | reynolds |") for r in rows) == 2, rows
+    assert not any(r.startswith("| ctm_wet_kane2017") for r in rows)
+    order_rows = [r for r in rows if r.count("|") == 10]
+    assert len(order_rows) == 2
+    for r in order_rows:
+        cells = [c.strip() for c in r.strip("|").split("|")]
+        assert float(cells[7]) > 0                     # one pass's time (s)
+        assert cells[8].startswith("(backward Euler")   # no exact integrator under a film
+    assert "- `kane2017` (1 scene): Euler order" in text
+    assert "- `reynolds` (1 scene): Euler order" in text
+    assert (tmp_path / "docs" / "figures" / "accuracy_order.png").stat().st_size > 10_000
+
+
+def test_accuracy_command_refuses_an_unknown_wet_model(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "pavefric", "accuracy",
+                        str(ROOT / "inputs" / "ctm_wet.nml"), "--wet-models", "mud"],
+                       capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert r.returncode == 2
+    assert "--wet-models" in r.stderr and "'mud'" in r.stderr
+    assert not (tmp_path / "outputs").exists()

@@ -137,7 +137,7 @@ def fitted_order(dt, err, floor: float) -> float:
 
 
 def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
-                substeps: Sequence[int] = ORDER_SUBSTEPS, overrides: dict | None = None,
+                substeps: Sequence[int] | None = None, overrides: dict | None = None,
                 label: str | None = None,
                 on_step: Callable[[str], None] | None = None) -> dict:
     """The time integrator's order on one scene: mu at each ``substeps`` (one
@@ -152,7 +152,7 @@ def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
     scene = load_scene(scene_path)
     scene.parameters.update(overrides or {})
     speeds = np.asarray(speeds_kmh, dtype=float)
-    s = np.asarray(substeps, dtype=int)
+    s = np.asarray(ORDER_SUBSTEPS if substeps is None else substeps, dtype=int)
     mu = []
     for k in s:
         ds = scene.simulate(speeds_kmh=speeds, series=False, substeps=int(k), tolerance=0.0,
@@ -191,6 +191,7 @@ def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
             "default_error": np.abs(dflt["mu"].values - ref).tolist(),
             "exact_error": float(np.max(np.abs(ex["mu"].values - ref))) if exact_ran else None,
             "exact_cost": t_exact / t_one,
+            "one_pass_s": t_one,
             "label": label or Path(scene_path).stem,
             "wet_model": (str(scene.parameters.get("wet_model", "kane2017"))
                           if scene.parameters["depth"] > 0 else "dry"),
@@ -201,24 +202,33 @@ def order_study(scene_path: str | os.PathLike, speeds_kmh: Sequence[float],
             "extrapolated_order": fitted_order(dt[1:-1], err_r[:-1], floor)}
 
 
+# the order plot's line style per model
+STYLES = {"dry": "--", "kane2017": "-", "squeeze": "-.", "reynolds": (0, (4, 1, 1, 1, 1, 1))}
+
+
 def plot_order(rows: Sequence[dict], path: str | os.PathLike) -> str:
     """Log-log error against the time step, backward Euler and extrapolated,
-    one colour per scene, with each fitted slope in the legend."""
+    one colour per surface and one line style per model, with the fitted
+    slopes (Euler, extrapolated) in the legend."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), dpi=110, sharey=True)
-    for i, r in enumerate(rows):
+    legend_in = 0.12 * (-(-len(rows) // 3)) + 0.2     # the legend's height (inches)
+    height = 4.2 + legend_in
+    fig, axes = plt.subplots(1, 2, figsize=(11, height), dpi=110, sharey=True)
+    colours: dict[str, str] = {}          # one colour per surface, one line style per model
+    for r in rows:
         dt = np.asarray(r["dt"])
-        for ax, key, order in ((axes[0], "euler_error", r["euler_order"]),
-                               (axes[1], "extrapolated_error", r["extrapolated_order"])):
+        for ax, key in ((axes[0], "euler_error"), (axes[1], "extrapolated_error")):
             err = np.asarray(r[key], dtype=float)
             keep = np.isfinite(err) & (err > 0)
-            ax.loglog(dt[keep], err[keep], marker="o", ms=3, lw=1, color=f"C{i % 10}",
-                      ls="--" if r["wet_model"] == "dry" else "-",
-                      label=f"{r['label']} ({r['wet_model']}): slope {order:.2f}")
+            ax.loglog(dt[keep], err[keep], marker="o", ms=3, lw=1,
+                      color=colours.setdefault(r["label"].split("_")[0], f"C{len(colours) % 10}"),
+                      ls=STYLES.get(r["wet_model"], "-"),
+                      label=(f"{r['label']} ({r['wet_model']}): slopes {r['euler_order']:.2f}, "
+                             f"{r['extrapolated_order']:.2f}"))
     for ax, title in zip(axes, ("backward Euler, one pass", "extrapolated, 2 mu(s) - mu(s/2)")):
         x = np.array([1.0 / 512, 1.0])
         ax.loglog(x, 1e-2 * x, color="0.6", lw=0.8, ls=":")
@@ -226,9 +236,10 @@ def plot_order(rows: Sequence[dict], path: str | os.PathLike) -> str:
         ax.set_title(title + " (dotted: slopes 1 and 2)", fontsize=9)
         ax.set_xlabel("time step (dx / V; 1 = the paper's)", fontsize=8)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=6, loc="lower right")
+    handles, labels = axes[1].get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=6, loc="lower center", ncol=3, frameon=False)
     axes[0].set_ylabel("largest |mu - mu(limit)| over the speeds", fontsize=8)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, legend_in / height, 1, 1))
     fig.savefig(path)
     plt.close(fig)
     return str(path)

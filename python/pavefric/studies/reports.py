@@ -26,10 +26,12 @@ def machine_description() -> str:
 
 def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats: int = 3,
                     report: str | None = None, also_dry: bool = False,
-                    quiet: bool = False) -> list:
+                    wet_models: Sequence[str] = (), quiet: bool = False) -> list:
     """Run the accuracy-cost study on each scene; write CSV, NetCDF and a plot
     under ``outdir``; with ``report``, a Markdown page and its figure.
-    Progress (runs done, elapsed, left) on stderr unless ``quiet``."""
+    ``wet_models``: on each wet scene, the order study (and the default run's
+    estimate) under each of these wet models too, where the scene's own is
+    another. Progress (runs done, elapsed, left) on stderr unless ``quiet``."""
     from . import accuracy
     from ..core import load_scene
     from ..progress import Progress
@@ -50,6 +52,17 @@ def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats:
         steps += sum(len(v) for k, v in accuracy.KNOBS.items()
                      if depth > 0 or k != "wet_tolerance")
         steps += 1 + 2 * len(accuracy.TOLERANCES) + len(accuracy.ORDER_SUBSTEPS) + 1
+    # the order study alone under other wet models (wet scenes only)
+    extra = []
+    for scene in scenes:
+        parameters = load_scene(scene).parameters
+        if parameters["depth"] <= 0:
+            continue
+        own = str(parameters.get("wet_model", "kane2017"))
+        for model in wet_models:
+            if model != own:
+                extra.append((scene, {"wet_model": model}, f"{Path(scene).stem}_{model}"))
+    steps += len(extra) * (len(accuracy.ORDER_SUBSTEPS) + 2)
     progress = Progress("accuracy", steps, "runs", quiet=quiet)
     for scene, overrides, stem in runs:
         t0 = time.perf_counter()
@@ -84,21 +97,70 @@ def accuracy_report(scenes: Sequence[str], outdir: str, *, speeds=None, repeats:
         print(f"accuracy: {stem}: order {o['euler_order']:.2f} (Euler), "
               f"{o['extrapolated_order']:.2f} (extrapolated) in "
               f"{time.perf_counter() - t0:.1f} s")
+    extra_orders = []
+    for scene, overrides, stem in extra:
+        t0 = time.perf_counter()
+        o = accuracy.order_study(scene, speeds if speeds else load_scene(scene).speeds_kmh,
+                                 overrides=overrides, label=stem,
+                                 on_step=lambda what: progress.advance(what=f"{stem}, {what}"))
+        progress.clear()
+        print(f"accuracy: {stem}: order {o['euler_order']:.2f} (Euler), "
+              f"{o['extrapolated_order']:.2f} (extrapolated) in "
+              f"{time.perf_counter() - t0:.1f} s")
+        extra_orders.append(o)
     progress.close()
-    order_png = accuracy.plot_order([t.attrs["order"] for t in tables], out / "accuracy_order.png")
+    orders = [t.attrs["order"] for t in tables] + extra_orders
+    order_png = accuracy.plot_order(orders, out / "accuracy_order.png")
     print(f"accuracy: wrote {order_png}")
     png = accuracy.plot(tables, out / "accuracy.png", title="error against cost, per knob")
     print(f"accuracy: wrote {png}")
     rec = accuracy.recommend(tables)
     if report:
         _write_accuracy_markdown(Path(report), tables, rec, Path(png), scenes, speeds, repeats,
-                                 also_dry, Path(order_png))
+                                 also_dry, Path(order_png), orders, tuple(wet_models))
         print(f"accuracy: wrote {report}")
     return tables
 
 
+def _order_cell(order: float) -> str:
+    """An order of the table: '—' where too few errors lie above the
+    reference's uncertainty to fit one."""
+    import math
+
+    return f"{order:.2f}" if math.isfinite(order) else "—"
+
+
+def _order_summary(orders: Sequence[dict]) -> list[str]:
+    """One line per model of the order table: the range of its fitted orders
+    and of its reference's uncertainty over the scenes, from the rows."""
+    import numpy as np
+
+    models = []
+    for o in orders:
+        if o["wet_model"] not in models:
+            models.append(o["wet_model"])
+    lines = ["Per model, over the scenes above (the range of each column):", ""]
+    for model in models:
+        rows = [o for o in orders if o["wet_model"] == model]
+
+        def span(key, fmt, rows=rows):
+            v = np.array([r[key] for r in rows], dtype=float)
+            v = v[np.isfinite(v)]
+            if v.size == 0:
+                return "not defined (too few errors above the reference's uncertainty)"
+            return f"{fmt(v.min())} to {fmt(v.max())}"
+
+        lines.append(f"- `{model}` ({len(rows)} scene{'s' if len(rows) > 1 else ''}): Euler order "
+                     f"{span('euler_order', lambda x: f'{x:.2f}')}, extrapolated order "
+                     f"{span('extrapolated_order', lambda x: f'{x:.2f}')}, reference "
+                     f"uncertainty {span('floor', lambda x: f'{x:.1g}')}.")
+    return lines
+
+
 def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speeds, repeats,
-                             also_dry=False, order_png: Path | None = None):
+                             also_dry=False, order_png: Path | None = None,
+                             orders: Sequence[dict] | None = None,
+                             wet_models: Sequence[str] = ()):
     import numpy as np
 
     from . import accuracy
@@ -111,7 +173,12 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
     cmd = "python -m pavefric accuracy " + " ".join(scenes)
     if speeds:
         cmd += " --speeds " + " ".join(f"{s:g}" for s in speeds)
-    cmd += f" --repeats {repeats}" + (" --also-dry" if also_dry else "") + f" --report {report}"
+    cmd += f" --repeats {repeats}" + (" --also-dry" if also_dry else "")
+    if wet_models:
+        cmd += " --wet-models " + " ".join(wet_models)
+    cmd += f" --report {report}"
+    if orders is None:
+        orders = [t.attrs["order"] for t in tables if t.attrs.get("order")]
     lines = [
         "# Accuracy and cost of the numerical knobs",
         "",
@@ -168,23 +235,43 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "",
         "![error against time step](figures/accuracy_order.png)",
         "",
+        "Every row's time is its passes': one backward-Euler pass at `substeps = s` costs "
+        "about s times the pass at 1 (column `one pass`, the best of three runs of the "
+        "speeds above), and the extrapolated value at s costs the passes at s and s/2. "
+        "`reference uncertainty` is the change of the extrapolated value between the "
+        "two finest pairs: no error below it is fitted, and where it is large the scheme "
+        "has not converged in the time step at all (the order is then not defined).",
+        "",
         "| scene | model | Euler order | extrapolated order | Euler error at dt = 1, 1/8 | "
-        "extrapolated error at dt = 1/2, 1/8 | exact: error, cost vs one Euler pass |",
-        "|---|---|---|---|---|---|---|",
+        "extrapolated error at dt = 1/2, 1/8 | reference uncertainty | one pass (s) | "
+        "exact: error, cost vs one Euler pass |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
-    for t in tables:
-        o = t.attrs.get("order")
-        if not o:
-            continue
+    for o in orders:
         at8 = list(o["substeps"]).index(8)
         e, r = o["euler_error"], o["extrapolated_error"]
-        lines.append(f"| {o['label']} | {o['wet_model']} | {o['euler_order']:.2f} | "
-                     f"{o['extrapolated_order']:.2f} | {e[0]:.2g}, {e[at8]:.2g} | "
-                     f"{r[1]:.2g}, {r[at8]:.2g} | "
+        lines.append(f"| {o['label']} | {o['wet_model']} | {_order_cell(o['euler_order'])} | "
+                     f"{_order_cell(o['extrapolated_order'])} | {e[0]:.2g}, {e[at8]:.2g} | "
+                     f"{r[1]:.2g}, {r[at8]:.2g} | {o['floor']:.1g} | "
+                     f"{o.get('one_pass_s', float('nan')):.3g} | "
                      + (f"{o['exact_error']:.1g}, {o['exact_cost']:.2g}x |" if o["exact_ran"]
                         else "(backward Euler: a film or a Maxwell rubber) |"))
-    exact = [t.attrs["order"] for t in tables
-             if t.attrs.get("order") and t.attrs["order"]["exact_ran"]]
+    lines += ["", *_order_summary(orders)]
+    if any(o["wet_model"] == "reynolds" for o in orders):
+        lines += [
+            "",
+            "The Reynolds film's rows are not a rate: its load balance has more than one "
+            "root, and the root a pass takes depends on where its iteration starts, so its "
+            "friction drifts as the step shrinks instead of converging (docs/model.md, "
+            "\"The film's balance has more than one root\"; the figures there come from "
+            "`python -m pavefric.studies.reynolds_roots`). Where its fitted orders are near 0 "
+            "or its reference uncertainty is of the size of its errors, refining the step "
+            "does not bring it to a limit on that scene, and the errors in its rows are "
+            "changes against the finest passes, not distances to a converged value; "
+            "extrapolation and the default run's estimate (the table below) then rest on "
+            "a convergence that is not there.",
+        ]
+    exact = [o for o in orders if o["exact_ran"]]
     exact_note = ""
     if exact:
         exact_note = (f" ({min(o['exact_error'] for o in exact):.1g} to "
@@ -199,8 +286,8 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "road without a film exactly, from contact event to event (docs/model.md, "
         "\"Exact time integration\"): its error is the reference's own uncertainty"
         f"{exact_note}. Wet scenes (the "
-        "paper's bearing, the drainage film) and the Maxwell compound still run "
-        "backward Euler under it, and say so (`exact_integrator_ran`).",
+        "paper's bearing, the drainage film, the Reynolds film) and the Maxwell compound "
+        "still run backward Euler under it, and say so (`exact_integrator_ran`).",
         "",
         "Why not a higher order for backward Euler: the friction is the rubber's dissipation, and most "
         "of it happens where an element meets a rising facet. The contact starts "
@@ -243,9 +330,8 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
         "| scene | model | largest actual error | its estimate | smallest ratio over the speeds |",
         "|---|---|---|---|---|",
     ]
-    for t in tables:
-        o = t.attrs.get("order")
-        if not o or "default_estimate" not in o:
+    for o in orders:
+        if "default_estimate" not in o:
             continue
         est = np.asarray(o["default_estimate"], dtype=float)
         err = np.asarray(o["default_error"], dtype=float)
