@@ -234,3 +234,29 @@ def test_flat_wet_profile_at_a_crawl_estimates_its_error():
     for substeps in (2, 4):
         finite(pavefric.simulate(np.zeros(500), DX, [1e-6], mu_loc=0.4, depth=1e-3,
                                  substeps=substeps, error_estimate=False))
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_a_long_memory_under_a_tiny_load_balances_to_rounding(closed):
+    """An attack's reproducer (2026-12-06): a Kelvin-Voigt pad of very long
+    memory (viscosity 1e10 against stiffness 1.4e8) under a load of 1e-5 N
+    keeps many clearances within 1e-20 m of the root. The dry balance's
+    first Newton step, taken from the guess's sums and not confirmed (its
+    terms far above the root), had its set compared with the guess's, not
+    with its own, and rounding had moved it past such clearances: the
+    balance missed by up to 5e-6 of the load. Every root is now taken from
+    the set of a point a pass has seen: the residual is rounding, at every
+    speed, whichever speeds share the call."""
+    import warnings
+
+    z = np.zeros(40)
+    z[[3, 11, 15, 31]] = [1e-4, 4e-4, 2e-4, 2e-4]
+    speeds = [40.0, 60.0, 100.0, 120.0, 200.0, 300.0]
+    kw = dict(closed=closed, length=0.005, load=1e-5, stiffness=1.4e8, viscosity=1e10,
+              mu_loc=0.0, time_scheme="euler", error_estimate=False, min_contacts=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # (a memory that outlasts the spin-up says so)
+        ds = pavefric.simulate(z, 0.87e-3, speeds, **kw)
+        alone = pavefric.simulate(z, 0.87e-3, [100.0], **kw)
+    assert np.all(ds["max_balance_residual"].values <= 1e-12), ds["max_balance_residual"].values
+    assert alone["max_balance_residual"].values[0] <= 1e-12
