@@ -438,7 +438,9 @@ def test_each_output_is_declared_by_its_component():
         # appended with the error estimate's pad pass
         "estimate_elements_per_sample",
         # appended with &numerics min_contacts
-        "elements_per_sample_used"]
+        "elements_per_sample_used",
+        # appended with the Reynolds film's root jumps
+        "film_root_jumps"]
     modules = {"pad": "model/pavefric_outputs.f90", "numerics": "model/pavefric_outputs.f90",
                "facets": "physics/pavefric_facet.f90", "rubber": "physics/pavefric_rubber.f90",
                "film": "physics/pavefric_film.f90", "squeeze": "physics/pavefric_squeeze.f90",

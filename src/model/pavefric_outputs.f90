@@ -49,7 +49,7 @@ module pavefric_outputs
       & "mu_hysteresis", "mu_adhesion", "mu_extrapolated", "exact_integrator_ran", &
       & "contact_fraction", "film_load_share", "mean_water_thickness", "film_unsettled", &
       & "film_pressure_max", "water_thickness", "estimate_elements_per_sample", &
-      & "elements_per_sample_used"]
+      & "elements_per_sample_used", "film_root_jumps"]
 
    !> What the output says besides the result variables: where the results
    !> came from, the profile, its texture, the parameters used, warnings.
@@ -340,6 +340,8 @@ contains
          values(1:ns) = res%mean_water_thickness
       case ("film_unsettled")
          values(1:ns) = real(res%film_unsettled, wp)
+      case ("film_root_jumps")
+         values(1:ns) = real(res%film_root_jumps, wp)
       case ("film_pressure_max")
          values(1:np*ns) = reshape(res%film_pressure_max, [np*ns])
       case ("water_thickness")

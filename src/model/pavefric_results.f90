@@ -75,6 +75,14 @@ module pavefric_results
       real(wp), allocatable :: mean_water_thickness(:)
       !> Averaged positions where the film's solution did not settle.
       integer(i8), allocatable :: film_unsettled(:)
+      !> Averaged positions where the wet balance's root jumped (a film
+      !> whose load is not monotone; film_root_jumps).
+      integer(i8), allocatable :: film_root_jumps(:)
+      !> The same, the largest over every pass the run made for the speed
+      !> (the reported one, &numerics tolerance's and min_contacts' passes,
+      !> the error estimate's): where only another pass had them, the
+      !> reported mu still rests on a balance that can jump (one warning).
+      integer(i8), allocatable :: root_jumps_seen(:)
       !> Largest compression of an element (m), to compare with the thickness.
       real(wp), allocatable :: max_compression(:)
       !> Contacts on facets steeper than theta_max, summed over positions.

@@ -21,7 +21,7 @@ module pavefric_film
    public :: film_outputs, n_film_outputs
 
    !> The result variables of a film that carries load (film_outputs).
-   integer, parameter :: n_film_outputs = 8
+   integer, parameter :: n_film_outputs = 9
 
    !> What every film is built with, from the scene: the water depth H_in
    !> (m) and viscosity eta (Pa s), the pad's width and length (m) and the
@@ -82,6 +82,13 @@ module pavefric_film
       !> points first, so that a root at a jump is found in a few
       !> evaluations, not by halving the bracket to adjacent doubles.
       procedure :: jumps_at_contact => film_flag_false
+      !> Whether the load is monotone in the penetration and in each gap (a
+      !> wider gap never carries more). The balance then has one root, and
+      !> from one position to the next it moves within the range of the
+      !> clearances' moves. Where it may not be (the Reynolds film), the
+      !> driver counts the positions where the root left that range
+      !> (film_root_jumps).
+      procedure :: load_monotone => film_flag_true
       !> `loads` from each lane's gap sum (in element order) and count of
       !> open gaps, for films whose `sums_suffice`: each lane's numbers are
       !> `loads`'s to the bit. (Not called for the others; the default
@@ -232,6 +239,14 @@ contains
       t(8) = output_var("film", "film_unsettled", "1", "averaged positions where the " // &
          & "film's solution at the balance did not settle (wet_model = 'reynolds': its " // &
          & "active set; the last iterate is used, and a warning says so)", out_int64)
+      t(9) = output_var("film", "film_root_jumps", "1", "averaged positions where the " // &
+         & "wet balance's root moved from the position before outside the range of the " // &
+         & "elements' clearances' moves, which a load monotone in the penetration and in " // &
+         & "each gap never does: there the film's load is not monotone, and the pad may " // &
+         & "have jumped to another root (wet_model = 'reynolds'; counted only for films " // &
+         & "whose load may not be monotone, 0 for the others). Where it is not 0, mu " // &
+         & "depends on the time step and may have no converged value; a warning says so " // &
+         & "(docs/model.md)", out_int64)
    end function film_outputs
 
    pure function pseudo_bearing_entry() result(e)
@@ -281,6 +296,11 @@ contains
       class(film_model), intent(in) :: self
       film_flag_false = .false.
    end function film_flag_false
+
+   pure logical function film_flag_true(self)
+      class(film_model), intent(in) :: self
+      film_flag_true = .true.
+   end function film_flag_true
 
    pure subroutine film_no_report(self, step, gap, settled, water, pressure_max, work)
       class(film_model), intent(in) :: self

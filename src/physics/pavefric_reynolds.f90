@@ -109,6 +109,10 @@ module pavefric_reynolds
       !> Its drainage lengths (the runs of open and of touching elements)
       !> change where an element touches: the load jumps there.
       procedure :: jumps_at_contact => reynolds_carries_load
+      !> Its load is not monotone in the penetration: where the inlet's
+      !> pressure reaches further under a rising pad, a lifted and a seated
+      !> pad both balance (docs/model.md).
+      procedure :: load_monotone => reynolds_not_monotone
    end type reynolds_film
 
 contains
@@ -166,6 +170,11 @@ contains
       class(reynolds_film), intent(in) :: self
       reynolds_carries_load = .true.
    end function reynolds_carries_load
+
+   pure logical function reynolds_not_monotone(self)
+      class(reynolds_film), intent(in) :: self
+      reynolds_not_monotone = .false.
+   end function reynolds_not_monotone
 
    pure logical function reynolds_changes_friction(self)
       class(reynolds_film), intent(in) :: self

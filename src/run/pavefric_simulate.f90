@@ -152,7 +152,7 @@ module pavefric_simulate
       real(wp) :: mean_local_friction = 0, mean_film_thickness = 0
       real(wp) :: contact_fraction = 0, mean_water_thickness = 0
       integer(i8) :: n_clamped = 0, bearing_evaluations = 0, memory_updates = 0
-      integer(i8) :: film_unsettled = 0
+      integer(i8) :: film_unsettled = 0, film_root_jumps = 0
       !> Spin-up positions this speed ran, and whether its memory outlasted them.
       integer :: spinup = 0
       logical :: spin_short = .false.
@@ -438,6 +438,7 @@ contains
       if (m%tolerance <= 0.0_wp .and. m%error_estimate) &
          & call estimate_step_error(m, z, dx, closed, speeds_kmh, res)
       call warn_estimate(m, res)
+      call root_jump_warning(res, speeds_kmh)
    end subroutine simulate
 
    !> The run at `mm` for `speeds` over the pad's grid(s): the profile as
@@ -579,6 +580,8 @@ contains
       call mean_in(acc%film_load_share, r%film_load_share)
       call mean_in(acc%mean_water_thickness, r%mean_water_thickness)
       acc%film_unsettled = acc%film_unsettled + r%film_unsettled
+      acc%film_root_jumps = acc%film_root_jumps + r%film_root_jumps
+      acc%root_jumps_seen = acc%root_jumps_seen + r%root_jumps_seen
       acc%max_balance_residual = max(acc%max_balance_residual, r%max_balance_residual)
       acc%max_compression = max(acc%max_compression, r%max_compression)
       acc%n_clamped = acc%n_clamped + r%n_clamped
@@ -814,6 +817,9 @@ contains
          res%n_spinup = max(res%n_spinup, r%n_spinup)
          if (len(r%effects) > len(res%effects)) res%effects = r%effects
          if (want_series) call move_series(r, res)
+         do k = 1, size(idx)
+            res%root_jumps_seen(idx(k)) = max(res%root_jumps_seen(idx(k)), r%root_jumps_seen(k))
+         end do
          if (.not. any(active)) exit
       end do
    contains
@@ -1059,6 +1065,7 @@ contains
                res%refined_elements_per_sample(j) = 2 * e
                res%refined_contacts(j) = contacts_touching(r, k)
                active(j) = unresolved_contacts(r, k)
+               res%root_jumps_seen(j) = max(res%root_jumps_seen(j), r%root_jumps_seen(k))
             end do
          end do
       end do
@@ -1170,6 +1177,12 @@ contains
                   by_step(group(k)) = .not. elements_kind
                   done(group(k)) = .true.
                   res%estimate_elements_per_sample(group(k)) = mc%elements_per_sample
+               end do
+               ! (the passes' own warnings are not repeated; a root that
+               ! left its range in the estimate's pass is counted)
+               do k = 1, size(group)
+                  res%root_jumps_seen(group(k)) = max(res%root_jumps_seen(group(k)), &
+                     & r%root_jumps_seen(k))
                end do
             end do
          end do
@@ -1336,11 +1349,26 @@ contains
          how = "three times the change at half the step, substeps doubled"
          if (res%extrapolated(worst)) how = "mu is the Richardson value of the run and " // &
             & "its pass at half the step, substeps doubled; the estimate twice their difference"
-         call add_warning(res%warnings, off // "step along " // &
-            & "the road (mu_error_estimate: " // how // "): set &numerics " // &
-            & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry road " // &
-            & "(docs/accuracy.md)")
+         if (jumped(worst)) then
+            ! (no advice to refine the step: it does not converge there)
+            call add_warning(res%warnings, off // "step along " // &
+               & "the road (mu_error_estimate: " // how // "), and more: the wet " // &
+               & "balance's root left the range of the clearances' moves in this run " // &
+               & "(film_root_jumps, its own warning), where neither the estimate nor " // &
+               & "&numerics tolerance bounds mu's error (docs/accuracy.md)")
+         else
+            call add_warning(res%warnings, off // "step along " // &
+               & "the road (mu_error_estimate: " // how // "): set &numerics " // &
+               & "tolerance (e.g. 1e-3) to refine it, or time_scheme = 'exact' on a dry " // &
+               & "road (docs/accuracy.md)")
+         end if
       end if
+   contains
+      pure logical function jumped(jj)
+         integer, intent(in) :: jj
+         jumped = .false.
+         if (allocated(res%root_jumps_seen)) jumped = res%root_jumps_seen(jj) > 0
+      end function jumped
    end subroutine warn_estimate
 
    !> Speed k of `from` into speed j of `to` (every per-speed result).
@@ -1369,6 +1397,8 @@ contains
       to%film_load_share(j) = from%film_load_share(k)
       to%mean_water_thickness(j) = from%mean_water_thickness(k)
       to%film_unsettled(j) = from%film_unsettled(k)
+      to%film_root_jumps(j) = from%film_root_jumps(k)
+      to%root_jumps_seen(j) = max(to%root_jumps_seen(j), from%root_jumps_seen(k))
       ! a tolerance's own accuracy record, where both runs have one
       if (allocated(from%mu_error) .and. allocated(to%mu_error)) then
          to%mu_error(j) = from%mu_error(k)
@@ -1485,6 +1515,48 @@ contains
       end subroutine take
    end subroutine hold_series
 
+   !> The run's one warning where a wet balance left the range of the
+   !> clearances' moves (a film whose load is not monotone): in the reported
+   !> pass (film_root_jumps), else in another pass the run made for the
+   !> speed (root_jumps_seen: the tolerance's, min_contacts', the error
+   !> estimate's), at the first speed with any.
+   pure subroutine root_jump_warning(res, speeds_kmh)
+      type(sim_result_type), intent(inout) :: res
+      real(wp), intent(in) :: speeds_kmh(:)
+      character(len=:), allocatable :: place
+      integer :: j
+      if (.not. allocated(res%root_jumps_seen)) return
+      if (.not. any(res%root_jumps_seen > 0)) return
+      if (any(res%film_root_jumps > 0)) then
+         j = findloc(res%film_root_jumps > 0, .true., dim=1)
+         call positions(res%film_root_jumps(j), place)
+         place = place // " at " // to_str(speeds_kmh(j)) // " km/h (film_root_jumps)"
+      else
+         j = findloc(res%root_jumps_seen > 0, .true., dim=1)
+         call positions(res%root_jumps_seen(j), place)
+         place = place // " at " // to_str(speeds_kmh(j)) // &
+            & " km/h in a pass the run made to refine or estimate its result (the " // &
+            & "reported pass's film_root_jumps is 0)"
+      end if
+      call add_warning(res%warnings, "the wet balance's root left the range of the " // &
+         & "elements' clearances' moves at " // place // ": the film's load is not " // &
+         & "monotone in the penetration there, a lifted and a seated pad may both " // &
+         & "balance, and a jump between them strikes the dashpots harder as the step " // &
+         & "shrinks, so mu depends on the time step and may have no converged value " // &
+         & "(mu_error_estimate and &numerics tolerance do not bound its error; " // &
+         & "docs/model.md, 'The film''s balance has more than one root')")
+   contains
+      !> "k averaged position(s)" (a subroutine: a deferred-length function
+      !> result would be a static length, shared by threads).
+      pure subroutine positions(count, text)
+         integer(i8), intent(in) :: count
+         character(len=:), allocatable, intent(out) :: text
+         text = to_str(int(count)) // " averaged position"
+         if (count /= 1) text = text // "s"
+      end subroutine positions
+   end subroutine root_jump_warning
+
+
    !> The friction model at the knobs given.
    subroutine simulate_fixed(m, z, dx, closed, speeds_kmh, want_series, res, error)
       type(model_type), intent(in) :: m
@@ -1539,7 +1611,8 @@ contains
          & res%exact_integrator_ran(ns), &
          & res%mean_local_friction(ns), res%mean_film_thickness(ns), spinups(ns), shorts(ns), &
          & exact_bad(ns), res%contact_fraction(ns), res%film_load_share(ns), &
-         & res%mean_water_thickness(ns), res%film_unsettled(ns), stat=stat)
+         & res%mean_water_thickness(ns), res%film_unsettled(ns), res%film_root_jumps(ns), &
+         & res%root_jumps_seen(ns), stat=stat)
       if (stat == 0) then
          exact_bad = 0
       end if
@@ -1632,6 +1705,7 @@ contains
                   & summary%mean_hydro_load / m%load))
                res%mean_water_thickness(j) = summary%mean_water_thickness
                res%film_unsettled(j) = summary%film_unsettled
+               res%film_root_jumps(j) = summary%film_root_jumps
                res%memory_updates(j) = merge(-1_i8, res%memory_updates(j), &
                   & summary%failed == stat_memory .or. summary%failed == 1)
                if (summary%failed == stat_internal) exact_bad(j) = summary%exact_bad_position
@@ -1680,6 +1754,7 @@ contains
             & " positions at " // to_str(speeds_kmh(j)) // " km/h (film_unsettled): its " // &
             & "last iterate was used there, and mu may be off by its share of the load")
       end if
+      res%root_jumps_seen = res%film_root_jumps
       ! A closed profile's positions close the lap only when the stride
       ! divides the grid's points: else the last step runs past the start
       ! and the elements' stored energy is not returned over the positions
@@ -2300,7 +2375,14 @@ contains
       !> Sums over averaged positions: the share of elements in contact, and
       !> the film's water per unit area (films that report it)
       real(wp), dimension(lanes) :: contact_share_sum, water_sum
-      integer(i8), dimension(lanes) :: n_clamped, n_eval, n_unsettled
+      integer(i8), dimension(lanes) :: n_clamped, n_eval, n_unsettled, n_jumps
+      !> A film whose load may not be monotone (film_model%load_monotone):
+      !> each lane's clearances and wet root at its last position, to count
+      !> the positions where the root moved further than they did (jumps).
+      logical :: track_jumps
+      logical, dimension(lanes) :: have_jump_prev
+      real(wp), dimension(lanes) :: delta_jump_prev
+      real(wp), allocatable :: c_jump_prev(:,:)
       integer, dimension(lanes) :: n_contact, n_nocontact, n_wet, n_clamp_j
       logical, dimension(lanes) :: load_film, friction_film, wet_lane
       real(wp) :: mu_j, resid, tan_max, mu_eff, film_sum, hyst_j, adh_j, water, pmax
@@ -2361,6 +2443,8 @@ contains
       contact_share_sum = 0.0_wp
       water_sum = 0.0_wp
       n_unsettled = 0
+      n_jumps = 0
+      have_jump_prev = .false.
       n_clamped = 0
       n_eval = 0
       n_nocontact = 0
@@ -2468,6 +2552,7 @@ contains
                   if (present(water_thickness)) water_thickness(t+1, j) = water
                end do
             end if
+            if (track_jumps) call count_jumps(t)
          end if
 
          if (kv_fused) then
@@ -2603,6 +2688,9 @@ contains
          if (stat == 0 .and. any_memory) allocate(state(nl, ns_state, n), stat=stat)
          if (stat == 0 .and. any_load) allocate(gaps(nl, n), &
             & fwork(film%work_size(n), nl), source=0.0_wp, stat=stat)
+         track_jumps = .false.
+         if (any_load) track_jumps = .not. film%load_monotone()
+         if (stat == 0 .and. track_jumps) allocate(c_jump_prev(nl, n), source=0.0_wp, stat=stat)
          if (stat == 0 .and. any_friction) allocate(fstate(film%state_size(), geo%npf, nl), &
             & pressure(n), share(n), thick(n), tan_el(n), pl(n), samples(n), &
             & stat=stat)
@@ -2648,6 +2736,48 @@ contains
          sl = m%load / kl
       end subroutine step_stiffness
 
+      !> For a film whose load may not be monotone: per lane, whether the
+      !> wet root moved from the lane's last position outside the range of
+      !> the moves of the clearances c_i = d_i + cmin (beyond their
+      !> rounding), counted at averaged positions (film_root_jumps). Where
+      !> the load is monotone in the penetration and in each gap, the
+      !> balance's root is a weighted mean of the clearances' moves, weights
+      !> >= 0, and cannot leave their range (every c_i moved by the same
+      !> amount moves the root by it; one moved further moves it less); a
+      !> root that leaves it sits where the load is not monotone, and one
+      !> that jumped to another root leaves it by a distance that does not
+      !> shrink with the step.
+      subroutine count_jumps(t)
+         integer, intent(in) :: t
+         real(wp) :: lo_c, hi_c, dc, move, excess, spread
+         integer :: i, j
+         do j = 1, nl
+            if (.not. load_film(j)) cycle
+            if (have_jump_prev(j) .and. t >= 0) then
+               lo_c = huge(1.0_wp)
+               hi_c = -huge(1.0_wp)
+               spread = 0.0_wp
+               do i = 1, n
+                  dc = (d(j, i) + cmin(j)) - c_jump_prev(j, i)
+                  lo_c = min(lo_c, dc)
+                  hi_c = max(hi_c, dc)
+                  spread = max(spread, d(j, i))
+               end do
+               move = (cmin(j) + x(j)) - delta_jump_prev(j)
+               excess = max(0.0_wp, move - hi_c, lo_c - move)
+               ! the rounding of the clearances (their spread, and the
+               ! profile's height: a vertical shift changes no count)
+               if (excess > 1.0e-9_wp * spread + 64.0_wp * epsilon(1.0_wp) * abs(cmin(j))) &
+                  & n_jumps(j) = n_jumps(j) + 1
+            end if
+            do i = 1, n
+               c_jump_prev(j, i) = d(j, i) + cmin(j)
+            end do
+            delta_jump_prev(j) = cmin(j) + x(j)
+            have_jump_prev(j) = .true.
+         end do
+      end subroutine count_jumps
+
       !> A lane whose spin-up starts at step t begins from relaxed elements
       !> (what it did before is discarded): its numbers are its own,
       !> whichever speeds share its chunk.
@@ -2668,6 +2798,8 @@ contains
                wh_prev(j) = 0.0_wp
                if (allocated(fwork)) fwork(:, j) = 0.0_wp
                have_prev(j) = .false.
+               have_jump_prev(j) = .false.
+               n_jumps(j) = 0
                u_max(j) = 0.0_wp
                n_eval(j) = 0
                if (friction_film(j)) call film%reset(fstep(j), fstate(:, :, j))
@@ -2910,6 +3042,7 @@ contains
             out(j)%contact_fraction = contact_share_sum(j) / real(geo%n_avg, wp)
             out(j)%mean_water_thickness = water_sum(j) / real(geo%n_avg, wp)
             out(j)%film_unsettled = n_unsettled(j)
+            out(j)%film_root_jumps = n_jumps(j)
             out(j)%max_compression = u_max(j)
             out(j)%n_clamped = n_clamped(j)
             out(j)%bearing_evaluations = n_eval(j)

@@ -269,7 +269,9 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
             "does not bring it to a limit on that scene, and the errors in its rows are "
             "changes against the finest passes, not distances to a converged value; "
             "extrapolation and the default run's estimate (the table below) then rest on "
-            "a convergence that is not there.",
+            "a convergence that is not there. A run says so where its balance's root left "
+            "the range of the clearances' moves in any of its passes (`film_root_jumps`, "
+            "docs/model.md): one warning, and no advice to set a tolerance.",
         ]
     exact = [o for o in orders if o["exact_ran"]]
     exact_note = ""

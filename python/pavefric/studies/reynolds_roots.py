@@ -49,13 +49,15 @@ def largest_jump(ds) -> float:
 
 
 def substep_table(z, substeps) -> list[tuple]:
-    """mu, film_load_share and the largest jump against substeps (Reynolds)."""
+    """mu, film_load_share, the largest jump and film_root_jumps (the averaged
+    positions where the root left the range of the clearances' moves) against
+    substeps (Reynolds)."""
     rows = []
     for s in substeps:
         t0 = time.perf_counter()
         ds = _run(z, [SPEED], wet_model="reynolds", depth=DEPTH, substeps=s, series=True)
         rows.append((s, float(ds["mu"][0]), float(ds["film_load_share"][0]), largest_jump(ds),
-                     time.perf_counter() - t0))
+                     int(ds["film_root_jumps"][0]), time.perf_counter() - t0))
     return rows
 
 
@@ -95,17 +97,17 @@ def main(argv: list[str] | None = None) -> None:
     print(f"spectral_profile({PROFILE['n']}, {DX}, rms={PROFILE['rms']}, "
           f"seed={PROFILE['seed']}), {SPEED:g} km/h, {DEPTH * 1e3:g} mm of water")
     print("Reynolds film against the time step:")
-    print("  substeps        mu  film_load_share  largest jump (m)  seconds")
+    print("  substeps        mu  film_load_share  largest jump (m)  film_root_jumps  seconds")
     table = substep_table(z, (1, 16, 64, 256, 1024, 4096))
-    for s, mu, share, jump, sec in table:
-        print(f"  {s:8d}  {mu:8.4f}  {share:15.4f}  {jump:16.2e}  {sec:7.1f}")
+    for s, mu, share, jump, left, sec in table:
+        print(f"  {s:8d}  {mu:8.4f}  {share:15.4f}  {jump:16.2e}  {left:15d}  {sec:7.1f}")
     print("Largest jump of the penetration per step, every model:")
     print("  substeps  model          mu  largest jump (m)")
     others = model_jumps(z, (16, 256), models=[m for m in MODELS if m != "reynolds"])
     for s in (16, 256):
         # the Reynolds film's rows are the table's above (not run again)
         rows = [r for r in others if r[0] == s] + [
-            (s, "reynolds", mu, jump) for t, mu, _, jump, _ in table if t == s]
+            (s, "reynolds", mu, jump) for t, mu, _, jump, _, _ in table if t == s]
         for _, name, mu, jump in rows:
             print(f"  {s:8d}  {name:9s}  {mu:8.4f}  {jump:16.2e}")
     print("mu rising with depth, spectral_profile(512, rms=0.2 mm, seed=11), "
