@@ -1544,7 +1544,7 @@ contains
          & "balance, and a jump between them strikes the dashpots harder as the step " // &
          & "shrinks, so mu depends on the time step and may have no converged value " // &
          & "(mu_error_estimate and &numerics tolerance do not bound its error; " // &
-         & "docs/model.md, 'The film''s balance has more than one root')")
+         & "docs/model.md, ""The film's balance has more than one root"")")
    contains
       !> "k averaged position(s)" (a subroutine: a deferred-length function
       !> result would be a static length, shared by threads).
@@ -2378,7 +2378,8 @@ contains
       integer(i8), dimension(lanes) :: n_clamped, n_eval, n_unsettled, n_jumps
       !> A film whose load may not be monotone (film_model%load_monotone):
       !> each lane's clearances and wet root at its last position, to count
-      !> the positions where the root moved further than they did (jumps).
+      !> the positions where the root left the range of their moves
+      !> (count_jumps).
       logical :: track_jumps
       logical, dimension(lanes) :: have_jump_prev
       real(wp), dimension(lanes) :: delta_jump_prev
