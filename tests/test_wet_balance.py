@@ -412,3 +412,52 @@ def test_the_film_engages_without_the_dry_roots(tmp_path):
     assert 0.2 * total < engaged < 0.8 * total, (engaged, total)
     assert bad_upper == 0
     assert tight > 0.05 * engaged, (tight, engaged)
+
+
+# An attack's reproducer (2026-12-06): 24 points, a long-memory rubber, a
+# shallow film that engages and lets go (docs/numerics.md, "bit for bit")
+LANES_Z = [-1.364388905843542e-05, -4.734159526227956e-06, 8.831765400001868e-06,
+           1.1159555687932859e-05, -8.45446696157989e-06, -3.200168589822475e-07,
+           -2.5857844206934897e-06, 1.1815585755823626e-05, 2.5046333741809186e-05,
+           -1.8298868255199325e-05, 9.16422909984269e-06, -2.858175376906725e-05,
+           1.406637216464734e-07, -1.1087845239491877e-05, 1.991818790110053e-05,
+           1.663685283010593e-06, -7.367717479557876e-06, -4.993128547088203e-06,
+           -5.752957520422239e-06, 1.883116085626878e-06, -1.5814847037970742e-06,
+           6.5588557398152206e-06, 1.540261081924691e-05, 7.0141204690748395e-06]
+
+
+def test_a_speeds_numbers_are_its_own_whichever_speeds_share_the_call():
+    """Each speed's numbers do not depend on which other speeds run with
+    it, to the bit (so neither on the chunking nor on the threads): a wet
+    speed alone, beside a hydroplaning one, and among five; a speed of 0
+    (no motion: no film) alone and in a wet call. Before: the film's
+    engagement by the level and the dry roots' warm start were decided for
+    a whole chunk of speeds (mu moved by 1e-16, the balance's evaluations
+    by a few), and a speed of 0 took another dry balance beside moving
+    speeds than alone."""
+    import warnings
+
+    import numpy as np
+
+    import pavefric
+
+    z = np.array(LANES_Z)
+    kw = dict(closed=True, length=0.02, depth=1.8449213736658224e-05, wet_model="kane2017",
+              load=11.8, stiffness=1.4e8, viscosity=1e10, mu_loc=0.5, time_scheme="euler",
+              error_estimate=False, min_contacts=0, series=True)
+    names = ["mu", "mu_hysteresis", "max_balance_residual", "bearing_evaluations",
+             "wet_fraction", "mean_hydro_load", "mu_inst", "penetration", "hydro_load"]
+
+    def take(speeds, speed):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ds = pavefric.simulate(z, 0.87e-3, speeds, **kw)
+        return {k: ds[k].sel(speed_kmh=speed).values for k in names}
+
+    for speed, companies in ((0.001, ([0.001, 300.0], [0.001, 10.0, 40.0, 60.0, 300.0])),
+                             (0.0, ([0.0, 20.0], [20.0, 0.0, 80.0]))):
+        alone = take([speed], speed)
+        for company in companies:
+            together = take(company, speed)
+            for k in names:
+                np.testing.assert_array_equal(together[k], alone[k], err_msg=f"{k} {company}")

@@ -1568,8 +1568,13 @@ contains
       type(speed_summary_type), allocatable :: summaries(:)
       class(rubber_model), allocatable :: rubber
       class(film_model), allocatable :: film
-      integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads
+      integer :: j, ns, stat, c, j0, j1, n_chunks, width, n_threads, k, n_parts
       integer, allocatable :: spinups(:), exact_bad(:)
+      !> The chunks' first and last speeds, and whether each speed's film
+      !> carries load (a chunk holds speeds of one kind only).
+      integer, allocatable :: part_first(:), part_last(:)
+      logical, allocatable :: load_on(:)
+      type(film_step_type) :: fs
       logical, allocatable :: shorts(:), negative(:)
       logical :: friction_film, reporting_film
       character(len=:), allocatable :: effect, others
@@ -1650,15 +1655,42 @@ contains
       if (exact_scheme(m)) n_chunks = ns
       width = (ns + n_chunks - 1) / n_chunks
       n_chunks = (ns + width - 1) / width
+      ! A chunk never mixes speeds whose film carries load with speeds whose
+      ! film does not (no water, or no motion: a speed of 0): the dry pad's
+      ! balance takes its clearances' pass alone (lane_gaps_from), which a
+      ! chunk with a film cannot, and the two round differently; split, a
+      ! speed's numbers are the same whichever speeds share its call.
+      allocate(load_on(ns), part_first(ns), part_last(ns))
+      do j = 1, ns
+         load_on(j) = .false.
+         if (.not. allocated(film)) cycle
+         call film%prepare(res%speed(j), geo%advance, fs)
+         load_on(j) = fs%active .and. film%carries_load()
+      end do
+      n_parts = 0
+      do c = 1, n_chunks
+         j0 = (c - 1) * width + 1
+         j1 = min(ns, c * width)
+         k = j0
+         do j = j0 + 1, j1 + 1
+            if (j <= j1) then
+               if (load_on(j) .eqv. load_on(j - 1)) cycle
+            end if
+            n_parts = n_parts + 1
+            part_first(n_parts) = k
+            part_last(n_parts) = j - 1
+            k = j
+         end do
+      end do
       ! one thread on a thread whose OpenMP pool came through fork() (it
       ! would wait for threads that are gone; src/io/pavefric_files_lock.c)
       n_threads = 1
       !$ if (parallel_ok() == 1) n_threads = omp_get_max_threads()
       !$omp parallel do schedule(dynamic, 1) default(shared) private(c, j0, j1, j, summaries) &
       !$omp & num_threads(n_threads)
-      do c = 1, n_chunks
-         j0 = (c - 1) * width + 1
-         j1 = min(ns, c * width)
+      do c = 1, n_parts
+         j0 = part_first(c)
+         j1 = part_last(c)
          allocate(summaries(lanes))
          if (want_series) then
             if (friction_film) then
@@ -2394,6 +2426,10 @@ contains
       !> (engaged_by_level: a load film whose sums suffice), and whether this
       !> position's wet lanes start without them.
       logical :: level_test, skip_dry
+      !> Per lane: whether it takes the level's path at this position, and
+      !> engaged_by_level's answers (engaged, the sum of d, the upper bound).
+      logical, dimension(lanes) :: by_level, wet_level
+      real(wp), dimension(lanes) :: sum_level, x_level
       !> The Kelvin-Voigt pad (the energy scheme; dry, under a film that
       !> carries load or one that changes the facets' friction): the rubber's
       !> free compression, the contacts, the work and the rubber's update
@@ -2498,15 +2534,22 @@ contains
          ! wet balances are bracketed by an upper bound of the dry roots
          ! (engaged_by_level's) instead of the dry roots, which are then not
          ! needed.
-         skip_dry = .false.
+         ! Each lane's path is its own (its numbers do not depend on the lanes
+         ! beside it): a lane takes the level's path where its film carried
+         ! load at the previous position and engages here by the level; the
+         ! dry roots, computed where any other lane needs them, are neither
+         ! used nor remembered for it.
+         by_level = .false.
          if (level_test) then
-            if (all(load_film(1:nl) .and. wh_prev(1:nl) > 0.0_wp .and. &
-               & delta_prev(1:nl) > -huge(1.0_wp))) then
-               call engaged_by_level(nl, n, d, s_load, film, fstep, load_film, wet_lane, sum_d, &
-                  & x)
-               skip_dry = all(wet_lane(1:nl))
+            by_level(1:nl) = load_film(1:nl) .and. wh_prev(1:nl) > 0.0_wp .and. &
+               & delta_prev(1:nl) > -huge(1.0_wp)
+            if (any(by_level(1:nl))) then
+               call engaged_by_level(nl, n, d, s_load, film, fstep, by_level, wet_level, &
+                  & sum_level, x_level)
+               by_level(1:nl) = by_level(1:nl) .and. wet_level(1:nl)
             end if
          end if
+         skip_dry = all(by_level(1:nl))
          wh = 0.0_wp
          if (.not. skip_dry) then
             ! warm start from the previous position's dry root, extrapolated
@@ -2520,14 +2563,22 @@ contains
                guess = extrapolated(delta_dry_prev, delta_dry_prev2)
                call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
             end if
-            delta_dry_prev2 = delta_dry_prev
-            delta_dry_prev = cmin + x
+            where (.not. by_level(1:nl))
+               delta_dry_prev2(1:nl) = delta_dry_prev(1:nl)
+               delta_dry_prev(1:nl) = cmin(1:nl) + x(1:nl)
+            end where
          end if
          if (any_load) then
             ! the lanes whose film engages at the dry balance, then their wet
-            ! balances together
-            if (.not. skip_dry) &
-               & call engaged_lanes(nl, n, d, x, film, fstep, load_film, wet_lane, dl, gap, sum_d)
+            ! balances together (the level's lanes: engaged, the level's
+            ! upper bound their bracket's top)
+            if (.not. skip_dry) call engaged_lanes(nl, n, d, x, film, fstep, &
+               & load_film .and. .not. by_level(1:nl), wet_lane, dl, gap, sum_d)
+            where (by_level(1:nl))
+               wet_lane(1:nl) = .true.
+               sum_d(1:nl) = sum_level(1:nl)
+               x(1:nl) = x_level(1:nl)
+            end where
             ! Warm start where the film carried load at the previous position:
             ! from its wet penetration, extrapolated linearly from the two
             ! before. Elsewhere from the dry root, which is then the root to
