@@ -2528,17 +2528,14 @@ contains
             end if
          end if
          dref = merge(cmin, 0.0_wp, one_pass)
-         ! Where every lane's film carried load at the previous position
-         ! (and its sums suffice), whether it engages here is decided
-         ! without the dry roots (engaged_by_level); where all engage, their
-         ! wet balances are bracketed by an upper bound of the dry roots
-         ! (engaged_by_level's) instead of the dry roots, which are then not
-         ! needed.
-         ! Each lane's path is its own (its numbers do not depend on the lanes
-         ! beside it): a lane takes the level's path where its film carried
-         ! load at the previous position and engages here by the level; the
-         ! dry roots, computed where any other lane needs them, are neither
-         ! used nor remembered for it.
+         ! Where a lane's film carried load at the previous position (and
+         ! its sums suffice), whether it engages here is decided without its
+         ! dry root (engaged_by_level); where it engages, its wet balance is
+         ! bracketed by an upper bound of its dry root (engaged_by_level's),
+         ! and the dry roots are computed only where another lane needs
+         ! them. Each lane's path is its own (its numbers do not depend on
+         ! the lanes beside it): the dry roots computed for the others are
+         ! neither used nor remembered for a lane on the level's path.
          by_level = .false.
          if (level_test) then
             by_level(1:nl) = load_film(1:nl) .and. wh_prev(1:nl) > 0.0_wp .and. &
