@@ -2570,7 +2570,7 @@ contains
             ! balances together (the level's lanes: engaged, the level's
             ! upper bound their bracket's top)
             if (.not. skip_dry) call engaged_lanes(nl, n, d, x, film, fstep, &
-               & load_film .and. .not. by_level(1:nl), wet_lane, dl, gap, sum_d)
+               & load_film(1:nl) .and. .not. by_level(1:nl), wet_lane, dl, gap, sum_d)
             where (by_level(1:nl))
                wet_lane(1:nl) = .true.
                sum_d(1:nl) = sum_level(1:nl)
