@@ -77,13 +77,11 @@ contains
       real(wp), intent(out) :: x(nl)
       !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
-      integer, dimension(lanes) :: m_prev
       logical, dimension(lanes) :: running
       x = s
       where (x0 > 0.0_wp .and. x0 < s) x = x0
-      m_prev = -1
       running = .true.
-      call newton_passes(nl, n, d, s, x, m_prev, running, work, dl)
+      call newton_passes(nl, n, d, s, x, running, work, dl)
    end subroutine dry_roots
 
    !> dry_roots on the clearances as they come, c (not shifted by their least
@@ -113,63 +111,60 @@ contains
       real(wp), intent(out) :: x(nl)
       !> Workspaces of size n, only touched by the fallback.
       real(wp), intent(inout) :: work(:), dl(:)
-      integer, dimension(lanes) :: m_prev
       logical, dimension(lanes) :: running, confirmed
-      integer :: j
+      integer :: j, m
       do j = 1, nl
-         m_prev(j) = nint(counts(j))
+         m = nint(counts(j))
          x(j) = s(j)
-         if (m_prev(j) > 0) x(j) = (g(j) - cmin(j)) + (s(j) + sums_c(j)) / real(m_prev(j), wp)
-         if (m_prev(j) == 0 .or. .not. x(j) > 0.0_wp) then
+         if (m > 0) x(j) = (g(j) - cmin(j)) + (s(j) + sums_c(j)) / real(m, wp)
+         if (m == 0 .or. .not. x(j) > 0.0_wp) then
             x(j) = s(j)
-            m_prev(j) = -1
             confirmed(j) = .false.
          else
             ! taken without a pass only where its terms are of the root's
             ! size (a guess far off, or a tiny compression, would leave it
             ! short of digits) and no element lies between the guess and it
             confirmed(j) = abs(g(j) - cmin(j)) <= 4.0_wp * x(j) .and. &
-               & abs(sums_c(j)) <= 4.0_wp * real(m_prev(j), wp) * x(j) .and. &
+               & abs(sums_c(j)) <= 4.0_wp * real(m, wp) * x(j) .and. &
                & below(j) - cmin(j) < x(j) .and. above(j) - cmin(j) >= x(j)
             ! An unconfirmed x1 starts the passes as any start does, its
-            ! own set not yet seen (m_prev -1): the set at g is not the set
-            ! at x1 where rounding moved x1 past a clearance, and a pass
-            ! that found the same count at x1 would take the root from x1's
-            ! set without checking it at the root (a Kelvin-Voigt pad of
-            ! long memory under a tiny load keeps clearances within 1e-20 m
-            ! of the root: residuals of up to 2e-4 of the load, found by an
+            ! own set not yet seen: the set at g is not the set at x1 where
+            ! rounding moved x1 past a clearance, and a pass that found the
+            ! same count at x1 would take the root from x1's set without
+            ! checking it at the root (a Kelvin-Voigt pad of long memory
+            ! under a tiny load keeps clearances within 1e-20 m of the
+            ! root: residuals of up to 2e-4 of the load, found by an
             ! attack; tests/test_hard_cases.py)
-            if (.not. confirmed(j)) m_prev(j) = -1
          end if
       end do
       ! each lane's root its own: a confirmed lane stops whatever the others do
       running(1:nl) = .not. confirmed(1:nl)
       if (.not. any(running(1:nl))) return
-      call newton_passes(nl, n, c, s, x, m_prev, running, work, dl, cmin)
+      call newton_passes(nl, n, c, s, x, running, work, dl, cmin)
    end subroutine dry_roots_of_c
 
    !> The dry balance's Newton passes from x (per lane, the lanes `running`),
-   !> m_prev the count of the set x was taken from (-1: none). Each pass
+   !> a start whose active set no pass has seen. Each pass
    !> takes the sum and count of the clearances below x (d, or c - cmin where
    !> cmin is given: the shift's own subtraction, taken in the pass); a lane
    !> stops where the set repeats, x then taken from this pass's sums (the
    !> previous step's x to the bit where it came from a pass: the same set
    !> summed in the same order), or where a step from above does not descend
    !> (rounding has stalled: x, a step whose set a pass has seen, stays);
-   !> after max_newton_dry passes, the sort-and-scan root. Every caller
-   !> starts with m_prev = -1, so a root is always taken from the set of a
-   !> point a pass has seen.
-   pure subroutine newton_passes(nl, n, c, s, x, m_prev, running, work, dl, cmin)
+   !> after max_newton_dry passes, the sort-and-scan root. A root is always
+   !> taken from the set of a point a pass has seen.
+   pure subroutine newton_passes(nl, n, c, s, x, running, work, dl, cmin)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: c(nl, n), s(nl)
       real(wp), intent(inout) :: x(nl)
-      integer, intent(inout) :: m_prev(lanes)
       logical, intent(inout) :: running(lanes)
       real(wp), intent(inout) :: work(:), dl(:)
       real(wp), intent(in), optional :: cmin(nl)
       real(wp), dimension(lanes) :: sum_active, x_new, count
-      integer, dimension(lanes) :: m
+      !> The count of the set each lane's x was taken from (-1: none yet).
+      integer, dimension(lanes) :: m, m_prev
       integer :: j, it
+      m_prev = -1
       do it = 1, max_newton_dry
          if (present(cmin)) then
             call active_sums_of_c(nl, n, c, cmin, x, sum_active, count)

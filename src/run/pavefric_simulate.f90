@@ -817,9 +817,7 @@ contains
          res%n_spinup = max(res%n_spinup, r%n_spinup)
          if (len(r%effects) > len(res%effects)) res%effects = r%effects
          if (want_series) call move_series(r, res)
-         do k = 1, size(idx)
-            res%root_jumps_seen(idx(k)) = max(res%root_jumps_seen(idx(k)), r%root_jumps_seen(k))
-         end do
+         call take_jumps_seen(res, idx, r)
          if (.not. any(active)) exit
       end do
    contains
@@ -1065,8 +1063,8 @@ contains
                res%refined_elements_per_sample(j) = 2 * e
                res%refined_contacts(j) = contacts_touching(r, k)
                active(j) = unresolved_contacts(r, k)
-               res%root_jumps_seen(j) = max(res%root_jumps_seen(j), r%root_jumps_seen(k))
             end do
+            call take_jumps_seen(res, group, r)
          end do
       end do
       ! the last pass from each speed's level: half the elements where the pad
@@ -1180,10 +1178,7 @@ contains
                end do
                ! (the passes' own warnings are not repeated; a root that
                ! left its range in the estimate's pass is counted)
-               do k = 1, size(group)
-                  res%root_jumps_seen(group(k)) = max(res%root_jumps_seen(group(k)), &
-                     & r%root_jumps_seen(k))
-               end do
+               call take_jumps_seen(res, group, r)
             end do
          end do
       end subroutine last_passes
@@ -1514,6 +1509,18 @@ contains
          end if
       end subroutine take
    end subroutine hold_series
+
+   !> root_jumps_seen of another pass r into res: res's speed at(k), the
+   !> pass's k-th, takes the larger of the two (copy_speed's rule).
+   pure subroutine take_jumps_seen(res, at, r)
+      type(sim_result_type), intent(inout) :: res
+      integer, intent(in) :: at(:)
+      type(sim_result_type), intent(in) :: r
+      integer :: k
+      do k = 1, size(at)
+         res%root_jumps_seen(at(k)) = max(res%root_jumps_seen(at(k)), r%root_jumps_seen(k))
+      end do
+   end subroutine take_jumps_seen
 
    !> The run's one warning where a wet balance left the range of the
    !> clearances' moves (a film whose load is not monotone): in the reported
