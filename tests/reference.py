@@ -13,8 +13,9 @@ averaged along the step's path, u linear in time from the step's start to its
 end, times the rise of the road under it; none for an element off the road at
 both ends) less the pad's descent, the local friction's part mu (1 + s^2) / (1 - mu s) per unit force;
 per position (series) the facets' work, on average the dissipation (the
-facets' work less the film's: the load the elements did not carry times the
-pad's descent).
+facets' work less the load the elements did not carry times the pad's
+descent: on a closed profile whose state repeats at every step, elsewhere
+where the film carries load).
 """
 from __future__ import annotations
 
@@ -115,8 +116,15 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             decay = 1.0 / (1.0 + stiffness * dt / viscosity)
         pref = alpha * 6 * water_viscosity * v**beta * width * length**2
         speed_steps = steps
+        repeats = False
         if closed and 0.0 < decay < 1.0 and friction_scheme == "energy":
-            speed_steps = range(1 - spin_up(n, n_p, dx, decay, load / kel), n_p + 1)
+            spin = spin_up(n, n_p, dx, decay, load / kel)
+            speed_steps = range(1 - spin, n_p + 1)
+            # the state repeats round the lap where what is left of the
+            # start, as friction, is below 1e-12 (docs/model.md, "Which the
+            # mean takes"); the mean is then the dissipation
+            left = (1.0 - decay**n_p) * (load / kel / n) / (2.0 * n_p * dx)
+            repeats = np.log(left) + spin * np.log(decay) <= np.log(1e-9)
         u = np.zeros(n)
         mus, deltas, whs, means, works, adhesions = [], [], [], [], [], []
         prev = None
@@ -160,10 +168,13 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                     f_mean = width * dx * (stiffness * 0.5 * (u_old + u) + rate)
                     f_mean = np.where((f_old > 0) | (force > 0), f_mean, 0.0)
                     work = (f_mean * ((u - u_old) - (delta - d_old))).sum()
-                    # the load the elements did not carry, times the descent
-                    # (only where the film carries load at either end of the
-                    # step: elsewhere the friction is the facets' work)
-                    if depth > 0 and v > 0 and (wh > 0 or wh_old > 0):
+                    # the load the elements did not carry, times the descent:
+                    # on a closed profile whose state repeats at every step
+                    # (the load's own work returns round the lap, so the
+                    # mean is the dissipation); elsewhere only where the film
+                    # carries load at either end of the step (else the
+                    # facets' work)
+                    if repeats or (depth > 0 and v > 0 and (wh > 0 or wh_old > 0)):
                         film = (load - f_mean.sum()) * (delta - d_old)
                 adhesion = (force * adh[k]).sum() / load
                 mu_j = work / (load * dx) + adhesion             # the facets' work (series)

@@ -163,9 +163,12 @@ def test_series_are_the_runs_own_pass(short_profile_m):
     pass (as the parameter's description says): its mean is that pass's mu."""
     ds = quiet(short_profile_m, DX, [20.0], time_scheme="richardson", min_contacts=0,
                series=True)
-    one, _ = euler_passes(short_profile_m, [20.0])
+    one, _ = euler_passes(short_profile_m, [20.0], series=True)
+    np.testing.assert_array_equal(ds["mu_inst"].values, one["mu_inst"].values)
+    # (the mean of a repeating lane's series exceeds its mu by the path's
+    # imbalance, which the mean counts out: docs/model.md)
     np.testing.assert_allclose(ds["mu_inst"].values.mean(axis=1), one["mu"].values,
-                               rtol=1e-12)
+                               rtol=1e-5)
     assert ds["mu_extrapolated"].values[0] == 1
     assert abs(ds["mu"].values[0] - one["mu"].values[0]) > 1e-6
 

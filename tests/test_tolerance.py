@@ -95,13 +95,14 @@ def test_program_records_the_estimate_and_series_share_positions(tmp_path, profi
         assert np.all(ds["mu_error_estimate"].values <= 1e-3)
         assert ds["substeps_used"].values[0] == ds["substeps_used"].values[1]   # series: together
         assert ds["mu_inst"].shape == (2, ds.sizes["position"])
-        # the series are the finest pass's (mu_inst's mean is its mu)
+        # the series are the finest pass's (mu_inst's mean is its mu, but for
+        # the path's imbalance a repeating lane's mean counts out: docs/model.md)
         scene_now = pavefric.load_scene(scene)
         finest = scene_now.simulate(substeps=int(ds["substeps_used"].values[0]), tolerance=0.0,
                                     series=True)
         np.testing.assert_allclose(ds["mu_inst"].values, finest["mu_inst"].values, rtol=1e-12)
         np.testing.assert_allclose(ds["mu_inst"].mean("position").values,
-                                   finest["mu"].values, rtol=1e-12)
+                                   finest["mu"].values, rtol=1e-5)
         assert ds.attrs["param_numerics_tolerance"] == 1e-3
         # Python sizes its series before the run, for the scene's substeps: a
         # tolerance run with more positions still returns them, the same

@@ -137,16 +137,28 @@ contains
       integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
       integer, intent(out) :: stat
-      real(wp) :: e, g, one_g, g_e, k_eff, a, h
+      real(wp) :: e, g, one_g, g_e, k_eff, a, h, creep_time
       real(wp), allocatable :: ke(:), kh(:), kg(:)
       integer :: j, k, n, i, nl
       n = size(self%arm_stiffness)
       allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
          & step%coef(size(speeds), n_coef(n)), ke(n), kh(n), kg(n), &
-         & step%mode_decay(size(speeds), n), step%mode_weight(size(speeds), n), stat=stat)
+         & step%mode_decay(size(speeds), n), step%mode_weight(size(speeds), n), &
+         & step%creep_decay(size(speeds)), stat=stat)
       if (stat /= 0) return
+      ! the longest retardation time is at most the longest relaxation time
+      ! times (K_inf + sum K_k) / K_inf (the standard linear solid's, with
+      ! every arm's stiffness on the longest arm): the pad's creep under its
+      ! load decays by no less than exp(-dt / that) a step
+      creep_time = maxval(self%arm_times, mask=self%arm_stiffness > 0.0_wp) * &
+         & ((self%stiffness + sum(self%arm_stiffness)) / self%stiffness)
       do j = 1, size(speeds)
          step%memory(j) = speeds(j) > 0.0_wp
+         step%creep_decay(j) = 0.0_wp
+         if (step%memory(j) .and. n > 0) then
+            if (speeds(j) * creep_time > advance * 1.0e-300_wp) &
+               & step%creep_decay(j) = exp(-advance / (speeds(j) * creep_time))
+         end if
          k_eff = self%stiffness
          do k = 1, n
             call arm_weights(speeds(j) * self%arm_times(k), advance, e, g, one_g, g_e, h)

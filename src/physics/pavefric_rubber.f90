@@ -68,6 +68,14 @@ module pavefric_rubber
       !> The driver spins a closed profile up until what is left of the
       !> start can no longer change the state from one lap to the next.
       real(wp), allocatable :: mode_decay(:, :), mode_weight(:, :)
+      !> Per lane, a bound on the factor by which the pad's creep under its
+      !> constant load decays over a step (its longest retardation; [0, 1]).
+      !> A memory mode's relaxation at a fixed compression is not the pad's
+      !> creep at a fixed load: a soft equilibrium spring beside stiff arms
+      !> creeps far longer than the arms relax. The driver takes a closed
+      !> profile's mean as the dissipation only where this, too, has died
+      !> out in the spin-up (not allocated: never).
+      real(wp), allocatable :: creep_decay(:)
       !> A law whose step-mean pressure (mean_push) is linear in the step's
       !> two compressions alone, mean = c0 u0 + c1 u1 (in units of k_eff),
       !> gives (c0, c1) per lane here: the driver then forms it within its
@@ -250,7 +258,7 @@ contains
       nl = size(speeds)
       allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
          & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1), &
-         & step%mean_weights(nl, 2), stat=stat)
+         & step%mean_weights(nl, 2), step%creep_decay(nl), stat=stat)
       if (stat /= 0) return
       do j = 1, nl
          cv = self%viscosity * speeds(j)
@@ -264,6 +272,9 @@ contains
          ! one mode: the compression's relaxation, all of the element
          step%mode_decay(j, 1) = step%coef(j, 1)
          step%mode_weight(j, 1) = 1.0_wp
+         ! under a constant load the element creeps by the same factor
+         ! (K u + C (u - u') / dt = F: u - F/K = b (u' - F/K))
+         step%creep_decay(j) = step%coef(j, 1)
          ! the mean (1 - b)(u0 + u1)/2 + b (u1 - u0) (kv_mean) as weights
          ! of u0 and u1
          step%mean_weights(j, 1) = 0.5_wp * (1.0_wp - step%coef(j, 1)) - step%coef(j, 1)

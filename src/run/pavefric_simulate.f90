@@ -156,6 +156,10 @@ module pavefric_simulate
       !> Spin-up positions this speed ran, and whether its memory outlasted them.
       integer :: spinup = 0
       logical :: spin_short = .false.
+      !> Whether the spin-up left the pad's start below 1e-9 (as friction):
+      !> the state repeats round the lap, and the mean on a closed profile
+      !> is the elements' dissipation (lap_spinup).
+      logical :: spin_repeats = .false.
       logical :: viscous_memory_ran = .false., bearing_ran = .false.
       logical :: friction_film_ran = .false.
       !> Whether the speed ran the exact Kelvin-Voigt integrator
@@ -2467,7 +2471,7 @@ contains
       if (geo%closed .and. any_memory .and. energy) then
          do j = 1, nl
             if (rstep%memory(j)) call lap_spinup(rstep, j, geo, m%load / kel(j), spin(j), &
-               & out(j)%spin_short)
+               & out(j)%spin_short, out(j)%spin_repeats)
          end do
       end if
       spin(nl+1:) = spin(nl)
@@ -2981,17 +2985,26 @@ contains
                      & cmin + x - delta_last, hyst)
                   mean_total(1:nl) = 0.5_wp * (push_total_prev(1:nl) + sum_f(1:nl))
                end if
-               ! what the pad's descent did against the film: the load the
-               ! elements did not carry on average over the step (W - their
-               ! mean force) times the descent. Without a film carrying load
-               ! at either end of the step there is none: W - their mean
-               ! force is then only the step's path between two balances, and
-               ! the friction is the facets' work (a flat road has none,
-               ! whatever the pad's creep; a film that lifts nothing gives the
-               ! dry numbers)
+               ! what the pad's descent did beyond the elements' mean force:
+               ! the load they did not carry on average over the step (W -
+               ! their mean force) times the descent. With a film carrying
+               ! load that is the film's work; on a dry road, the step's path
+               ! between two balances (its elements' mean force adds up to W
+               ! only at the ends). The mean counts it out on a closed
+               ! profile whose spin-up brought the pad to a state that
+               ! repeats: the load's own work W (delta - delta') returns
+               ! round the lap there, so the mean is the elements'
+               ! dissipation alone, >= 0 for every rubber (docs/model.md,
+               ! "Friction"). Where the load's work does not return (an open
+               ! profile; a rubber whose memory outlasts the spin-up, which
+               ! the run warns of) the term is counted out only where a film
+               ! carries load at either end of the step, and elsewhere the
+               ! friction is the facets' work (a flat road has none, whatever
+               ! the pad's creep)
                do j = 1, nl
                   film_work(j) = 0.0_wp
-                  if (load_film(j) .and. (wh(j) > 0.0_wp .or. wh_prev(j) > 0.0_wp)) &
+                  if ((geo%closed .and. out(j)%spin_repeats) .or. &
+                     & (load_film(j) .and. (wh(j) > 0.0_wp .or. wh_prev(j) > 0.0_wp))) &
                      & film_work(j) = (m%load - kel(j) * mean_total(j)) * &
                      & (cmin(j) + x(j) - delta_last(j))
                end do
@@ -3152,13 +3165,13 @@ contains
    !> e^S of the start after S steps, which changes over a lap of L steps by
    !> e^S (1 - e^L); as friction (the stored energy it moves, about half the
    !> load times the mean push, over W and the lap's length) that is
-   !> c e^S, c = w (1 - e^L) u / (2 L advance), kept below 1e-9 for every
+   !> c e^S, c = w (1 - e^L) u / (2 L advance), kept below 1e-6 for every
    !> mode, at most max_spin_laps laps (`short`: not met within them). The
    !> paper's rubber (memory gone within a step) and the shipped compound
    !> (its slow arms soft next to k_eff: at most 16 steps at -20 to 60 C)
    !> need no more than the pad's length; a soft viscous pad (K = 1e4 N m-3,
    !> C = 100) several laps.
-   pure subroutine lap_spinup(rstep, j, geo, push_total, spin, short)
+   pure subroutine lap_spinup(rstep, j, geo, push_total, spin, short, repeats)
       type(rubber_step_type), intent(in) :: rstep
       integer, intent(in) :: j
       type(geometry_type), intent(in) :: geo
@@ -3166,11 +3179,21 @@ contains
       real(wp), intent(in) :: push_total
       integer, intent(out) :: spin
       logical, intent(out) :: short
-      real(wp), parameter :: tol = 1.0e-6_wp
+      !> Whether, after the spin, every mode's c e^S, and the pad's creep's
+      !> (rubber_step_type's creep_decay, weight 1), is below 1e-9: the
+      !> start no longer shows and the state repeats round the lap (the
+      !> paper's rubber forgets within a step; not the shipped compound,
+      !> whose slow arms keep its creep alive). 1e-9, not the spin-up's
+      !> 1e-6: the mean of a pad still creeping on a flat road would then
+      !> read its lift-off (docs/model.md, "Which the mean takes").
+      logical, intent(out), optional :: repeats
+      real(wp), parameter :: tol = 1.0e-6_wp, tol_repeats = 1.0e-9_wp
       real(wp) :: e, w, lap_len, coef, need
       integer :: lap, k
+      logical :: gone
       spin = geo%n_spin
       short = .false.
+      if (present(repeats)) repeats = .false.
       if (.not. allocated(rstep%mode_decay)) return
       lap = (geo%npf + geo%stride - 1) / geo%stride
       lap_len = real(lap, wp) * geo%advance
@@ -3189,6 +3212,37 @@ contains
             spin = max(spin, ceiling(need))
          end if
       end do
+      if (.not. present(repeats)) return
+      gone = .not. short
+      do k = 1, size(rstep%mode_decay, 2)
+         e = rstep%mode_decay(j, k)
+         w = rstep%mode_weight(j, k)
+         if (.not. (e > 0.0_wp .and. w > 0.0_wp)) cycle
+         if (.not. e < 1.0_wp) then
+            gone = .false.
+            cycle
+         end if
+         coef = w * (-expm1_(real(lap, wp) * log(e))) * (push_total / real(geo%n_el, wp)) / &
+            & (2.0_wp * lap_len)
+         ! (c e^S as a logarithm: e^S underflows long before it matters)
+         if (coef > 0.0_wp) gone = gone .and. &
+            & log(coef) + real(spin, wp) * log(e) <= log(tol_repeats)
+      end do
+      ! and the pad's creep under its load, weight 1 (rubber_step_type)
+      if (.not. allocated(rstep%creep_decay)) then
+         gone = .false.
+      else
+         e = rstep%creep_decay(j)
+         if (.not. e < 1.0_wp) then
+            gone = .false.
+         else if (e > 0.0_wp) then
+            coef = (-expm1_(real(lap, wp) * log(e))) * (push_total / real(geo%n_el, wp)) / &
+               & (2.0_wp * lap_len)
+            if (coef > 0.0_wp) gone = gone .and. &
+               & log(coef) + real(spin, wp) * log(e) <= log(tol_repeats)
+         end if
+      end if
+      repeats = gone
    contains
       !> exp(x) - 1 without cancellation near 0.
       pure real(wp) function expm1_(x)
