@@ -2468,6 +2468,7 @@ contains
       contact_before = .false.
       spin = geo%n_spin
       ! (the paper's scheme keeps 0.1.0's spin-up of one pad length)
+      out(1:nl)%spin_repeats = .false.
       if (geo%closed .and. any_memory .and. energy) then
          do j = 1, nl
             if (rstep%memory(j)) call lap_spinup(rstep, j, geo, m%load / kel(j), spin(j), &
@@ -2995,12 +2996,12 @@ contains
                ! repeats: the load's own work W (delta - delta') returns
                ! round the lap there, so the mean is the elements'
                ! dissipation alone, >= 0 for every rubber (docs/model.md,
-               ! "Friction"). Where the load's work does not return (an open
-               ! profile; a rubber whose memory outlasts the spin-up, which
-               ! the run warns of) the term is counted out only where a film
-               ! carries load at either end of the step, and elsewhere the
-               ! friction is the facets' work (a flat road has none, whatever
-               ! the pad's creep)
+               ! "Which the mean takes"). Where the load's work does not
+               ! return (an open profile; a memory or a creep that still
+               ! shows after the spin-up, such as the shipped compound's slow
+               ! arms) the term is counted out only where a film carries load
+               ! at either end of the step, and elsewhere the friction is the
+               ! facets' work (a flat road has none, whatever the pad's creep)
                do j = 1, nl
                   film_work(j) = 0.0_wp
                   if ((geo%closed .and. out(j)%spin_repeats) .or. &
@@ -3201,8 +3202,7 @@ contains
          e = rstep%mode_decay(j, k)
          w = rstep%mode_weight(j, k)
          if (.not. (e > 0.0_wp .and. e < 1.0_wp .and. w > 0.0_wp)) cycle
-         coef = w * (-expm1_(real(lap, wp) * log(e))) * (push_total / real(geo%n_el, wp)) / &
-            & (2.0_wp * lap_len)
+         coef = lap_change(e, w)
          if (.not. coef > tol) cycle
          need = log(tol / coef) / log(e)
          if (need > real(max_spin_laps, wp) * real(lap, wp)) then
@@ -3217,33 +3217,36 @@ contains
       do k = 1, size(rstep%mode_decay, 2)
          e = rstep%mode_decay(j, k)
          w = rstep%mode_weight(j, k)
-         if (.not. (e > 0.0_wp .and. w > 0.0_wp)) cycle
-         if (.not. e < 1.0_wp) then
-            gone = .false.
-            cycle
-         end if
-         coef = w * (-expm1_(real(lap, wp) * log(e))) * (push_total / real(geo%n_el, wp)) / &
-            & (2.0_wp * lap_len)
-         ! (c e^S as a logarithm: e^S underflows long before it matters)
-         if (coef > 0.0_wp) gone = gone .and. &
-            & log(coef) + real(spin, wp) * log(e) <= log(tol_repeats)
+         if (.not. w > 0.0_wp) cycle
+         gone = gone .and. left_below(e, w)
       end do
       ! and the pad's creep under its load, weight 1 (rubber_step_type)
-      if (.not. allocated(rstep%creep_decay)) then
-         gone = .false.
-      else
-         e = rstep%creep_decay(j)
-         if (.not. e < 1.0_wp) then
-            gone = .false.
-         else if (e > 0.0_wp) then
-            coef = (-expm1_(real(lap, wp) * log(e))) * (push_total / real(geo%n_el, wp)) / &
-               & (2.0_wp * lap_len)
-            if (coef > 0.0_wp) gone = gone .and. &
-               & log(coef) + real(spin, wp) * log(e) <= log(tol_repeats)
-         end if
-      end if
+      gone = gone .and. allocated(rstep%creep_decay)
+      if (gone) gone = left_below(rstep%creep_decay(j), 1.0_wp)
       repeats = gone
    contains
+      !> c = w (1 - e^L) u / (2 L advance): what a mode of weight w decaying
+      !> by e a step changes over a lap, as friction, per unit of its start.
+      pure real(wp) function lap_change(e, w)
+         real(wp), intent(in) :: e, w
+         lap_change = w * (-expm1_(real(lap, wp) * log(e))) * &
+            & (push_total / real(geo%n_el, wp)) / (2.0_wp * lap_len)
+      end function lap_change
+
+      !> Whether a mode (decay e a step, weight w > 0) leaves c e^S below
+      !> tol_repeats after the spin, as logarithms (e^S underflows long
+      !> before it matters): one gone within a step (e = 0) does; one that
+      !> does not decay (e >= 1) never does.
+      pure logical function left_below(e, w)
+         real(wp), intent(in) :: e, w
+         real(wp) :: c
+         left_below = .not. e > 0.0_wp
+         if (left_below .or. .not. e < 1.0_wp) return
+         c = lap_change(e, w)
+         left_below = .not. c > 0.0_wp
+         if (.not. left_below) left_below = log(c) + real(spin, wp) * log(e) <= log(tol_repeats)
+      end function left_below
+
       !> exp(x) - 1 without cancellation near 0.
       pure real(wp) function expm1_(x)
          real(wp), intent(in) :: x
