@@ -121,7 +121,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             spin = spin_up(n, n_p, dx, decay, load / kel)
             speed_steps = range(1 - spin, n_p + 1)
             # the state repeats round the lap where what is left of the
-            # start, as friction, is below 1e-12 (docs/model.md, "Which the
+            # start, as friction, is below 1e-9 (docs/model.md, "Which the
             # mean takes"); the mean is then the dissipation
             left = (1.0 - decay**n_p) * (load / kel / n) / (2.0 * n_p * dx)
             repeats = np.log(left) + spin * np.log(decay) <= np.log(1e-9)

@@ -156,16 +156,13 @@ contains
       ! Kelvin-Voigt, by coef(:, 1) a step); the square root of the larger
       ! of the two bounded the recurrence's largest eigenvalue in 200,000
       ! random rubbers of 1-7 arms (moduli 1-1e15, times 1e-12-1e3 s, steps
-      ! 1e-9-1 s; a check by hand with NumPy, 2026-12-06)
-      creep_time = maxval(self%arm_times, mask=self%arm_stiffness > 0.0_wp) + &
-         & sum(self%arm_stiffness * self%arm_times) / self%stiffness
+      ! 1e-9-1 s; a check by hand with NumPy, 2026-12-06). An arm that does
+      ! not relax within a step to rounding (E_k = 1) is a spring over the
+      ! run: it joins K_inf here, and its own mode changes nothing over a
+      ! lap (lap_spinup)
       do j = 1, size(speeds)
          step%memory(j) = speeds(j) > 0.0_wp
          step%creep_decay(j) = 0.0_wp
-         if (step%memory(j) .and. n > 0) then
-            if (speeds(j) * creep_time > advance * 1.0e-300_wp) &
-               & step%creep_decay(j) = exp(-advance / (speeds(j) * creep_time))
-         end if
          k_eff = self%stiffness
          do k = 1, n
             call arm_weights(speeds(j) * self%arm_times(k), advance, e, g, one_g, g_e, h)
@@ -186,8 +183,14 @@ contains
          end do
          step%coef(j, 2 + 4 * n) = self%stiffness / k_eff
          step%coef(j, 1) = a / k_eff
-         if (step%memory(j)) step%creep_decay(j) = sqrt(max(step%coef(j, 1), &
-            & step%creep_decay(j)))
+         if (step%memory(j)) then
+            creep_time = maxval(self%arm_times, mask=self%arm_stiffness > 0.0_wp .and. &
+               & ke < 1.0_wp) + sum(self%arm_stiffness * self%arm_times, mask=ke < 1.0_wp) / &
+               & (self%stiffness + sum(self%arm_stiffness, mask=.not. ke < 1.0_wp))
+            if (speeds(j) * creep_time > advance * 1.0e-300_wp) &
+               & step%creep_decay(j) = exp(-advance / (speeds(j) * creep_time))
+            step%creep_decay(j) = sqrt(max(step%coef(j, 1), step%creep_decay(j)))
+         end if
          step%k_eff(j) = k_eff
          ! the arms are the memory's modes: each decays by E_k a step
          do k = 1, n

@@ -3213,10 +3213,14 @@ contains
       do k = 1, size(rstep%mode_decay, 2)
          e = rstep%mode_decay(j, k)
          w = rstep%mode_weight(j, k)
-         if (.not. w > 0.0_wp) cycle
+         ! (a mode that does not decay within a step to rounding changes
+         ! nothing over a lap: a Maxwell arm that is a spring over the run;
+         ! a Kelvin-Voigt element that never recovers creeps, below)
+         if (.not. w > 0.0_wp .or. .not. e < 1.0_wp) cycle
          gone = gone .and. left_below(e, w)
       end do
-      ! and the pad's creep under its load, weight 1 (rubber_step_type)
+      ! and the pad's creep under its load, weight 1 (rubber_step_type): one
+      ! that does not decay never repeats
       gone = gone .and. allocated(rstep%creep_decay)
       if (gone) gone = left_below(rstep%creep_decay(j), 1.0_wp)
       repeats = gone
