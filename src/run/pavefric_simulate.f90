@@ -156,10 +156,6 @@ module pavefric_simulate
       !> Spin-up positions this speed ran, and whether its memory outlasted them.
       integer :: spinup = 0
       logical :: spin_short = .false.
-      !> Whether the spin-up left the pad's start below 1e-9 (as friction):
-      !> the state repeats round the lap, and the mean on a closed profile
-      !> is the elements' dissipation (lap_spinup).
-      logical :: spin_repeats = .false.
       logical :: viscous_memory_ran = .false., bearing_ran = .false.
       logical :: friction_film_ran = .false.
       !> Whether the speed ran the exact Kelvin-Voigt integrator
@@ -2382,6 +2378,10 @@ contains
       real(wp), dimension(lanes) :: kel_land, s_land, kel_run, s_run
       logical :: land_differs, landing_step
       logical, dimension(lanes) :: landing
+      !> Per lane, whether the spin-up left the pad's start below 1e-9 (as
+      !> friction): the state repeats round the lap, and the mean on a
+      !> closed profile is the elements' dissipation (lap_spinup).
+      logical, dimension(lanes) :: repeats
       real(wp), allocatable :: state_land(:,:,:)
       type(film_step_type), allocatable :: fstep(:)
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
@@ -2468,11 +2468,11 @@ contains
       contact_before = .false.
       spin = geo%n_spin
       ! (the paper's scheme keeps 0.1.0's spin-up of one pad length)
-      out(1:nl)%spin_repeats = .false.
+      repeats = .false.
       if (geo%closed .and. any_memory .and. energy) then
          do j = 1, nl
             if (rstep%memory(j)) call lap_spinup(rstep, j, geo, m%load / kel(j), spin(j), &
-               & out(j)%spin_short, out(j)%spin_repeats)
+               & out(j)%spin_short, repeats(j))
          end do
       end if
       spin(nl+1:) = spin(nl)
@@ -3004,7 +3004,7 @@ contains
                ! facets' work (a flat road has none, whatever the pad's creep)
                do j = 1, nl
                   film_work(j) = 0.0_wp
-                  if ((geo%closed .and. out(j)%spin_repeats) .or. &
+                  if ((geo%closed .and. repeats(j)) .or. &
                      & (load_film(j) .and. (wh(j) > 0.0_wp .or. wh_prev(j) > 0.0_wp))) &
                      & film_work(j) = (m%load - kel(j) * mean_total(j)) * &
                      & (cmin(j) + x(j) - delta_last(j))
@@ -3189,7 +3189,7 @@ contains
       !> read its lift-off (docs/model.md, "Which the mean takes").
       logical, intent(out), optional :: repeats
       real(wp), parameter :: tol = 1.0e-6_wp, tol_repeats = 1.0e-9_wp
-      real(wp) :: e, w, lap_len
+      real(wp) :: e, w, lap_len, coef, need
       integer :: lap, k
       logical :: gone
       spin = geo%n_spin
@@ -3202,7 +3202,15 @@ contains
          e = rstep%mode_decay(j, k)
          w = rstep%mode_weight(j, k)
          if (.not. (e > 0.0_wp .and. e < 1.0_wp .and. w > 0.0_wp)) cycle
-         call spin_for(e, w, spin, short)
+         coef = lap_change(e, w)
+         if (.not. coef > tol) cycle
+         need = log(tol / coef) / log(e)
+         if (need > real(max_spin_laps, wp) * real(lap, wp)) then
+            spin = max(spin, max_spin_laps * lap)
+            short = .true.
+         else
+            spin = max(spin, ceiling(need))
+         end if
       end do
       ! (the pad's creep under its load is not spun out: its bound below
       ! lumps every retardation mode into the longest at weight 1, and spun
@@ -3225,24 +3233,6 @@ contains
       if (gone) gone = left_below(rstep%creep_decay(j), 1.0_wp)
       repeats = gone
    contains
-      !> The spin a mode (decay e in (0, 1) a step, weight w) needs, taken
-      !> into the spin so far (and `short` where it exceeds the laps).
-      pure subroutine spin_for(e, w, spin, short)
-         real(wp), intent(in) :: e, w
-         integer, intent(inout) :: spin
-         logical, intent(inout) :: short
-         real(wp) :: c, need
-         c = lap_change(e, w)
-         if (.not. c > tol) return
-         need = log(tol / c) / log(e)
-         if (need > real(max_spin_laps, wp) * real(lap, wp)) then
-            spin = max(spin, max_spin_laps * lap)
-            short = .true.
-         else
-            spin = max(spin, ceiling(need))
-         end if
-      end subroutine spin_for
-
       !> c = w (1 - e^L) u / (2 L advance): what a mode of weight w decaying
       !> by e a step changes over a lap, as friction, per unit of its start.
       pure real(wp) function lap_change(e, w)
