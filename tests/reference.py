@@ -166,6 +166,14 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                     # an element off the road at both ends touches nothing
                     rate = viscosity * v / dx * (u - u_old)
                     f_mean = width * dx * (stiffness * 0.5 * (u_old + u) + rate)
+                    # less the contact ramp: the free path's own mean (from
+                    # u_old to decay u_old, K (1 - decay) u_old / 2) where
+                    # the pushes are nil, falling linearly to 0 as they reach
+                    # the free path's change (docs/model.md, "The step's
+                    # force where a contact starts or ends")
+                    pushes = (f_old + force) / kel
+                    f_mean = f_mean - width * dx * stiffness * 0.5 * np.maximum(
+                        0.0, (u_old - decay * u_old) - pushes)
                     f_mean = np.where((f_old > 0) | (force > 0), f_mean, 0.0)
                     work = (f_mean * ((u - u_old) - (delta - d_old))).sum()
                     # the load the elements did not carry, times the descent:

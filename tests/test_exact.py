@@ -232,5 +232,5 @@ def test_backward_euler_converges_to_the_exact_integrator_on_open_profiles(n, vi
     assert errors[0] > errors[1] > errors[2], (exact, euler)
     assert errors[2] < 1.05e-4 * abs(exact), (exact, euler)
     if n == 24 and viscosity == 1e2:
-        assert [round(euler[s], 5) for s in (1, 16, 256)] == [0.04293, 0.04391, 0.04395]
+        assert [round(euler[s], 5) for s in (1, 16, 256)] == [0.04293, 0.04393, 0.04395]
         assert round(euler[4096], 6) == round(exact, 6) == 0.043952

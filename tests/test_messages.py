@@ -127,6 +127,32 @@ def test_profile_shorter_than_the_pad(tmp_path):
     assert "give a profile of at least 23 points, or &pad length <= 0.00696 m" in line
 
 
+@pytest.mark.parametrize("closed", [True, False])
+@pytest.mark.parametrize("element_length", [0.87e-3, 0.0])
+@pytest.mark.parametrize("dx", [1e-20, 1e-300, 1e-12])
+def test_a_spacing_far_below_the_pad_is_bad_input_not_memory(dx, element_length, closed):
+    """An attack's reproducer: pavefric.simulate(z, 1e-20, [20.0]) raised a
+    bare MemoryError blaming &numerics elements_per_sample and substeps
+    (the pad would have had more than 2e9 elements at that spacing); a
+    profile a thousand times shorter than the pad is the spacing's fault."""
+    z = np.sin(np.arange(64)) * 1e-3
+    with pytest.raises(pavefric.PavefricError) as info:
+        pavefric.simulate(z, dx, [20.0], closed=closed, element_length=element_length)
+    assert not isinstance(info.value, MemoryError)
+    text = str(info.value)
+    assert text.startswith(f"&surface dx = {dx:g} m: the profile of 64 points is "), text
+    assert "far shorter than the pad (&pad length = 0.02 m); give dx in metres" in text
+    assert "elements_per_sample" not in text
+
+
+def test_the_program_says_so_of_a_spacing_far_below_the_pad(tmp_path):
+    p = profile_file(tmp_path, "x.txt", HEIGHTS)
+    line = one_error(tmp_path, scene_text(tmp_path, f"&surface profile_file = 'p/{p.name}', "
+                                                    "dx = 1e-20 /\n&operation speeds_kmh = 10 /\n"))
+    assert "&surface dx = 1e-20 m: the profile of 100 points is 1e-18 m long, far shorter " \
+        "than the pad" in line, line
+
+
 def open_profile(tmp_path, lines, extra=""):
     p = profile_file(tmp_path, "x.txt", lines)
     return scene_text(tmp_path, f"&surface profile_file = 'p/{p.name}', closed = .false. /\n"

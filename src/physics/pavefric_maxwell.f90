@@ -137,14 +137,15 @@ contains
       integer, intent(in) :: elements
       type(rubber_step_type), intent(out) :: step
       integer, intent(out) :: stat
-      real(wp) :: e, g, one_g, g_e, k_eff, a, h, creep_time
+      real(wp) :: e, g, one_g, g_e, k_eff, a, h, creep_time, long
       real(wp), allocatable :: ke(:), kh(:), kg(:)
       integer :: j, k, n, i, nl
       n = size(self%arm_stiffness)
       allocate(step%k_eff(size(speeds)), step%memory(size(speeds)), &
          & step%coef(size(speeds), n_coef(n)), ke(n), kh(n), kg(n), &
          & step%mode_decay(size(speeds), n), step%mode_weight(size(speeds), n), &
-         & step%creep_decay(size(speeds)), stat=stat)
+         & step%creep_decay(size(speeds)), step%push_slope(size(speeds)), &
+         & step%creep_weight(size(speeds)), stat=stat)
       if (stat /= 0) return
       ! the pad's creep under its load decays with the retardation times,
       ! the roots x of K_inf = sum_k K_k tau_k / (x - tau_k), one between
@@ -163,6 +164,7 @@ contains
       do j = 1, size(speeds)
          step%memory(j) = speeds(j) > 0.0_wp
          step%creep_decay(j) = 0.0_wp
+         step%creep_weight(j) = 1.0_wp
          k_eff = self%stiffness
          do k = 1, n
             call arm_weights(speeds(j) * self%arm_times(k), advance, e, g, one_g, g_e, h)
@@ -183,6 +185,11 @@ contains
          end do
          step%coef(j, 2 + 4 * n) = self%stiffness / k_eff
          step%coef(j, 1) = a / k_eff
+         ! the mean's slope against u1 (mx_mean): K_inf/2 + sum_k K_k H_k
+         step%push_slope(j) = 0.5_wp * step%coef(j, 2 + 4 * n)
+         do k = 1, n
+            step%push_slope(j) = step%push_slope(j) + step%coef(j, 2 + 4 * n + k)
+         end do
          if (step%memory(j)) then
             creep_time = maxval(self%arm_times, mask=self%arm_stiffness > 0.0_wp .and. &
                & ke < 1.0_wp) + sum(self%arm_stiffness * self%arm_times, mask=ke < 1.0_wp) / &
@@ -190,6 +197,11 @@ contains
             if (speeds(j) * creep_time > advance * 1.0e-300_wp) &
                & step%creep_decay(j) = exp(-advance / (speeds(j) * creep_time))
             step%creep_decay(j) = sqrt(max(step%coef(j, 1), step%creep_decay(j)))
+            ! its size against the instant compression: k_eff / K_long - 1,
+            ! K_long = K_inf and the arms that are springs over the run
+            long = self%stiffness + sum(self%arm_stiffness, mask=.not. ke < 1.0_wp)
+            step%creep_weight(j) = huge(1.0_wp)
+            if (long > 0.0_wp) step%creep_weight(j) = max(1.0_wp, k_eff / long - 1.0_wp)
          end if
          step%k_eff(j) = k_eff
          ! the arms are the memory's modes: each decays by E_k a step

@@ -76,11 +76,28 @@ module pavefric_rubber
       !> profile's mean as the dissipation only where this, too, has died
       !> out in the spin-up (not allocated: never).
       real(wp), allocatable :: creep_decay(:)
+      !> Per lane, the size of that creep against the instant compression
+      !> under the same load: k_eff / K_long - 1, K_long the stiffness that
+      !> holds the load in the long run (at least 1; huge where nothing
+      !> does). A soft equilibrium spring beside stiff dashpots or arms creeps
+      !> far beyond the pad's instant compression (an attack's flat road:
+      !> K_long 1e5 N m-3 against k_eff 3e11). Not allocated: 1.
+      real(wp), allocatable :: creep_weight(:)
       !> A law whose step-mean pressure (mean_push) is linear in the step's
       !> two compressions alone, mean = c0 u0 + c1 u1 (in units of k_eff),
       !> gives (c0, c1) per lane here: the driver then forms it within its
-      !> own pass (not allocated by laws with other internal state).
+      !> own pass (not allocated by laws with other internal state). A third
+      !> column c2: the slope of the free path's mean against the push
+      !> (the free path from u0 to u_free has mean c2 (u0 - u_free); the
+      !> driver's contact ramp, docs/model.md, "The step's force where a
+      !> contact starts or ends").
       real(wp), allocatable :: mean_weights(:, :)
+      !> Per lane, the slope of the step-mean pressure (mean_push, in units
+      !> of k_eff) against the element's push at the step's end, all else
+      !> fixed: the free path's mean is then mean - slope push (the driver's
+      !> contact ramp). Not allocated: taken as 0 (the ramp then starts from
+      !> the step's own mean, still continuous where the pushes vanish).
+      real(wp), allocatable :: push_slope(:)
    end type rubber_step_type
 
    !> A rubber element model.
@@ -258,7 +275,8 @@ contains
       nl = size(speeds)
       allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
          & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1), &
-         & step%mean_weights(nl, 2), step%creep_decay(nl), stat=stat)
+         & step%mean_weights(nl, 3), step%creep_decay(nl), step%push_slope(nl), &
+         & step%creep_weight(nl), stat=stat)
       if (stat /= 0) return
       do j = 1, nl
          cv = self%viscosity * speeds(j)
@@ -275,10 +293,18 @@ contains
          ! under a constant load the element creeps by the same factor
          ! (K u + C (u - u') / dt = F: u - F/K = b (u' - F/K))
          step%creep_decay(j) = step%coef(j, 1)
+         ! k_eff / K - 1 = C V / (K advance)
+         step%creep_weight(j) = huge(1.0_wp)
+         if (self%stiffness > 0.0_wp) step%creep_weight(j) = &
+            & max(1.0_wp, min(huge(1.0_wp), cv / advance / self%stiffness))
          ! the mean (1 - b)(u0 + u1)/2 + b (u1 - u0) (kv_mean) as weights
          ! of u0 and u1
          step%mean_weights(j, 1) = 0.5_wp * (1.0_wp - step%coef(j, 1)) - step%coef(j, 1)
          step%mean_weights(j, 2) = 0.5_wp * (1.0_wp - step%coef(j, 1)) + step%coef(j, 1)
+         ! on the free path (u1 = b u0) the mean is (1 - b)^2 u0 / 2, that is
+         ! (1 - b)/2 times the free path's change u0 - b u0
+         step%mean_weights(j, 3) = 0.5_wp * (1.0_wp - step%coef(j, 1))
+         step%push_slope(j) = step%mean_weights(j, 2)
       end do
       do i = 1, elements
          step%per_element((i - 1) * nl + 1 : i * nl, 1) = step%coef(:, 1)
@@ -312,7 +338,8 @@ contains
       real(wp), intent(in), contiguous :: state(:, :, :)
       real(wp), intent(in), contiguous :: u_free(:, :), push(:, :)
       real(wp), intent(out), contiguous :: mean(:, :)
-      call kv_mean_kernel(size(u_free, 1), size(u_free, 2), step%mean_weights, state, u_free, &
+      call kv_mean_kernel(size(u_free, 1), size(u_free, 2), step%mean_weights(:, 1:2), state, &
+         & u_free, &
          & push, mean)
    end subroutine kv_mean
 

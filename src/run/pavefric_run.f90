@@ -9,7 +9,7 @@ module pavefric_run
    use pavefric_preprocess, only: preprocess, clean_profile_type, preprocess_report_type
    use pavefric_simulate, only: sim_result_type, simulate, make_components, estimate_cost, &
       & element_grid, add_spinup_cost, add_refinement_cost, &
-      & cost_estimate_type, check_memory, tolerance_guess
+      & cost_estimate_type, check_memory, tolerance_guess, check_profile_scale
    use pavefric_rubber, only: rubber_model
    use pavefric_film, only: film_model
    use pavefric_outputs, only: output_metadata_type
@@ -91,6 +91,10 @@ contains
       type(cost_estimate_type), intent(out) :: cost
       character(len=:), allocatable, intent(out) :: line
       type(error_type), allocatable, intent(out) :: error
+      ! (a profile far shorter than the pad would be estimated on a grid
+      ! of one point, as a pad of more elements than memory holds)
+      call check_profile_scale(scene%model, size(clean%z), clean%dx, error)
+      if (allocated(error)) return
       cost = scene_estimate(scene, clean)
       call check_memory(cost, scene%model, scene%series, error)
       if (allocated(error)) return

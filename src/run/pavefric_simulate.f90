@@ -28,6 +28,7 @@ module pavefric_simulate
 
    public :: sim_result_type, simulate, pad_elements, averaged_positions, effects_text
    public :: make_components, cost_estimate_type, estimate_cost, check_memory, element_grid
+   public :: check_profile_scale
    public :: tolerance_guess
    public :: add_spinup_cost, add_refinement_cost, richardson
 
@@ -221,6 +222,36 @@ contains
          text = text // " or a finer profile (or &numerics elements_per_sample)"
       end if
    end subroutine no_element_message
+
+   !> A profile of np samples at spacing dx (the user's) a thousand times
+   !> shorter than the pad (resampled to the pad's elements), or so short
+   !> that the pad would need more than 2e9 elements at its spacing: said of
+   !> &surface dx (a spacing in other units than metres is the likely
+   !> cause), not of the resampled grid nor as a lack of memory.
+   pure subroutine tiny_profile_message(m, np, dx, text)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: np
+      real(wp), intent(in) :: dx
+      character(len=:), allocatable, intent(out) :: text
+      text = "&surface dx = " // to_str(dx) // " m: the profile of " // to_str(np) // &
+         & " points is " // to_str(round_sig(real(np, wp) * dx, 4)) // " m long, far " // &
+         & "shorter than the pad (&pad length = " // to_str(m%length) // " m); give dx " // &
+         & "in metres (or a profile at least as long as the pad)"
+   end subroutine tiny_profile_message
+
+   !> A profile of np samples at the user's spacing dx a thousand times
+   !> shorter than the pad: refused naming &surface dx, before anything is
+   !> estimated or resampled from it (tiny_profile_message).
+   pure subroutine check_profile_scale(m, np, dx, error)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: np
+      real(wp), intent(in) :: dx
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: text
+      if (.not. real(np, wp) * dx < 1.0e-3_wp * m%length) return
+      call tiny_profile_message(m, np, dx, text)
+      call fatal_error(error, text)
+   end subroutine check_profile_scale
 
    !> Pad elements N = nint(L / (dx / elements_per_sample)).
    pure function pad_elements(m, dx) result(n)
@@ -484,6 +515,8 @@ contains
       ! the first phase's grid too short for the pad: said of the resampled
       ! profile (the run's own check would name a spacing the user never gave)
       call element_grid(mm, size(z), dx, closed, npe, dxe)
+      call check_profile_scale(mm, size(z), dx, err)
+      if (allocated(err)) return
       if (pad_elements(me, dxe) < 1) then
          call no_element_message(mm, dxe, .true., text)
          call fatal_error(err, text)
@@ -1896,7 +1929,13 @@ contains
          return
       end if
       if (averaged_positions(m, size(z), dx, closed) < positions_needed(closed)) then
-         if (n_el >= huge(1) .or. real(size(z), wp) * real(m%elements_per_sample, wp) * &
+         if (n_el >= huge(1) .and. real(size(z), wp) * real(m%elements_per_sample, wp) * &
+               & real(m%substeps, wp) <= 2.0e9_wp) then
+            ! the pad, not the profile, is what would not fit in memory: a
+            ! profile far shorter than the pad
+            call tiny_profile_message(m, size(z), dx, text)
+            call fatal_error(error, text)
+         else if (n_el >= huge(1) .or. real(size(z), wp) * real(m%elements_per_sample, wp) * &
                & real(m%substeps, wp) > 2.0e9_wp) then
             call fatal_error(error, "&numerics elements_per_sample = " // &
                & to_str(m%elements_per_sample) // " and substeps = " // to_str(m%substeps) // &
@@ -2414,6 +2453,9 @@ contains
       real(wp), dimension(lanes) :: mu_sum, resid_max, wh_sum, u_max, local_sum
       real(wp), dimension(lanes) :: force_sum, film_mean_sum, contacts, clamps
       real(wp), dimension(lanes) :: sum_fa, hyst, hyst_sum, adh_sum, delta_last
+      !> The rubber's mean against the push (rubber_step_type%push_slope; 0
+      !> where the law gives none): lane_work_mean's contact ramp.
+      real(wp), dimension(lanes) :: push_slope
       real(wp), dimension(lanes) :: film_work, push_total_prev, mean_total, hyst_abs_sum
       !> Sums over averaged positions: the share of elements in contact, and
       !> the film's water per unit area (films that report it)
@@ -2693,6 +2735,8 @@ contains
          end if
          kel_run = kel
          s_run = s_load
+         push_slope = 0.0_wp
+         if (allocated(rstep%push_slope)) push_slope(1:nl) = rstep%push_slope
          landing = .false.
          landing_step = .false.
          ! the landing's step: one element length of travel (the run's step
@@ -2977,8 +3021,8 @@ contains
                   ! step's start): the work is then the stored energy's
                   ! change plus a dissipation >= 0, element by element
                   call rubber%mean_push(rstep, state, u_free, push, pmean)
-                  call lane_work_mean(nl, n, u_free, push, pmean, u_prev, push_prev, &
-                     & cmin + x - delta_last, hyst, mean_total)
+                  call lane_work_mean(nl, n, u_free, push, pmean, push_slope, u_prev, &
+                     & push_prev, cmin + x - delta_last, hyst, mean_total)
                else
                   ! an elastic pad: the trapezoid is the exact mean
                   ! (lane_work also remembers this step for the next)
@@ -3181,7 +3225,7 @@ contains
       integer, intent(out) :: spin
       logical, intent(out) :: short
       !> Whether, after the spin, every mode's c e^S, and the pad's creep's
-      !> (rubber_step_type's creep_decay, weight 1), is below 1e-9: the
+      !> (rubber_step_type's creep_decay, weight creep_weight), is below 1e-9: the
       !> start no longer shows and the state repeats round the lap (the
       !> paper's rubber forgets within a step; not the shipped compound,
       !> whose slow arms keep its creep alive). 1e-9, not the spin-up's
@@ -3227,10 +3271,17 @@ contains
          if (.not. w > 0.0_wp .or. .not. e < 1.0_wp) cycle
          gone = gone .and. left_below(e, w)
       end do
-      ! and the pad's creep under its load, weight 1 (rubber_step_type): one
-      ! that does not decay never repeats
+      ! and the pad's creep under its load, weighed by its size against the
+      ! instant compression (rubber_step_type's creep_weight): one that does
+      ! not decay never repeats
       gone = gone .and. allocated(rstep%creep_decay)
-      if (gone) gone = left_below(rstep%creep_decay(j), 1.0_wp)
+      if (gone) then
+         if (allocated(rstep%creep_weight)) then
+            gone = left_below(rstep%creep_decay(j), rstep%creep_weight(j))
+         else
+            gone = left_below(rstep%creep_decay(j), 1.0_wp)
+         end if
+      end if
       repeats = gone
    contains
       !> c = w (1 - e^L) u / (2 L advance): what a mode of weight w decaying
@@ -3477,12 +3528,12 @@ contains
       !> d - dref: the clearances shifted by their least value (dref that
       !> value where d is unshifted, lane_free_gaps_from's, else 0).
       real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), clamped(n), &
-         & adhesion(n), weights(nl, 2), ddelta(nl)
+         & adhesion(n), weights(nl, 3), ddelta(nl)
       real(wp), intent(inout) :: push_prev(nl, n), state(nl, n)
       real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), clamps(nl), &
          & sum_fa(nl), w(nl), total(nl)
       real(wp), intent(inout) :: u_max(nl)
-      real(wp) :: p, in_contact, u, f, u_prev
+      real(wp) :: p, in_contact, u, f, u_prev, s
       integer :: i, j
       sum_f = 0.0_wp
       contacts = 0.0_wp
@@ -3501,8 +3552,10 @@ contains
             u_max(j) = max(u_max(j), u_free(j, i) + p)
             u = u_free(j, i) + p
             u_prev = state(j, i)
-            f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + p > 0.0_wp) * &
-               & (weights(j, 1) * u_prev + weights(j, 2) * u)
+            s = push_prev(j, i) + p
+            f = merge(1.0_wp, 0.0_wp, s > 0.0_wp) * &
+               & (weights(j, 1) * u_prev + weights(j, 2) * u - &
+               & weights(j, 3) * max(0.0_wp, (u_prev - u_free(j, i)) - s))
             w(j) = w(j) + f * ((u - u_prev) - ddelta(j))
             total(j) = total(j) + f
             push_prev(j, i) = p
@@ -3650,21 +3703,29 @@ contains
    !> both ends of the step (no push at either) touches no facet: it does
    !> no work, whatever its path's mean (it relaxes on its own, and what it
    !> stored is dissipated inside it).
-   pure subroutine lane_work_mean(nl, n, u_free, push, mean, u_prev, push_prev, ddelta, w, &
-         & total)
+   pure subroutine lane_work_mean(nl, n, u_free, push, mean, slope, u_prev, push_prev, ddelta, &
+         & w, total)
       integer, intent(in) :: nl, n
       real(wp), intent(in) :: u_free(nl, n), push(nl, n), mean(nl, n)
+      !> The mean's slope against the push (rubber_step_type%push_slope).
+      real(wp), intent(in) :: slope(nl)
       real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n)
       real(wp), intent(in) :: ddelta(nl)
       real(wp), intent(out) :: w(nl), total(nl)
       integer :: i, j
-      real(wp) :: u, f
+      real(wp) :: u, f, s, change, ramp
       w = 0.0_wp
       total = 0.0_wp
       do i = 1, n
          do j = 1, nl
             u = u_free(j, i) + push(j, i)
-            f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + push(j, i) > 0.0_wp) * mean(j, i)
+            s = push_prev(j, i) + push(j, i)
+            ! the contact ramp (lane_work_linear's): the free path's mean
+            ! (where >= 0) times max(0, 1 - s / its change)
+            change = u_prev(j, i) - u_free(j, i)
+            ramp = max(0.0_wp, mean(j, i) - slope(j) * push(j, i)) * &
+               & (max(0.0_wp, change - s) / max(change, tiny(1.0_wp)))
+            f = merge(1.0_wp, 0.0_wp, s > 0.0_wp) * (mean(j, i) - ramp)
             w(j) = w(j) + f * ((u - u_prev(j, i)) - ddelta(j))
             total(j) = total(j) + f
             u_prev(j, i) = u
@@ -3675,24 +3736,33 @@ contains
 
    !> lane_work_mean with each element's mean push c0 u' + c1 u formed here
    !> from the lane's weights (the rubber's mean_weights; u' = u_prev, the
-   !> step's start), in the same pass.
+   !> step's start), in the same pass, less the contact ramp
+   !> c2 max(0, (u' - u_free) - s), s = push' + push: the free path's own
+   !> mean c2 (u' - u_free) where the element barely touches, falling to 0
+   !> as its pushes reach the free path's change. The force then goes to 0
+   !> with the pushes (continuous where a contact starts or ends), and
+   !> where the ramp is not 0 the step's u - u' is negative, so it only adds
+   !> to the dissipation (docs/model.md, "The step's force where a contact
+   !> starts or ends").
    pure subroutine lane_work_linear(nl, n, u_free, push, weights, u_prev, push_prev, ddelta, &
          & w, total)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: u_free(nl, n), push(nl, n), weights(nl, 2)
+      real(wp), intent(in) :: u_free(nl, n), push(nl, n), weights(nl, 3)
       real(wp), intent(inout) :: u_prev(nl, n), push_prev(nl, n)
       real(wp), intent(in) :: ddelta(nl)
       real(wp), intent(out) :: w(nl), total(nl)
       integer :: i, j
-      real(wp) :: u, f
+      real(wp) :: u, f, s
       w = 0.0_wp
       total = 0.0_wp
       do i = 1, n
          do j = 1, nl
             u = u_free(j, i) + push(j, i)
+            s = push_prev(j, i) + push(j, i)
             ! (a 0/1 factor, not a branch: the loop stays a vector loop)
-            f = merge(1.0_wp, 0.0_wp, push_prev(j, i) + push(j, i) > 0.0_wp) * &
-               & (weights(j, 1) * u_prev(j, i) + weights(j, 2) * u)
+            f = merge(1.0_wp, 0.0_wp, s > 0.0_wp) * &
+               & (weights(j, 1) * u_prev(j, i) + weights(j, 2) * u - &
+               & weights(j, 3) * max(0.0_wp, (u_prev(j, i) - u_free(j, i)) - s))
             w(j) = w(j) + f * ((u - u_prev(j, i)) - ddelta(j))
             total(j) = total(j) + f
             u_prev(j, i) = u
