@@ -119,11 +119,21 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
         repeats = False
         if closed and 0.0 < decay < 1.0 and friction_scheme == "energy":
             spin = spin_up(n, n_p, dx, decay, load / kel)
-            speed_steps = range(1 - spin, n_p + 1)
             # the state repeats round the lap where what is left of the
             # start, as friction, is below 1e-9 (docs/model.md, "Which the
-            # mean takes"); the mean is then the dissipation
-            left = (1.0 - decay**n_p) * (load / kel / n) / (2.0 * n_p * dx)
+            # mean takes"); the mean is then the dissipation. The pad's
+            # creep under its load decays as the element does and is
+            # k_eff / K - 1 times its instant compression (at least 1);
+            # where reaching 1e-9 takes at most a quarter lap more, the
+            # spin-up runs that far
+            weight = max(1.0, viscosity * v / dx / stiffness) if stiffness > 0 else np.inf
+            left = weight * (1.0 - decay**n_p) * (load / kel / n) / (2.0 * n_p * dx)
+            short = np.log(1e-6 / (left / weight)) / np.log(decay) > 4 * n_p
+            if left > 1e-9 and not short:
+                need = np.log(1e-9 / left) / np.log(decay)
+                if need <= spin + 0.25 * n_p:
+                    spin = max(spin, int(np.ceil(need)))
+            speed_steps = range(1 - spin, n_p + 1)
             repeats = np.log(left) + spin * np.log(decay) <= np.log(1e-9)
         u = np.zeros(n)
         mus, deltas, whs, means, works, adhesions = [], [], [], [], [], []

@@ -271,7 +271,9 @@ def test_mean_is_the_dissipation_and_the_series_the_facets_work(profile_m, short
     mean takes")."""
     wet = run(profile_m, [20.0, 60.0], depth=1e-3, alpha=1.0, series=True)
     assert np.all(wet["mu_inst"].values.mean(axis=1) - wet["mu"].values > 1e-5)
-    for closed, viscosity in ((True, 100.0), (True, 3e4), (False, 100.0), (False, 3e4)):
+    # (C = 3e4 repeated here only since the spin-up may run a quarter lap
+    # longer to reach 1e-9, 2026-12-07: 3e5 still shows its start)
+    for closed, viscosity in ((True, 100.0), (True, 3e5), (False, 100.0), (False, 3e4)):
         ref_mu, series = reference.simulate(short_profile_m, DX, [20.0, 60.0], closed=closed,
                                             series=True, viscosity=viscosity)
         ref_gap = np.array([s[0].mean() for s in series]) - ref_mu
