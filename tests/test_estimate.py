@@ -148,6 +148,58 @@ def test_the_estimate_foresees_the_pad_refined_under_a_film(monkeypatch):
     assert plain.attrs["estimated_seconds"] < 0.5 * both.attrs["estimated_seconds"]
 
 
+# an attack's 13-arm compound (the shipped tread compound's Prony series near
+# 20 C), as it gave them
+ATTACK_ARMS = dict(
+    rubber_model="maxwell", stiffness=5.16678e8,
+    prony_stiffness=[4.30519e10, 2.95458e10, 2.01065e10, 1.1136e10, 5.85204e9, 2.92091e9,
+                     1.45041e9, 7.04164e8, 3.43986e8, 1.66489e8, 8.09505e7, 3.91319e7,
+                     2.0888e7],
+    prony_times=[2.48563e-9, 2.19937e-8, 1.94608e-7, 1.72196e-6, 1.52365e-5, 0.000134818,
+                 0.00119291, 0.0105553, 0.0933972, 0.826411, 7.31237, 64.7024, 572.51])
+
+
+def _estimate(z, speeds, **kw):
+    """pf_estimate of simulate(z, DX, speeds, **kw): what simulate() weighs
+    before a run (element-steps, bytes, seconds, seconds refining), and its
+    words, without making the run."""
+    from pavefric import _core
+    from pavefric.core import _format, _parameters, _spec, _typed
+
+    settings = {**_parameters(kw),
+                ("surface", "dx"): _format(_spec("surface", "dx"), DX, "dx"),
+                ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"),
+                                                     speeds, "speeds_kmh")}
+    estimate, text, status, message = _core.pf_estimate(z, *_typed(settings))
+    assert status == 0, message
+    return estimate, pavefric.core._text(text)
+
+
+def test_a_tolerance_on_a_short_stiff_profile_is_announced():
+    """An attack's reproducer (2026-12-07): a 128-point profile of a 13-arm
+    compound at 300 km/h with tolerance = 1e-9 ran 104 s without a
+    PavefricCostWarning: the estimate (0.001 s a pass) did not probe so short
+    a profile for the pad's refinement (min_contacts: elements 8 times finer
+    here, each level about 4 times the one before, each running the
+    tolerance's passes), and the probe was skipped with any tolerance. A
+    short run is now probed where all its levels and passes could reach a
+    second, and the tolerance's guess multiplies the levels' passes too (19 s
+    guessed for that run, 96 s measured on this host: announced)."""
+    z = np.random.default_rng(0).normal(0, 5e-4, 128)
+    kw = dict(mu_loc=0.0, **ATTACK_ARMS)
+    slow, text = _estimate(z, [300.0], tolerance=1e-9, **kw)
+    assert slow[2] >= pavefric.ANNOUNCE_SECONDS, text
+    assert "tolerance = 1e-9 may need substeps 4096" in text
+    assert slow[3] > 0.0                          # the probe found levels to refine
+    # the same without refining the pad: its passes alone, about half a second
+    plain, _ = _estimate(z, [300.0], tolerance=1e-9, min_contacts=0, **kw)
+    assert plain[3] == 0.0 and plain[2] < 0.5 * slow[2]
+    # at tolerance = 0 so short a run is not worth a probe (every level and
+    # the estimate's pass stay under a second): nothing refined is costed
+    quick, _ = _estimate(z, [300.0], **kw)
+    assert quick[3] == 0.0 and quick[2] < 0.01
+
+
 def test_the_probe_runs_once_a_run(tmp_path):
     """The probe behind the refinement's cost ran twice a run (for the
     estimate printed before it, then again for the one recorded): up to a

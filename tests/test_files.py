@@ -282,8 +282,12 @@ def test_signal_while_writing_leaves_no_temp_file(scene, point, sig):
     assert r.returncode == 0, r.stderr
     previous = out.read_bytes()
     env = {**os.environ, "PAVEFRIC_TEST_PAUSE": point}
+    # (the signal's default action in the child, whatever the runner's: a
+    # shell's background job ignores SIGINT, and the program rightly keeps
+    # a signal ignored on entry, which then lets it finish)
     proc = subprocess.Popen([program(), scene.name, "-o", "out.nc"], cwd=d, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(sig, signal.SIG_DFL))
     wait_stopped(proc)
     temps = list(d.glob("out.nc.tmp*"))
     assert len(temps) == 1, temps   # stopped while writing under the temporary name

@@ -129,18 +129,23 @@ def test_profile_shorter_than_the_pad(tmp_path):
 
 @pytest.mark.parametrize("closed", [True, False])
 @pytest.mark.parametrize("element_length", [0.87e-3, 0.0])
-@pytest.mark.parametrize("dx", [1e-20, 1e-300, 1e-12])
+@pytest.mark.parametrize("dx", [1e-20, 1e-300, 1e-12, 1e-7])
 def test_a_spacing_far_below_the_pad_is_bad_input_not_memory(dx, element_length, closed):
     """An attack's reproducer: pavefric.simulate(z, 1e-20, [20.0]) raised a
     bare MemoryError blaming &numerics elements_per_sample and substeps
     (the pad would have had more than 2e9 elements at that spacing); a
-    profile a thousand times shorter than the pad is the spacing's fault."""
+    profile a thousand times shorter than the pad is the spacing's fault.
+    At 1e-7 m (a pad of 200,000 elements that fits) the pad's own spacing
+    (element_length = 0) ran a closed profile of 6.4 um under a pad of
+    20 mm, wrapped round it 3,000 times: refused the same way since
+    2026-12-07, as the resampled pad already was."""
     z = np.sin(np.arange(64)) * 1e-3
     with pytest.raises(pavefric.PavefricError) as info:
         pavefric.simulate(z, dx, [20.0], closed=closed, element_length=element_length)
     assert not isinstance(info.value, MemoryError)
     text = str(info.value)
-    assert text.startswith(f"&surface dx = {dx:g} m: the profile of 64 points is "), text
+    shown = {1e-7: "1e-7"}.get(dx, f"{dx:g}")          # (the core writes no exponent's 0)
+    assert text.startswith(f"&surface dx = {shown} m: the profile of 64 points is "), text
     assert "far shorter than the pad (&pad length = 0.02 m); give dx in metres" in text
     assert "elements_per_sample" not in text
 

@@ -95,8 +95,10 @@ module pavefric_rubber
       !> Per lane, the slope of the step-mean pressure (mean_push, in units
       !> of k_eff) against the element's push at the step's end, all else
       !> fixed: the free path's mean is then mean - slope push (the driver's
-      !> contact ramp). Not allocated: taken as 0 (the ramp then starts from
-      !> the step's own mean, still continuous where the pushes vanish).
+      !> contact ramp), for a law without mean_weights (whose third column
+      !> serves instead; the Kelvin-Voigt law leaves this unallocated). Not
+      !> allocated: taken as 0 (the ramp then starts from the step's own
+      !> mean, still continuous where the pushes vanish).
       real(wp), allocatable :: push_slope(:)
    end type rubber_step_type
 
@@ -275,7 +277,7 @@ contains
       nl = size(speeds)
       allocate(step%k_eff(nl), step%memory(nl), step%coef(nl, 1), &
          & step%per_element(nl * elements, 1), step%mode_decay(nl, 1), step%mode_weight(nl, 1), &
-         & step%mean_weights(nl, 3), step%creep_decay(nl), step%push_slope(nl), &
+         & step%mean_weights(nl, 3), step%creep_decay(nl), &
          & step%creep_weight(nl), stat=stat)
       if (stat /= 0) return
       do j = 1, nl
@@ -304,7 +306,6 @@ contains
          ! on the free path (u1 = b u0) the mean is (1 - b)^2 u0 / 2, that is
          ! (1 - b)/2 times the free path's change u0 - b u0
          step%mean_weights(j, 3) = 0.5_wp * (1.0_wp - step%coef(j, 1))
-         step%push_slope(j) = step%mean_weights(j, 2)
       end do
       do i = 1, elements
          step%per_element((i - 1) * nl + 1 : i * nl, 1) = step%coef(:, 1)

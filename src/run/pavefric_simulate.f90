@@ -240,15 +240,23 @@ contains
    end subroutine tiny_profile_message
 
    !> A profile of np samples at the user's spacing dx a thousand times
-   !> shorter than the pad: refused naming &surface dx, before anything is
-   !> estimated or resampled from it (tiny_profile_message).
+   !> shorter than the pad, or so fine that the pad would need more than 2e9
+   !> elements at its spacing while the refined profile itself fits:
+   !> refused naming &surface dx, before anything is estimated or resampled
+   !> from it (tiny_profile_message). The one place this refusal is made
+   !> (run_grids, the program's estimate, check_inputs).
    pure subroutine check_profile_scale(m, np, dx, error)
       type(model_type), intent(in) :: m
       integer, intent(in) :: np
       real(wp), intent(in) :: dx
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: text
-      if (.not. real(np, wp) * dx < 1.0e-3_wp * m%length) return
+      if (.not. real(np, wp) * dx < 1.0e-3_wp * m%length) then
+         if (pad_elements(m, dx) < huge(1)) return
+         ! (a refined profile that would not fit is the knobs' refusal)
+         if (real(np, wp) * real(m%elements_per_sample, wp) * real(m%substeps, wp) > &
+            & 2.0e9_wp) return
+      end if
       call tiny_profile_message(m, np, dx, text)
       call fatal_error(error, text)
    end subroutine check_profile_scale
@@ -461,6 +469,8 @@ contains
       else
          call add_refinement_cost(m, z, dx, closed, speeds_kmh, res%estimate)
       end if
+      ! (a tolerance's passes run at every level the refinement takes)
+      call tolerance_guess(m, res%estimate)
       allocate(res%elements_per_sample_used(size(speeds_kmh)), &
          & res%speed_n_elements(size(speeds_kmh)))
       res%elements_per_sample_used = m%elements_per_sample
@@ -1922,6 +1932,10 @@ contains
             & "in the unit declared (&surface height_unit, or the file's header)?")
          return
       end if
+      ! (a pad that would not fit in memory where the profile does: a
+      ! profile far shorter than the pad)
+      call check_profile_scale(m, size(z), dx, error)
+      if (allocated(error)) return
       n_el = pad_elements(m, dx)
       if (n_el < 1) then
          call no_element_message(m, dx, .false., text)
@@ -1929,13 +1943,7 @@ contains
          return
       end if
       if (averaged_positions(m, size(z), dx, closed) < positions_needed(closed)) then
-         if (n_el >= huge(1) .and. real(size(z), wp) * real(m%elements_per_sample, wp) * &
-               & real(m%substeps, wp) <= 2.0e9_wp) then
-            ! the pad, not the profile, is what would not fit in memory: a
-            ! profile far shorter than the pad
-            call tiny_profile_message(m, size(z), dx, text)
-            call fatal_error(error, text)
-         else if (n_el >= huge(1) .or. real(size(z), wp) * real(m%elements_per_sample, wp) * &
+         if (n_el >= huge(1) .or. real(size(z), wp) * real(m%elements_per_sample, wp) * &
                & real(m%substeps, wp) > 2.0e9_wp) then
             call fatal_error(error, "&numerics elements_per_sample = " // &
                & to_str(m%elements_per_sample) // " and substeps = " // to_str(m%substeps) // &
@@ -2042,7 +2050,7 @@ contains
       type(geometry_type) :: geo
       real(wp) :: extra, fine, kel, per_step
       integer :: j, spin, stat
-      logical :: short
+      logical :: short, repeats
       if (.not. closed .or. c%element_steps <= 0) return
       if (allocated(m%friction_scheme)) then
          if (m%friction_scheme == "paper") return
@@ -2060,7 +2068,9 @@ contains
       do j = 1, size(speeds_kmh)
          if (.not. rstep%memory(j)) cycle
          kel = m%width * (dx / real(m%elements_per_sample, wp)) * rstep%k_eff(j)
-         call lap_spinup(rstep, j, geo, m%load / kel, spin, short)
+         ! (with repeats, as the run asks: the spin then includes the
+         ! extension that lets a lane repeat)
+         call lap_spinup(rstep, j, geo, m%load / kel, spin, short, repeats)
          extra = extra + real(spin - geo%n_spin, wp) * real(geo%n_el, wp)
       end do
       if (.not. extra > 0.0_wp) return
@@ -2082,11 +2092,19 @@ contains
    !> elements at twice the positions). Added to c%seconds only (the
    !> element-steps stay the reported pass's). Runs of fewer than
    !> probe_runs_from * probe_positions positions (where the probe would cost
-   !> more than half a pass, a sixth of the default run), runs that refine
-   !> nothing (tolerance > 0, neither min_contacts nor the error estimate)
+   !> more than half a pass, a sixth of the default run) unless their
+   !> refinement could make them long (below), runs that refine nothing
+   !> (neither min_contacts nor, at tolerance = 0, the error estimate)
    !> and probes that fail are left as they are: the probe is an estimate's
    !> helper, never an error. (At 256 positions the probe of a pad the film
    !> lifted at 80 km/h saw it touch at 2 of them, and missed the levels.)
+   !> With a tolerance, min_contacts' levels each run the tolerance's
+   !> passes: the levels' first passes are costed here, and tolerance_guess
+   !> multiplies them with the rest. A short run is probed where every
+   !> level, and a tolerance's passes to max_substeps, would take
+   !> probe_worth seconds or more (the program announces a run from 1 s):
+   !> a 128-point profile of the shipped compound at tolerance = 1e-9 ran
+   !> 104 s where its estimate said 0.001 s.
    subroutine add_refinement_cost(m, z, dx, closed, speeds_kmh, c)
       type(model_type), intent(in) :: m
       real(wp), intent(in) :: z(:), dx, speeds_kmh(:)
@@ -2094,6 +2112,7 @@ contains
       type(cost_estimate_type), intent(inout) :: c
       integer, parameter :: probe_positions = 1024, probe_runs_from = 2
       integer, parameter :: probe_window = 65536
+      real(wp), parameter :: probe_worth = 1.0_wp
       type(model_type) :: mp
       type(sim_result_type) :: r
       type(error_type), allocatable :: err
@@ -2101,16 +2120,26 @@ contains
       class(film_model), allocatable :: film
       logical :: friction_film, estimate
       integer :: npe, phases, positions, j, k, levels, eps, nw, npw, phw
-      real(wp) :: dxe, dxw, contacts, extra, fixed
-      if (m%tolerance > 0.0_wp) return
-      estimate = m%error_estimate
+      real(wp) :: dxe, dxw, contacts, extra, fixed, worst
+      estimate = m%error_estimate .and. .not. m%tolerance > 0.0_wp
       if (m%min_contacts <= 0 .and. .not. estimate) return
       call element_grid(m, size(z), dx, closed, npe, dxe, phases, positions)
-      if (positions < probe_runs_from * probe_positions * phases) return
+      if (positions < probe_runs_from * probe_positions * phases) then
+         ! the worst case: every level (about 4 times the one before) and
+         ! the estimate's pass, or a tolerance's passes to max_substeps
+         worst = c%seconds * (4.0_wp**(pad_levels + 1) - 1.0_wp) / 3.0_wp
+         if (m%tolerance > 0.0_wp) then
+            worst = worst * real(2 * (max_substeps / m%substeps) - 1, wp)
+         else
+            worst = 2.0_wp * worst
+         end if
+         if (worst < probe_worth) return
+      end if
       mp = m
       mp%error_estimate = .false.
       mp%min_contacts = 0
       mp%substeps = 1
+      mp%tolerance = 0.0_wp
       mp%time_scheme = "euler"
       ! a window of the profile at most probe_window samples long (its
       ! geometry is built for the probe as for a run: a 10-million-point
@@ -3274,13 +3303,8 @@ contains
             if (rstep%mode_decay(j, k) < 1.0_wp) &
                & call need_below(rstep%mode_decay(j, k), rstep%mode_weight(j, k), need)
          end do
-         if (allocated(rstep%creep_decay)) then
-            if (allocated(rstep%creep_weight)) then
-               call need_below(rstep%creep_decay(j), rstep%creep_weight(j), need)
-            else
-               call need_below(rstep%creep_decay(j), 1.0_wp, need)
-            end if
-         end if
+         if (allocated(rstep%creep_decay)) &
+            & call need_below(rstep%creep_decay(j), creep_weight(), need)
          if (need <= real(spin, wp) + 0.25_wp * real(lap, wp)) spin = max(spin, ceiling(need))
       end if
       gone = .not. short
@@ -3297,15 +3321,16 @@ contains
       ! instant compression (rubber_step_type's creep_weight): one that does
       ! not decay never repeats
       gone = gone .and. allocated(rstep%creep_decay)
-      if (gone) then
-         if (allocated(rstep%creep_weight)) then
-            gone = left_below(rstep%creep_decay(j), rstep%creep_weight(j))
-         else
-            gone = left_below(rstep%creep_decay(j), 1.0_wp)
-         end if
-      end if
+      if (gone) gone = left_below(rstep%creep_decay(j), creep_weight())
       repeats = gone
    contains
+      !> The creep's weight against the instant compression
+      !> (rubber_step_type's creep_weight; 1 for a rubber that gives none).
+      pure real(wp) function creep_weight()
+         creep_weight = 1.0_wp
+         if (allocated(rstep%creep_weight)) creep_weight = rstep%creep_weight(j)
+      end function creep_weight
+
       !> c = w (1 - e^L) u / (2 L advance): what a mode of weight w decaying
       !> by e a step changes over a lap, as friction, per unit of its start.
       pure real(wp) function lap_change(e, w)

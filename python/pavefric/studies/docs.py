@@ -248,7 +248,9 @@ def outputs_markdown() -> str:
         "seconds include the passes that will halve the pad's elements where it stands on "
         "fewer than 4 in contact (`min_contacts`, the error estimate), each level about 4 "
         "times the cost of the one before, foreseen by a probe (the run on every n-th of "
-        "at least 2048 positions; shorter runs are not probed); the element-steps are the "
+        "at least 2048 positions; a shorter run only where all its levels, and a "
+        "tolerance's passes, could take a second or more; with a tolerance each level "
+        "runs its passes); the element-steps are the "
         "reported pass's (docs/performance.md) |",
         "| `preprocessing`, `preprocess_*` | what preprocessing did to the profile, in "
         "a sentence and as numbers (docs/profiles.md) |",
