@@ -166,6 +166,33 @@ def test_the_default_passes_extrapolated_are_the_documented_bell():
     assert np.max(np.abs(extrapolated - resolved)) < 0.004
 
 
+def test_the_shipped_compound_is_one_bell_at_tolerance_1e_3(profile_m):
+    """Must-show 3 at a stated accuracy: with the shipped compound, mu_loc = 0,
+    20 km/h, &numerics tolerance = 1e-3 and the other numerics at their
+    defaults, mu against temperature on the tests' synthetic profile has one
+    maximum and falls over 20-60 C, each point's estimated error within the
+    tolerance; the values docs/model.md quotes (python -m
+    pavefric.studies.energy_report, "At a stated accuracy")."""
+    from pavefric.studies.energy_report import at_tolerance, compound as shipped, \
+        synthetic_profile
+
+    z = synthetic_profile()
+    np.testing.assert_array_equal(z, profile_m)
+    temps = (0, 10, 20, 30, 40, 50, 60)
+    rows, _ = at_tolerance(z, shipped(), temps)
+    mu = np.array([r[1] for r in rows])
+    assert all(r[3] <= 1e-3 for r in rows), rows
+    peak = int(np.argmax(mu))
+    assert np.all(np.diff(mu[:peak + 1]) > 0), mu
+    assert np.all(np.diff(mu[peak:]) < 0), mu
+    assert temps[peak] <= 20, mu                    # so falling over 20-60 C
+    quoted = [0.0514, 0.0612, 0.0634, 0.0632, 0.0561, 0.0506, 0.0438]
+    text = " ".join((ROOT / "docs" / "model.md").read_text().split())
+    assert "synthetic_1024.txt`: spectral, RMS 0.5 mm) " + ", ".join(
+        f"{v:.4f}" for v in quoted[:3]) in text
+    np.testing.assert_allclose(mu, quoted, atol=1e-4)
+
+
 def captif_heights():
     profile = pavefric.read_profile(CAPTIF / "20211011_aylesbury_dec_station_0.dat",
                                     dropouts="interpolate", trim_plates=True, spike_slope=0.0)
