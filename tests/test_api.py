@@ -180,6 +180,23 @@ def test_c_and_fortran_examples_reproduce_the_program(tmp_path, pc_env, scene):
         assert same_bits(got_mu, mu), (source, got_mu, list(mu))
 
 
+def test_fortran_write_results_after_a_failed_run_is_an_error(tmp_path, pc_env):
+    """An attack's reproducer (2026-12-07): write_results on the empty result
+    of a run_profile that failed killed the host with SIGSEGV; it is an
+    error naming the output, and nothing is written."""
+    exe = build(tmp_path, "write_after_failed_run.f90", pc_env)
+    (tmp_path / "short.txt").write_text("0.1\n0.2\n0.3\n")
+    (tmp_path / "s.nml").write_text("&surface profile_file = 'short.txt' /\n"
+                                    "&operation speeds_kmh = 20 /\n")
+    proc = subprocess.run([exe], cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0].startswith("run_profile error: &surface profile_file = 'short.txt'"), lines
+    assert lines[1] == ("write_results error: &output file = 'out.nc': no results to write "
+                        "(run first; the last run failed)"), lines
+    assert not list(tmp_path.glob("out.nc*"))
+
+
 def test_c_example_statically_linked(tmp_path, pc_env):
     """libpavefric.a with pkg-config --static: Libs.private is complete."""
     exe = build(tmp_path, "example.c", pc_env, static=True)

@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 
 import netCDF4
+import numpy as np
 import pytest
 
 import pavefric
@@ -332,3 +333,191 @@ def test_ignored_sigint_stays_ignored(scene):
     assert proc.returncode == 0
     assert (scene.parent / "out.nc").read_bytes()[:4] == b"\x89HDF"
     assert not list(scene.parent.glob("out.nc.tmp*"))
+
+
+# ---- the attack of 2026-12-07: files a batch, merge or write_profiles destroyed ---------
+
+@pytest.mark.parametrize("restart", [".false.", ".true."])
+def test_a_journal_path_that_is_a_symlink_is_refused(tmp_path, restart):
+    """The journal was written through a symbolic link at `<output>.journal`
+    into the file it named (the user's thesis), and the link removed at the
+    end."""
+    scene = make_batch(tmp_path)
+    scene.write_text(scene.read_text().replace("depths = 0.0", f"depths = 0.0, restart = {restart}"))
+    thesis = tmp_path / "thesis.txt"
+    thesis.write_text("precious user data\n")
+    (tmp_path / "out.nc.journal").symlink_to(thesis)
+    before = snapshot(thesis, *all_inputs(tmp_path / "profiles"))
+    r = run_program(scene, "-o", "out.nc", cwd=tmp_path)
+    assert_refused(r, "the journal of -o 'out.nc.journal': is a symbolic link",
+                   "pavefric replaces only its own journals")
+    assert_intact(before)
+    assert (tmp_path / "out.nc.journal").is_symlink()
+    assert not (tmp_path / "out.nc").exists()
+
+
+@pytest.mark.parametrize("restart", [".false.", ".true."])
+def test_a_users_file_at_the_journal_path_is_left_alone(tmp_path, restart):
+    """A file of the user's named `out.nc.journal` was deleted by a batch with
+    restart = .false. (restart = .true. called it another batch's journal and
+    advised restart = .false.)."""
+    scene = make_batch(tmp_path)
+    scene.write_text(scene.read_text().replace("depths = 0.0", f"depths = 0.0, restart = {restart}"))
+    notes = tmp_path / "out.nc.journal"
+    notes.write_text("my notes, not a journal\n")
+    before = snapshot(notes)
+    r = run_program(scene, "-o", "out.nc", cwd=tmp_path)
+    assert_refused(r, "the journal of -o 'out.nc.journal': exists and is not a pavefric batch "
+                   "journal", "remove or rename it")
+    assert "another batch" not in r.stderr
+    assert_intact(before)
+    # a journal of pavefric's own is still taken (an interrupted batch resumes)
+    notes.unlink()
+    r = run_program(scene, "-o", "out.nc", "--max-profiles", "2", cwd=tmp_path)
+    assert r.returncode == 3, r.stderr
+    r = run_program(scene, "-o", "out.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    if restart == ".true.":
+        assert "2 taken from the journal" in r.stdout + r.stderr
+
+
+@pytest.mark.parametrize("interrupt", [False, True])
+def test_a_batch_over_the_directory_of_its_output_resumes(tmp_path, interrupt):
+    """&batch profiles = 'seg' (a directory: all its files) with -o seg/out.nc:
+    after an interruption the rerun took the batch's own journal for profile
+    1 and refused to resume, and a second run took the output. The batch's
+    own output, journal and temporaries are not profiles."""
+    from pavefric.surfaces import road_profiles
+
+    road_profiles(str(tmp_path / "seg"), n=5, points=256)
+    scene = tmp_path / "b.nml"
+    scene.write_text("&batch profiles = 'seg', depths = 0.0 /\n&surface closed = .false. /\n"
+                     "&operation speeds_kmh = 20 /\n")
+    (tmp_path / "seg" / "out.nc.tmp999999999").write_text("a temporary a killed writer left\n")
+    if interrupt:
+        r = run_program(scene, "-o", "seg/out.nc", "--max-profiles", "2", cwd=tmp_path)
+        assert r.returncode == 3, r.stderr
+    r = run_program(scene, "-o", "seg/out.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "5 profiles" in r.stdout + r.stderr, r.stdout + r.stderr
+    # and once more over the finished output: the same five profiles
+    r = run_program(scene, "-o", "seg/out.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    with netCDF4.Dataset(tmp_path / "seg" / "out.nc") as nc:
+        assert nc.dimensions["profile"].size == 5
+
+
+def survey(path):
+    pavefric.write_profiles(path, np.sin(np.arange(3 * 256).reshape(3, 256) * 0.3) * 1e-3,
+                            dx=0.87e-3, names=["0+100", "0+200", "0+300"])
+
+
+def test_an_output_over_a_profile_survey_is_refused(scene):
+    """write_profiles gives its surveys source 'pavefric.write_profiles'; the
+    program took any source starting 'pavefric' for an output of its own and
+    replaced a measured survey with friction results."""
+    target = scene.parent / "survey_part2.nc"
+    survey(target)
+    before = snapshot(target)
+    r = run_program(scene.name, "-o", target.name, cwd=scene.parent)
+    assert_refused(r, f"-o '{target.name}': exists and is a profile file",
+                   "an input, not an output of a run")
+    assert_intact(before)
+    with pytest.raises(pavefric.PavefricError, match="exists and is a profile file"):
+        pavefric.run(scene, output=target)
+    assert_intact(before)
+    # a survey replaces a survey (written again), never a friction output
+    survey(target)
+    out = scene.parent / "out.nc"
+    assert run_program(scene.name, "-o", out.name, cwd=scene.parent).returncode == 0
+    results = snapshot(out)
+    with pytest.raises(pavefric.PavefricError, match="is a pavefric results file"):
+        survey(out)
+    assert_intact(results)
+
+
+def test_python_writers_replace_only_their_own_kind(scene, tmp_path):
+    """merge and write_profiles replaced a text file or another tool's NetCDF
+    (the program refused both: the README's rule)."""
+    from pavefric.merge import MergeError, merge
+
+    d = tmp_path / "b"
+    batch = make_batch(d, n=4)
+    parts = []
+    for k, pattern in enumerate(["profiles/*_000[12].txt", "profiles/*_000[34].txt"]):
+        part = d / f"part_{k}.nml"
+        part.write_text(batch.read_text().replace("profiles/*.txt", pattern))
+        out = d / f"part_{k}.nc"
+        r = run_program(part, "-o", out, cwd=d)
+        assert r.returncode == 0, r.stderr
+        parts.append(out)
+    notes = d / "notes.txt"
+    notes.write_text("my field notes\n")
+    other = d / "era5.nc"
+    with netCDF4.Dataset(other, "w") as nc:
+        nc.source = "ERA5 reanalysis"
+    before = snapshot(notes, other)
+    for target in (notes, other):
+        with pytest.raises(MergeError, match="pavefric replaces only its own outputs"):
+            merge(parts, target)
+        with pytest.raises(pavefric.PavefricError, match="pavefric replaces only its own outputs"):
+            survey(target)
+    assert_intact(before)
+    # each still replaces its own: a merge output, a survey
+    merged = d / "merged.nc"
+    merge(parts, merged)
+    merge(parts, merged)
+    survey(d / "s.nc")
+    survey(d / "s.nc")
+    with pytest.raises(MergeError, match="exists and is a profile file"):
+        merge(parts, d / "s.nc")
+
+
+def test_a_failed_run_leaves_no_outputs_directory(tmp_path):
+    """A run refused on its profile left an empty outputs/ behind (the
+    default output's directory, made before the checks)."""
+    scene = write_scene(tmp_path, "s", profile_text="0.1\n0.2x\n")
+    r = run_program(scene.name, cwd=tmp_path)
+    assert r.returncode == 1 and "'0.2x' is not a number" in r.stderr, r.stderr
+    assert not (tmp_path / "outputs").exists()
+    # one that was there stays, and a good run still writes into it
+    (tmp_path / "outputs").mkdir()
+    r = run_program(scene.name, cwd=tmp_path)
+    assert r.returncode == 1 and (tmp_path / "outputs").is_dir()
+    good = write_scene(tmp_path / "g", "g")
+    r = run_program(good.name, cwd=good.parent)
+    assert r.returncode == 0, r.stderr
+    assert (good.parent / "outputs" / "g.nc").is_file()
+
+
+def test_a_profile_list_with_a_byte_order_mark(tmp_path):
+    """A profile_list saved with a UTF-8 byte-order mark (an editor's): the
+    mark became part of the first path, which then could not be opened."""
+    scene = make_batch(tmp_path, n=3, list_file=True)
+    listed = tmp_path / "list.txt"
+    listed.write_bytes(b"\xef\xbb\xbf" + listed.read_bytes())
+    r = run_program(scene, "-o", "out.nc", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    with netCDF4.Dataset(tmp_path / "out.nc") as nc:
+        assert nc.dimensions["profile"].size == 3
+
+
+def test_a_scene_that_is_a_fifo_is_refused_not_waited_for(tmp_path):
+    """An attack (2026-12-07): a scene given as a FIFO with no writer blocked
+    the program forever, and one read through a pipe (`<(cat s.nml)`) was
+    read as empty ("speeds_kmh: not given"). Scenes and profile lists are
+    read from regular files only, as profiles are."""
+    fifo = tmp_path / "f.nml"
+    os.mkfifo(fifo)
+    r = subprocess.run([program(), str(fifo), "-o", str(tmp_path / "o.nc")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1, r.stderr
+    assert "f.nml': a FIFO (named pipe), not a regular file" in r.stderr, r.stderr
+    assert not (tmp_path / "o.nc").exists()
+    scene = make_batch(tmp_path / "b", n=2)
+    scene.write_text(scene.read_text().replace("profiles = 'profiles/*.txt'",
+                                               "profile_list = 'list.fifo'"))
+    os.mkfifo(tmp_path / "b" / "list.fifo")
+    r = subprocess.run([program(), str(scene), "-o", str(tmp_path / "b.nc")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1 and "list.fifo': a FIFO (named pipe)" in r.stderr, r.stderr

@@ -260,3 +260,19 @@ def test_a_long_memory_under_a_tiny_load_balances_to_rounding(closed):
         alone = pavefric.simulate(z, 0.87e-3, [100.0], **kw)
     assert np.all(ds["max_balance_residual"].values <= 1e-12), ds["max_balance_residual"].values
     assert alone["max_balance_residual"].values[0] <= 1e-12
+
+
+@pytest.mark.parametrize("name, value, bound", [("load", 1e-320, "1e-12"), ("load", 1e-300, "1e-12"),
+                                                ("width", 1e-305, "1e-6"), ("width", 1e-315, "1e-6")])
+def test_a_load_or_width_beyond_double_precision_is_refused(z, name, value, bound):
+    """An attack (2026-12-07): &pad load = 1e-320 N (within its range then)
+    made the pushes subnormal and the friction 0/0 (the core's own 'please
+    report this scene'), 1e-322 read mu = 0 with hydroplaning on a dry road;
+    width = 1e-305 m wrote mu = -7.6e270, 1e-315 stopped on an internal
+    error. The ranges now start where the arithmetic holds: a clear error
+    naming the variable, its value and the bound."""
+    with pytest.raises(pavefric.PavefricError) as info:
+        pavefric.simulate(z, DX, [20.0], **{name: value})
+    assert f"&pad {name} = {value!r}: must be finite and >= {bound}" in str(info.value)
+    # the bound itself runs, finite
+    finite(pavefric.simulate(z, DX, [20.0], **{name: float(bound)}))

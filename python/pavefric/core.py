@@ -149,7 +149,7 @@ def _check(status: int, message: Any, keywords: bool = False) -> None:
     raise PavefricError(text)
 
 
-def check_output(path: str | os.PathLike, inputs=()) -> None:
+def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None) -> None:
     """The rule every pavefric writer follows, from the core (the program's
     and the C API's own): ``path`` must be missing or a regular file (never a
     FIFO, a device or a directory) and not the same file as any of ``inputs``
@@ -162,6 +162,14 @@ def check_output(path: str | os.PathLike, inputs=()) -> None:
         The file about to be written.
     inputs : iterable of path-like, optional
         The files the data written came from.
+    replaces : {"results", "profiles"} or None, optional
+        What a NetCDF writer writes, and so the only kind of existing file it
+        may replace (the program's rule): ``"results"`` (a run's, a batch's
+        or ``merge``'s output, NetCDF ``source`` 'pavefric <version>') or
+        ``"profiles"`` (a survey ``write_profiles`` wrote). A file of another
+        kind, another tool's NetCDF or a file that is not NetCDF is refused;
+        an empty file may be replaced. None: no such check (writers of other
+        formats).
 
     Returns
     -------
@@ -175,10 +183,15 @@ def check_output(path: str | os.PathLike, inputs=()) -> None:
     joined = "\n".join(os.fspath(p) for p in inputs if p)
     status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n")
     _check(status, message)
+    if replaces is not None:
+        if replaces not in ("results", "profiles"):
+            raise ValueError(f"check_output replaces = {replaces!r}: 'results' or 'profiles'")
+        status, message = _core.pf_check_replaceable(_b(os.fspath(path)), _b(replaces))
+        _check(status, message)
 
 
 @contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, inputs=()):
+def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = None):
     """Write ``path`` whole or not at all, as every pavefric writer does:
     ``check_output(path, inputs)``, then the caller writes the temporary this
     yields (``path.tmpPID`` beside ``path``, the program's own name, so that a
@@ -192,13 +205,15 @@ def atomic_output(path: str | os.PathLike, inputs=()):
         The file to write.
     inputs : iterable of path-like
         The files the data written came from (never overwritten).
+    replaces : {"results", "profiles"} or None
+        ``check_output``'s: the kind of file a NetCDF writer may replace.
 
     Yields
     ------
     pathlib.Path
         The temporary file to write.
     """
-    check_output(path, inputs)
+    check_output(path, inputs, replaces)
     tmp = Path(_text(_core.pf_temporary_name(_b(os.fspath(path)))))
     try:
         yield tmp

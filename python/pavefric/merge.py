@@ -100,7 +100,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
         if not p.is_file():
             raise MergeError(f"merge: '{p}' is not a file")
     try:        # the rule of every pavefric writer: never over an input, a FIFO, a device
-        check_output(out, paths)
+        check_output(out, paths, replaces="results")
     except PavefricError as exc:
         raise MergeError(f"merge: {exc}") from None
 
@@ -174,7 +174,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             [f"pavefric merge of {len(paths)} parts: " + " ".join(str(p) for p in paths)] +
             [str(ds.attrs.get("history", "")) for ds in sets])
         merged.attrs["merged_parts"] = " ".join(str(p) for p in paths)
-        with atomic_output(out, paths) as tmp:
+        with atomic_output(out, paths, replaces="results") as tmp:
             store_long_attributes(merged).to_netcdf(tmp, format="NETCDF4")
     finally:
         for ds in opened:

@@ -262,7 +262,10 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
     Raises
     ------
     PavefricError
-        If the path may not be written or the arguments disagree.
+        If the path may not be written or the arguments disagree. An existing
+        file at ``path`` is replaced only if it is a survey ``write_profiles``
+        wrote (or is empty): never a friction output, another tool's NetCDF
+        or a file that is not NetCDF (the program's rule, ``check_output``).
     """
     import netCDF4
 
@@ -271,7 +274,7 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
     # never over a file the profiles came from, never onto a FIFO or device
     sources = [getattr(h, "path", None) for h in
                (heights if isinstance(heights, (list, tuple)) else [heights])]
-    check_output(path, sources)
+    check_output(path, sources, replaces="profiles")
     heights = ([getattr(h, "heights", h) for h in heights] if isinstance(heights, (list, tuple))
                else getattr(heights, "heights", heights))
     if units not in _UNITS:
@@ -314,7 +317,7 @@ def write_profiles(path: str | os.PathLike, heights, dx=None, *,
             raise PavefricError(f"write_profiles chainage: {n} finite values expected")
 
     path = Path(path)
-    with atomic_output(path, sources) as tmp:
+    with atomic_output(path, sources, replaces="profiles") as tmp:
         with netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
             nc.Conventions = "CF-1.10"
             nc.title = title

@@ -215,7 +215,7 @@ contains
       if (abs(res%mu(j)) < 1.0d4) then
          write(mu_text, '(f12.5)') res%mu(j)
       else
-         write(mu_text, '(es12.4)') res%mu(j)
+         write(mu_text, '(es12.4e3)') res%mu(j)
       end if
       if (allocated(res%mu_error)) then
          write(output_unit, '(f11.3, a12, f15.4, f14.4, es19.2)') res%speed_kmh(j), &

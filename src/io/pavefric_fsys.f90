@@ -14,7 +14,7 @@ module pavefric_fsys
       & join_path, is_absolute
    public :: output_guard_type, check_output_path, canonical_path, os_message
    public :: register_temporary, release_temporary, install_signal_cleanup, test_pause
-   public :: remove_stale_temporaries, setting
+   public :: remove_stale_temporaries, setting, is_symlink
 
    !> Kinds of file (pavefric_file_id in pavefric_posix.c).
    integer, parameter :: kind_missing = 0, kind_regular = 1
@@ -53,6 +53,11 @@ module pavefric_fsys
          import :: c_int
          integer(c_int) :: pid
       end function c_getpid
+      function c_is_symlink(path) bind(C, name="pavefric_is_symlink") result(yes)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int) :: yes
+      end function c_is_symlink
       function c_file_id(path, dev, ino, kind) bind(C, name="pavefric_file_id") result(stat)
          import :: c_int, c_char, c_long_long
          character(kind=c_char), intent(in) :: path(*)
@@ -102,6 +107,13 @@ module pavefric_fsys
 contains
 
    !> Rename `old` to `new` atomically (same file system); true on success.
+   !> Whether `path` is itself a symbolic link (lstat; not followed).
+   function is_symlink(path) result(yes)
+      character(len=*), intent(in) :: path
+      logical :: yes
+      yes = c_is_symlink(path // c_null_char) /= 0
+   end function is_symlink
+
    function rename_file(old, new) result(ok)
       character(len=*), intent(in) :: old, new
       logical :: ok

@@ -239,6 +239,14 @@ contains
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp
       type(output_guard_type) :: guard
+      ! results of no run (a run that failed leaves its intent(out) result
+      ! empty; the Fortran API's write_results then died of SIGSEGV, an
+      ! attack of 2026-12-07): an error, as the C API's
+      if (.not. allocated(res%mu)) then
+         call fatal_error(error, "&output file = '" // path // "': no results to write (run " // &
+            & "first; the last run failed)", stat_input)
+         return
+      end if
       ! The rule of every writer (program, Python, C and Fortran API alike):
       ! never onto a FIFO, a device or a directory, never over a file the
       ! results came from; then a temporary in the same directory, renamed.
@@ -267,15 +275,26 @@ contains
    !> a profile of another run or another tool's NetCDF named by mistake stay
    !> as they are. Opens the file with netCDF: callers that may run on
    !> several threads hold the files lock (pavefric_files_lock.c).
-   subroutine check_replaceable(path, what, error)
+   subroutine check_replaceable(path, what, error, replaces)
       character(len=*), intent(in) :: path, what
       type(error_type), allocatable, intent(out) :: error
+      !> What the writer writes, and so what it may replace: 'results' (the
+      !> default: the program's, the batch's and merge's outputs, source
+      !> 'pavefric <version>') or 'profiles' (pavefric.write_profiles's
+      !> surveys, source 'pavefric.write_profiles'). A writer replaces only
+      !> a file of its own kind: a survey is an input, which a results
+      !> writer must not destroy (an attack of 2026-12-07: `-o` replaced a
+      !> survey whose source began 'pavefric').
+      character(len=*), intent(in), optional :: replaces
+      character(len=*), parameter :: survey = "pavefric.write_profiles"
       integer :: ncid, status, n, xtype
       integer(i8) :: size
-      logical :: exists
+      logical :: exists, profiles
       character(len=:), allocatable :: source
       character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
          & "remove or rename the file, or choose another path"
+      profiles = .false.
+      if (present(replaces)) profiles = replaces == "profiles"
       inquire(file=path, exist=exists, size=size)
       if (.not. exists .or. size == 0) return
       status = nf90_open(path, nf90_nowrite, ncid)
@@ -292,7 +311,23 @@ contains
          source = ""
       end if
       status = nf90_close(ncid)
-      if (index(source, "pavefric") == 1) return
+      if (profiles) then
+         if (source == survey) return
+         if (index(source, "pavefric ") == 1) then
+            call fatal_error(error, setting(what, path) // ": exists and is a pavefric " // &
+               & "results file (source '" // source // "'), not a profile file " // survey // &
+               & " wrote" // advice, stat_input)
+            return
+         end if
+      else
+         if (index(source, "pavefric ") == 1) return
+         if (source == survey) then
+            call fatal_error(error, setting(what, path) // ": exists and is a profile file " // &
+               & "(source '" // survey // "': measured profiles, an input, not an output " // &
+               & "of a run)" // advice, stat_input)
+            return
+         end if
+      end if
       if (len(source) == 0) then
          source = "it has no global attribute source"
       else

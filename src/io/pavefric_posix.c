@@ -58,6 +58,15 @@ int pavefric_file_id(const char *path, long long *dev, long long *ino, int *kind
     return 0;
 }
 
+/* Whether `path` is itself a symbolic link (not followed): 1 or 0; 0 when
+ * nothing is there or it cannot be inspected (the callers' stat says why). */
+int pavefric_is_symlink(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0) return 0;
+    return S_ISLNK(st.st_mode) ? 1 : 0;
+}
+
 /* ---- stale temporaries -------------------------------------------------- */
 
 /* Remove the temporaries `<path>.tmp<PID>` that a writer killed outright

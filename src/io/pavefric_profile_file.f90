@@ -10,7 +10,7 @@ module pavefric_profile_file
    implicit none
    private
 
-   public :: check_profile_file, read_file_head, read_whole_file
+   public :: check_profile_file, read_file_head, read_whole_file, not_regular
 
    interface
       function c_file_kind(path) bind(C, name="pavefric_file_kind") result(kind)
@@ -28,9 +28,23 @@ contains
       character(len=*), intent(in) :: path
       type(error_type), allocatable, intent(out) :: error
       character(len=:), allocatable :: what
+      call not_regular(path, what)
+      if (len(what) == 0) return
+      call fatal_error(error, "&surface profile_file = '" // path // "': " // what // &
+         & ", not a regular file (profiles are read from regular files only)")
+   end subroutine check_profile_file
+
+   !> What `path` is when it is not a regular file ("a FIFO (named pipe)",
+   !> ...); empty for a regular file or one that cannot be examined (opening
+   !> it then says why). Readers of whole files take regular files only: a
+   !> pipe's reported size is 0 (read as empty), and a FIFO without a writer
+   !> blocks the open forever.
+   subroutine not_regular(path, what)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: what
       select case (c_file_kind(path // c_null_char))
       case (-1, 0)
-         return
+         what = ""
       case (1)
          what = "a directory"
       case (2)
@@ -44,9 +58,7 @@ contains
       case default
          what = "not a regular file"
       end select
-      call fatal_error(error, "&surface profile_file = '" // path // "': " // what // &
-         & ", not a regular file (profiles are read from regular files only)")
-   end subroutine check_profile_file
+   end subroutine not_regular
 
    !> Open a checked regular file for stream reading.
    subroutine open_stream(path, unit, nbytes, error)

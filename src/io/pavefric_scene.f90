@@ -18,6 +18,7 @@ module pavefric_scene
       & p_batch_restart, p_batch_progress_every
    use pavefric_fsys, only: dir_name, base_name, join_path
    use pavefric_preprocess, only: preprocess_type, preprocess_from_values
+   use pavefric_profile_file, only: not_regular
    implicit none
    private
 
@@ -76,6 +77,15 @@ contains
       type(error_type), allocatable, intent(out) :: error
       integer :: unit, ios, fsize, stat
       character(len=512) :: msg
+      character(len=:), allocatable :: what
+      ! (a pipe reads as empty here, its size 0; a FIFO without a writer
+      ! blocked the open forever: an attack of 2026-12-07)
+      call not_regular(path, what)
+      if (len(what) > 0) then
+         call fatal_error(error, "'" // path // "': " // what // ", not a regular file " // &
+            & "(scenes and profile lists are read from regular files only)")
+         return
+      end if
       open(newunit=unit, file=path, status="old", action="read", access="stream", &
          & form="unformatted", iostat=ios, iomsg=msg)
       if (ios /= 0) then

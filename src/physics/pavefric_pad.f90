@@ -31,7 +31,9 @@ contains
          & plausible_lower=1.0e-3_wp, plausible_upper=1.0_wp, &
          & plausible_note="a DFT pad is 20 mm long, a tyre's contact about 0.15 m")
       s(2) = real_param("pad", "width", "0.016", "m", "model", &
-         & "pad width l across the sliding direction", lower=0.0_wp, lower_strict=.true., &
+         & "pad width l across the sliding direction (at least a micrometre: the " // &
+         & "element springs l dx K scale the pushes W / (l dx K), which a width of 1e-305 m " // &
+         & "took beyond double precision)", lower=1.0e-6_wp, &
          & upper=100.0_wp, plausible_lower=1.0e-3_wp, plausible_upper=1.0_wp, &
          & plausible_note="a DFT pad is 16 mm wide, a tyre about 0.2 m")
       s(3) = real_param("pad", "thickness", "0.006", "m", "model", &
@@ -40,7 +42,9 @@ contains
          & upper=100.0_wp, plausible_lower=1.0e-4_wp, plausible_upper=0.1_wp, &
          & plausible_note="rubber treads are millimetres thick")
       s(4) = real_param("pad", "load", "11.8", "N", "model", &
-         & "normal load W on the pad", lower=0.0_wp, lower_strict=.true., upper=1.0e9_wp, &
+         & "normal load W on the pad (at least 1e-12 N: the pushes and their sums " // &
+         & "scale with it, and a load of 1e-320 N made them subnormal numbers whose friction " // &
+         & "was 0/0)", lower=1.0e-12_wp, upper=1.0e9_wp, &
          & plausible_lower=0.1_wp, plausible_upper=1.0e5_wp, &
          & plausible_note="a DFT slider carries 11.8 N, a car tyre about 4e3 N")
       s(5) = text_param("pad", "shape", "flat", "", "model", &

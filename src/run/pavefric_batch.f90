@@ -16,7 +16,7 @@ module pavefric_batch
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, add_warnings, stat_memory
+   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, add_warnings, stat_memory, stat_input
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
@@ -27,7 +27,8 @@ module pavefric_batch
    use pavefric_simulate, only: sim_result_type, simulate
    use pavefric_texture, only: texture_type, texture_metrics
    use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
-   use pavefric_fsys, only: output_guard_type, check_output_path, os_message
+   use pavefric_fsys, only: output_guard_type, check_output_path, os_message, is_symlink, &
+      & setting, canonical_path
    use pavefric_netcdf, only: check_replaceable
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
@@ -95,6 +96,110 @@ contains
       end if
    end subroutine batch_output_path
 
+   !> Remove from `paths` (a pattern's or a directory's files) the batch's
+   !> own files: its output where it is a pavefric output and its journal
+   !> where it is a pavefric journal (the same files, links seen through),
+   !> and its temporaries (`<output>.tmp<digits>` in the output's
+   !> directory). A file of the user's at either path stays a profile, so
+   !> that the output checks refuse it as an input. Refused when nothing
+   !> else is left.
+   subroutine drop_own_files(paths, output, error)
+      type(string_type), allocatable, intent(inout) :: paths(:)
+      character(len=*), intent(in) :: output
+      type(error_type), allocatable, intent(out) :: error
+      type(output_guard_type) :: own(2)
+      type(error_type), allocatable :: clash
+      type(string_type), allocatable :: kept(:)
+      character(len=:), allocatable :: out_dir, tmp_prefix, dir, name
+      logical :: keep, ours(2)
+      integer :: i, k, n
+      ! (check_output_path's identity of each; an error there is the
+      ! output check's, made later)
+      call check_output_path(output, "-o", own(1), clash)
+      ours(1) = own(1)%exists .and. .not. allocated(clash)
+      if (allocated(clash)) deallocate(clash)
+      if (ours(1)) then
+         call check_replaceable(output, "-o", clash)
+         ours(1) = .not. allocated(clash)
+         if (allocated(clash)) deallocate(clash)
+      end if
+      call check_output_path(output // ".journal", "-o", own(2), clash)
+      ours(2) = own(2)%exists .and. .not. allocated(clash)
+      if (allocated(clash)) deallocate(clash)
+      if (ours(2)) then
+         call check_journal_replaceable(output // ".journal", "-o", clash)
+         ours(2) = .not. allocated(clash)
+         if (allocated(clash)) deallocate(clash)
+      end if
+      call dir_of(output, dir)
+      call canonical_path(dir, out_dir)
+      call file_of(output, tmp_prefix)
+      tmp_prefix = tmp_prefix // ".tmp"
+      allocate(kept(size(paths)))
+      n = 0
+      do i = 1, size(paths)
+         keep = .true.
+         do k = 1, 2
+            if (.not. ours(k)) cycle
+            call own(k)%check_input(paths(i)%s, "", clash)
+            if (allocated(clash)) then
+               keep = .false.
+               deallocate(clash)
+            end if
+         end do
+         if (keep) then
+            call file_of(paths(i)%s, name)
+            if (is_temporary_of(name)) then
+               call dir_of(paths(i)%s, dir)
+               call canonical_path(dir, name)
+               keep = len(name) == 0 .or. name /= out_dir
+            end if
+         end if
+         if (.not. keep) cycle
+         n = n + 1
+         kept(n)%s = paths(i)%s
+      end do
+      if (n == 0) then
+         call fatal_error(error, "&batch profiles: the files it names are this batch's own " // &
+            & "output, journal or temporaries ('" // output // "'); no profile is left", &
+            & stat_input)
+         return
+      end if
+      paths = kept(1:n)
+   contains
+      ! (subroutines, not functions of deferred length: gfortran keeps such a
+      ! result's length in a static, which threads race on;
+      ! tests/test_threads.py)
+      !> A path's last component, its extension kept.
+      subroutine file_of(p, f)
+         character(len=*), intent(in) :: p
+         character(len=:), allocatable, intent(out) :: f
+         f = p(index(p, "/", back=.true.) + 1:)
+      end subroutine file_of
+
+      !> The directory of a path, '.' for a bare name.
+      subroutine dir_of(p, d)
+         character(len=*), intent(in) :: p
+         character(len=:), allocatable, intent(out) :: d
+         d = dir_name(p)
+         if (len(d) == 0) d = "."
+      end subroutine dir_of
+
+      !> Whether a base name is tmp_prefix followed by digits (a writer's
+      !> temporary, pavefric_netcdf's temporary_name).
+      logical function is_temporary_of(name)
+         character(len=*), intent(in) :: name
+         integer :: k
+         is_temporary_of = .false.
+         if (len(name) <= len(tmp_prefix)) return
+         if (name(1:len(tmp_prefix)) /= tmp_prefix) return
+         do k = len(tmp_prefix) + 1, len(name)
+            if (index("0123456789", name(k:k)) == 0) return
+         end do
+         is_temporary_of = .true.
+      end function is_temporary_of
+   end subroutine drop_own_files
+
    !> Read a batch scene and expand its profiles: everything but the journal
    !> (MPI ranks other than 0 stop here; rank 0 alone reads the journal).
    subroutine batch_setup(path, output_override, batch, error)
@@ -115,6 +220,15 @@ contains
       else
          call expand_profiles(batch%scene, batch%paths, batch%chainage, error)
          if (allocated(error)) return
+         ! a pattern or a directory that also holds this batch's output: its
+         ! output, journal and temporaries are not profiles (an attack of
+         ! 2026-12-07: after an interruption the rerun took the journal for
+         ! profile 1 and refused to resume)
+         if (len(batch%scene%batch_profile_list) == 0) then
+            call batch_output_path(batch%scene, output_override, batch%output)
+            call drop_own_files(batch%paths, batch%output, error)
+            if (allocated(error)) return
+         end if
          batch%n_profiles = size(batch%paths)
          batch%has_chainage = allocated(batch%chainage)
          call profile_names(batch%scene, batch%paths, batch%names, error)
@@ -228,6 +342,10 @@ contains
          if (allocated(error)) then
             error%message = "&batch profile_list: " // error%message
             return
+         end if
+         ! a UTF-8 byte-order mark (an editor's) is not part of the first path
+         if (len(text) >= 3) then
+            if (text(1:3) == achar(239) // achar(187) // achar(191)) text = text(4:)
          end if
          ! at most one entry a line: size the arrays once
          count = 1
@@ -1037,9 +1155,47 @@ contains
          end do
       end do
       ! an input is named as such first; any other file there must be an
-      ! earlier pavefric output (or empty)
+      ! earlier pavefric output (or empty), and the journal's path a journal
       call check_replaceable(batch%output, what, error)
+      if (allocated(error)) return
+      call check_journal_replaceable(batch%journal, "the journal of " // what, error)
    end subroutine check_batch_outputs
+
+   !> (files) The journal's path may hold nothing, an empty file or a
+   !> journal pavefric wrote (its first bytes journal_magic): never a
+   !> symbolic link (the journal would be written through it, into the file
+   !> it names, and the link removed at the end) nor a file of the user's,
+   !> which restart = .false. would truncate and the batch's end delete (an
+   !> attack of 2026-12-07: both happened, and restart = .true. called such
+   !> a file a journal of another batch, advising restart = .false.).
+   subroutine check_journal_replaceable(journal, what, error)
+      character(len=*), intent(in) :: journal, what
+      type(error_type), allocatable, intent(out) :: error
+      character(len=len(journal_magic)) :: head
+      character(len=*), parameter :: advice = "; pavefric replaces only its own journals: " // &
+         & "remove or rename it, or choose another output"
+      integer :: u, stat
+      integer(i8) :: size
+      logical :: exists
+      if (is_symlink(journal)) then
+         call fatal_error(error, setting(what, journal) // ": is a symbolic link; the " // &
+            & "journal must be a regular file pavefric writes itself (it would be written " // &
+            & "through the link into the file it names)" // advice, stat_input)
+         return
+      end if
+      inquire(file=journal, exist=exists, size=size)
+      if (.not. exists .or. size == 0) return
+      head = ""
+      open(newunit=u, file=journal, access="stream", form="unformatted", action="read", &
+         & status="old", iostat=stat)
+      if (stat == 0) then
+         if (size >= len(head)) read(u, iostat=stat) head
+         close(u)
+      end if
+      if (head == journal_magic) return
+      call fatal_error(error, setting(what, journal) // ": exists and is not a pavefric " // &
+         & "batch journal (it does not start '" // journal_magic // "')" // advice, stat_input)
+   end subroutine check_journal_replaceable
 
    !> The error of a batch whose `n` somethings do not fit in memory.
    pure subroutine no_memory(n, what, error)

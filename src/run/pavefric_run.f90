@@ -294,6 +294,32 @@ contains
       !> when the caller made it (>= 0; Python's run() does): recorded as
       !> they are instead of probing the profile again.
       real(wp), intent(in), optional :: refine_seconds
+      logical :: created, ok
+      character(len=:), allocatable :: said
+      ! (the warnings through a local: passed on as an optional deferred-length
+      ! dummy they came back empty with gfortran 12)
+      call run_scene_in(path, output_override, command, out_path, res, error, created, &
+         & said, announce, refine_seconds)
+      if (present(warnings) .and. allocated(said)) warnings = said
+      ! a run that failed leaves nothing behind, not even the default
+      ! directory it made for its output (an attack of 2026-12-07: bad input
+      ! left an empty outputs/); remove() takes an empty directory only
+      if (allocated(error) .and. created) ok = remove_file("outputs")
+   end subroutine run_scene
+
+   !> run_scene's work; `created`: whether it made the default directory
+   !> 'outputs' (which was not there).
+   subroutine run_scene_in(path, output_override, command, out_path, res, error, created, &
+         & warnings, announce, refine_seconds)
+      character(len=*), intent(in) :: path, output_override, command
+      character(len=:), allocatable, intent(out) :: out_path
+      type(sim_result_type), intent(out) :: res
+      type(error_type), allocatable, intent(out) :: error
+      logical, intent(out) :: created
+      character(len=:), allocatable, intent(out), optional :: warnings
+      procedure(announce_interface), optional :: announce
+      real(wp), intent(in), optional :: refine_seconds
+      logical :: existed
       character(len=:), allocatable :: line
       real(wp) :: refine
       type(cost_estimate_type) :: cost
@@ -303,6 +329,7 @@ contains
       type(output_guard_type) :: guard
       character(len=:), allocatable :: out_what
 
+      created = .false.
       call read_scene(path, scene, error)
       if (allocated(error)) return
       out_what = "&output file"
@@ -312,11 +339,13 @@ contains
       else if (len(scene%output_file) > 0) then
          out_path = scene%output_file
       else
+         inquire(file="outputs/.", exist=existed)
          if (.not. make_directory("outputs")) then
             call fatal_error(error, "&output file: the default directory 'outputs' cannot " // &
                & "be created here; set &output file or use -o")
             return
          end if
+         created = .not. existed
          out_path = "outputs/" // scene%name // ".nc"
       end if
       ! Refuse an output that is an input or not a regular file, and find an
@@ -352,7 +381,7 @@ contains
       meta%scene_file = path
       if (present(warnings)) warnings = meta%warnings
       call write_results(out_path, res, meta, error)
-   end subroutine run_scene
+   end subroutine run_scene_in
 
    !> The one path from a scene and a profile to results: the model, the
    !> texture metrics and every warning, shared by the program, Python and

@@ -2450,6 +2450,8 @@ contains
       !> friction): the state repeats round the lap, and the mean on a
       !> closed profile is the elements' dissipation (lap_spinup).
       logical, dimension(lanes) :: repeats
+      !> The lanes whose film may engage at the dry balance (engaged_lanes').
+      logical, dimension(lanes) :: engage_mask
       real(wp), allocatable :: state_land(:,:,:)
       type(film_step_type), allocatable :: fstep(:)
       real(wp), allocatable :: c(:,:), d(:,:), state(:,:,:), u_free(:,:), push(:,:)
@@ -2643,22 +2645,31 @@ contains
                guess = extrapolated(delta_dry_prev, delta_dry_prev2)
                call dry_roots(nl, n, d, s_load, guess - cmin, x, work, dl)
             end if
-            where (.not. by_level(1:nl))
-               delta_dry_prev2(1:nl) = delta_dry_prev(1:nl)
-               delta_dry_prev(1:nl) = cmin(1:nl) + x(1:nl)
-            end where
+            ! (loops, not WHERE on sections of nl: gfortran allocates a
+            ! mask for those on the heap, at every position)
+            do j = 1, nl
+               if (by_level(j)) cycle
+               delta_dry_prev2(j) = delta_dry_prev(j)
+               delta_dry_prev(j) = cmin(j) + x(j)
+            end do
          end if
          if (any_load) then
             ! the lanes whose film engages at the dry balance, then their wet
             ! balances together (the level's lanes: engaged, the level's
             ! upper bound their bracket's top)
-            if (.not. skip_dry) call engaged_lanes(nl, n, d, x, film, fstep, &
-               & load_film(1:nl) .and. .not. by_level(1:nl), wet_lane, dl, gap, sum_d)
-            where (by_level(1:nl))
-               wet_lane(1:nl) = .true.
-               sum_d(1:nl) = sum_level(1:nl)
-               x(1:nl) = x_level(1:nl)
-            end where
+            if (.not. skip_dry) then
+               ! (the mask in a lanes-sized array: an expression of sections of
+               ! nl would be a heap temporary at every position)
+               engage_mask(1:nl) = load_film(1:nl) .and. .not. by_level(1:nl)
+               call engaged_lanes(nl, n, d, x, film, fstep, engage_mask(1:nl), wet_lane, dl, &
+                  & gap, sum_d)
+            end if
+            do j = 1, nl
+               if (.not. by_level(j)) cycle
+               wet_lane(j) = .true.
+               sum_d(j) = sum_level(j)
+               x(j) = x_level(j)
+            end do
             ! Warm start where the film carried load at the previous position:
             ! from its wet penetration, extrapolated linearly from the two
             ! before. Elsewhere from the dry root, which is then the root to
@@ -2694,8 +2705,11 @@ contains
             call lane_step_kv(nl, n, x, d, dref, u_free, &
                & geo%clamped_at(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
                & geo%adhesion(k1 : k1 + (n-1) * geo%spacing : geo%spacing), &
-               & rstep%mean_weights, cmin + x - delta_last, push_prev, state, push, &
+               & rstep%mean_weights, cmin + x - delta_last, push_prev, state, &
                & sum_f, contacts, clamps, u_max, sum_fa, hyst, mean_total)
+            ! (the step's pushes are push_prev now; push itself only where a
+            ! friction film or energy_step's first step reads it)
+            if (any(friction_film(1:nl)) .or. .not. all(have_prev(1:nl))) push = push_prev
             n_contact = nint(contacts)
             n_clamp_j = nint(clamps)
             if (t == -1) contact_before = n_contact > 0
@@ -3423,7 +3437,7 @@ contains
    !> vector loops (measured: inside the driver they did not).
    pure subroutine lane_gaps(nl, n, z, h, u_free, c, cmin, d)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: z(n), h(n), u_free(nl, n)
+      real(wp), intent(in) :: z(:), h(n), u_free(nl, n)
       real(wp), intent(out) :: c(nl, n), cmin(nl), d(nl, n)
       integer :: i, j
       real(wp) :: low
@@ -3462,7 +3476,7 @@ contains
    !> dry_roots_of_c goes on from there).
    pure subroutine lane_free_gaps_from(nl, n, relax, state, z, h, u_free, c, cmin, start)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: relax(nl), state(nl, n), z(n), h(n)
+      real(wp), intent(in) :: relax(nl), state(nl, n), z(:), h(n)
       real(wp), intent(out) :: u_free(nl, n), c(nl, n), cmin(nl)
       type(dry_start_type), intent(inout) :: start
       integer :: i, j
@@ -3502,7 +3516,7 @@ contains
    !> least value cmin, and the first pass at the guess (dry_start_type's).
    pure subroutine lane_gaps_from(nl, n, z, h, u_free, c, cmin, start)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: z(n), h(n), u_free(nl, n)
+      real(wp), intent(in) :: z(:), h(n), u_free(nl, n)
       real(wp), intent(out) :: c(nl, n), cmin(nl)
       type(dry_start_type), intent(inout) :: start
       integer :: i, j
@@ -3554,7 +3568,7 @@ contains
    !> the same operations as the two, in one loop.
    pure subroutine lane_free_gaps(nl, n, relax, state, z, h, u_free, cmin, d)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: relax(nl), state(nl, n), z(n), h(n)
+      real(wp), intent(in) :: relax(nl), state(nl, n), z(:), h(n)
       real(wp), intent(out) :: u_free(nl, n), cmin(nl), d(nl, n)
       integer :: i, j
       ! c_i (lane_gaps' c) into d, then shifted by its least value in place
@@ -3587,14 +3601,16 @@ contains
    !> weighted by the facet tangents is not taken: the energy scheme, the
    !> only one fused, does not use it.
    pure subroutine lane_step_kv(nl, n, x, d, dref, u_free, clamped, adhesion, weights, &
-         & ddelta, push_prev, state, push, sum_f, contacts, clamps, u_max, sum_fa, w, total)
+         & ddelta, push_prev, state, sum_f, contacts, clamps, u_max, sum_fa, w, total)
       integer, intent(in) :: nl, n
       !> d - dref: the clearances shifted by their least value (dref that
       !> value where d is unshifted, lane_free_gaps_from's, else 0).
-      real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), clamped(n), &
-         & adhesion(n), weights(nl, 3), ddelta(nl)
+      real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), clamped(:), &
+         & adhesion(:), weights(nl, 3), ddelta(nl)
+      !> In: the previous step's pushes and compressions; out: this step's
+      !> (push_prev then holds the pushes max(0, x - d) of this step).
       real(wp), intent(inout) :: push_prev(nl, n), state(nl, n)
-      real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), clamps(nl), &
+      real(wp), intent(out) :: sum_f(nl), contacts(nl), clamps(nl), &
          & sum_fa(nl), w(nl), total(nl)
       real(wp), intent(inout) :: u_max(nl)
       real(wp) :: p, in_contact, u, f, u_prev, s
@@ -3608,7 +3624,6 @@ contains
          !GCC$ ivdep
          do j = 1, nl
             p = max(0.0_wp, x(j) - (d(j, i) - dref(j)))
-            push(j, i) = p
             in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
             sum_f(j) = sum_f(j) + p
             contacts(j) = contacts(j) + in_contact
@@ -3626,7 +3641,7 @@ contains
             state(j, i) = u
          end do
       end do
-      call lane_clamps(nl, n, push, clamped, clamps)
+      call lane_clamps(nl, n, push_prev, clamped, clamps)
    end subroutine lane_step_kv
 
    !> The next value of a sequence from its last two, linearly; the last
@@ -3641,7 +3656,7 @@ contains
    !> on one (clamped(i) /= 0), not a sum over every element and lane.
    pure subroutine lane_clamps(nl, n, push, clamped, clamps)
       integer, intent(in) :: nl, n
-      real(wp), intent(in) :: push(nl, n), clamped(n)
+      real(wp), intent(in) :: push(nl, n), clamped(:)
       real(wp), intent(out) :: clamps(nl)
       integer :: i, j
       clamps = 0.0_wp
@@ -3662,8 +3677,8 @@ contains
       & sum_f, contacts, sum_ft, clamps, u_max, sum_fa)
       integer, intent(in) :: nl, n
       !> d - dref: the clearances shifted by their least value (lane_step_kv's).
-      real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), tan_t(n), clamped(n), &
-         & adhesion(n)
+      real(wp), intent(in) :: x(nl), d(nl, n), dref(nl), u_free(nl, n), tan_t(:), clamped(:), &
+         & adhesion(:)
       real(wp), intent(out) :: push(nl, n), sum_f(nl), contacts(nl), sum_ft(nl), clamps(nl)
       real(wp), intent(inout) :: u_max(nl)
       !> sum of push x (tan(theta) - tan(alpha)): the local friction's part

@@ -59,10 +59,10 @@ def default_passes(z, rubber: dict, temperatures, speed: float = 20.0) -> list[t
 
 
 def synthetic_profile() -> np.ndarray:
-    """The tests' synthetic closed profile (tests/data/regression/synthetic_1024.txt:
-    spectral, RMS 0.5 mm, skew -0.3, 1024 points at 0.87 mm)."""
-    lines = _repo_file("tests", "data", "regression",
-                       "synthetic_1024.txt").read_text().splitlines()
+    """The tests' synthetic closed profile (inputs/profiles/synthetic_1024.txt, a
+    copy of tests/data/regression/synthetic_1024.txt: spectral, RMS 0.5 mm,
+    skew -0.3, 1024 points at 0.87 mm)."""
+    lines = _repo_file("inputs", "profiles", "synthetic_1024.txt").read_text().splitlines()
     return np.array([float(v) for v in lines if v and not v.startswith("#") and v != "height_m"])
 
 

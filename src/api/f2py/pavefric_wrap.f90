@@ -879,6 +879,26 @@ subroutine pf_check_output(path, inputs, status, message)
    end if
 end subroutine pf_check_output
 
+!> Whether a writer of `kind` ('results' or 'profiles') may replace `path`:
+!> missing, empty, or a NetCDF file of that kind pavefric wrote
+!> (pavefric_netcdf's check_replaceable, the program's own rule).
+subroutine pf_check_replaceable(path, kind, status, message)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_netcdf, only: check_replaceable
+   use pavefric_error, only: error_type
+   implicit none
+   character(len=*), intent(in) :: path, kind
+   integer(c_int), intent(out) :: status
+   character(len=2048), intent(out) :: message
+   type(error_type), allocatable :: error
+   status = 0; message = ""
+   call check_replaceable(path, "the output path", error, kind)
+   if (allocated(error)) then
+      status = error%stat
+      message = error%message
+   end if
+end subroutine pf_check_replaceable
+
 !> The temporary a writer of `path` uses (path.tmpPID, the program's own
 !> name), after removing those that writers killed outright left beside
 !> `path` (their process is gone): one naming and one clean-up for every
