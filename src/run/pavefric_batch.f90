@@ -16,7 +16,8 @@ module pavefric_batch
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use pavefric_kinds, only: wp, i8, pavefric_version
-   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, add_warnings, stat_memory, stat_input
+   use pavefric_error, only: error_type, fatal_error, stat_io, add_warning, add_warnings, &
+      & stat_memory, stat_input
    use pavefric_format, only: to_str
    use pavefric_numbers, only: parse_real
    use pavefric_scene, only: scene_type, read_scene, read_text_file
