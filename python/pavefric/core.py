@@ -180,14 +180,13 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
     PavefricError
         Naming the path and why it may not be written.
     """
+    if replaces not in (None, "results", "profiles"):
+        raise ValueError(f"check_output replaces = {replaces!r}: 'results' or 'profiles'")
     joined = "\n".join(os.fspath(p) for p in inputs if p)
-    status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n")
+    # (f2py takes no empty strings: a blank says no kind)
+    status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n",
+                                            _b(replaces or " "))
     _check(status, message)
-    if replaces is not None:
-        if replaces not in ("results", "profiles"):
-            raise ValueError(f"check_output replaces = {replaces!r}: 'results' or 'profiles'")
-        status, message = _core.pf_check_replaceable(_b(os.fspath(path)), _b(replaces))
-        _check(status, message)
 
 
 @contextlib.contextmanager

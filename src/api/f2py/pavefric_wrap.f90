@@ -852,12 +852,17 @@ end subroutine pf_profile_read_seconds
 !> device or a directory), and not the same file as any of `inputs` (paths
 !> separated by newlines: what the data written came from). status 0: the
 !> path may be written (through a temporary in its directory and a rename).
-subroutine pf_check_output(path, inputs, status, message)
+subroutine pf_check_output(path, inputs, replaces, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_fsys, only: output_guard_type, check_output_path
+   use pavefric_netcdf, only: check_replaceable
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path, inputs
+   !> The kind of file the writer may replace ('results' or 'profiles':
+   !> pavefric_netcdf's check_replaceable, the program's own rule), or
+   !> blank for a writer of another format (no such check).
+   character(len=*), intent(in) :: replaces
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
    type(output_guard_type) :: guard
@@ -873,31 +878,13 @@ subroutine pf_check_output(path, inputs, status, message)
          & error)
       start = start + k
    end do
+   if (.not. allocated(error) .and. len_trim(replaces) > 0) &
+      & call check_replaceable(path, "the output path", error, trim(replaces))
    if (allocated(error)) then
       status = error%stat
       message = error%message
    end if
 end subroutine pf_check_output
-
-!> Whether a writer of `kind` ('results' or 'profiles') may replace `path`:
-!> missing, empty, or a NetCDF file of that kind pavefric wrote
-!> (pavefric_netcdf's check_replaceable, the program's own rule).
-subroutine pf_check_replaceable(path, kind, status, message)
-   use, intrinsic :: iso_c_binding, only: c_int
-   use pavefric_netcdf, only: check_replaceable
-   use pavefric_error, only: error_type
-   implicit none
-   character(len=*), intent(in) :: path, kind
-   integer(c_int), intent(out) :: status
-   character(len=2048), intent(out) :: message
-   type(error_type), allocatable :: error
-   status = 0; message = ""
-   call check_replaceable(path, "the output path", error, kind)
-   if (allocated(error)) then
-      status = error%stat
-      message = error%message
-   end if
-end subroutine pf_check_replaceable
 
 !> The temporary a writer of `path` uses (path.tmpPID, the program's own
 !> name), after removing those that writers killed outright left beside
