@@ -834,7 +834,8 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "Reynolds paths; malloc and free had taken about 5 % of a 1,000,000-point dry "
         "run at 60 km/h with the default error estimate, whose user time fell from 1.01 "
         "s to 0.89 s (best of 4, the two builds alternated; results identical to the "
-        "bit). The same change stopped storing each step's pushes twice in the "
+        "bit; perf, gdb and `/usr/bin/time` run by hand on the program, a record, not a "
+        "command of the repository). The same change stopped storing each step's pushes twice in the "
         "Kelvin–Voigt step.",
         "- Profile reading: a single-pass parser over the file's bytes "
         "(docs/profiles.md); NetCDF surveys read one profile by index.",
@@ -1129,7 +1130,9 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "2026-12-07 ran a 128-point profile of a 13-arm compound at 300 km/h with "
         "`tolerance = 1e-9` for 104 s without a warning: its estimate was 0.001 s (no "
         "probe: the pad's three levels of refinement unseen), and the tolerance's guess "
-        "9 s; it is now guessed at 19.2 s and announced (96 s measured on this host; "
+        "9 s; it is now guessed at 19.2 s and announced (96 s measured on this host "
+        "by running the test's scene by hand, a record, not a command of the "
+        "repository; the guess is the estimate `pf_estimate` prints; "
         "tests/test_estimate.py, `test_a_tolerance_on_a_short_stiff_profile_is_announced`). "
         "A first version "
         "probed 256 positions: at 80 km/h the film carried the pad at all but 2 of "
