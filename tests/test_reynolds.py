@@ -549,37 +549,73 @@ program check
    use pavefric_tridiagonal, only: tridiagonal_factor, tridiagonal_solve
    implicit none
    integer, parameter :: nmax = 40
-   real(wp), dimension(nmax) :: dl, d, du, l0, d0, u0, du2, swapped, b, x, r
-   real(wp) :: worst, scale, u(3 * nmax)
-   integer :: trial, n, i, info, swaps, kind, rhs, singular
+   real(wp), dimension(nmax) :: dl, d, du, l0, d0, u0, b, x, r, kd, runf, c, full
+   real(wp) :: worst, scale, u(6 * nmax), piv, growth
+   integer :: trial, n, i, info, kind, rhs, singular, would_swap
    call random_seed(put=[(31 * i + 7, i = 1, 64)])
    worst = 0.0_wp
-   swaps = 0
+   growth = 0.0_wp
+   would_swap = 0
    do trial = 1, 3000
       call random_number(u)
       n = 1 + mod(trial, nmax)
       kind = mod(trial, 3)
-      ! 0: diagonally dominant; 1: a sub-diagonal larger than the diagonal
-      ! (rows swapped); 2: entries of both signs, magnitudes over 12 decades
-      l0(1:n) = u(1:n) - 0.5_wp
-      d0(1:n) = u(nmax + 1:nmax + n) - 0.5_wp
-      u0(1:n) = u(2 * nmax + 1:2 * nmax + n) - 0.5_wp
       select case (kind)
-      case (0); d0(1:n) = sign(2.5_wp, d0(1:n)) + d0(1:n)
-      case (1); l0(1:n) = sign(10.0_wp, l0(1:n)) * (1.0_wp + l0(1:n))
+      case (0, 1)
+         ! column diagonally dominant, entries of both signs (kind 1: over
+         ! 12 decades, column by column)
+         l0(1:n) = u(1:n) - 0.5_wp
+         u0(1:n) = u(nmax + 1:nmax + n) - 0.5_wp
+         if (kind == 1) then
+            do i = 1, n
+               l0(i) = l0(i) * 10.0_wp**(12 * u(2 * nmax + i) - 6)
+               if (i < n) u0(i) = u0(i) * 10.0_wp**(12 * u(2 * nmax + i + 1) - 6)
+            end do
+         end if
+         do i = 1, n
+            d0(i) = 0.0_wp
+            if (i < n) d0(i) = d0(i) + abs(l0(i))
+            if (i > 1) d0(i) = d0(i) + abs(u0(i - 1))
+            d0(i) = sign(d0(i) * (1.0_wp + u(3 * nmax + i)) + 1e-300_wp, u(4 * nmax + i) - 0.5_wp)
+         end do
       case default
-         l0(1:n) = l0(1:n) * 10.0_wp**(12 * u(1:n) - 6)
-         d0(1:n) = d0(1:n) * 10.0_wp**(12 * u(nmax + 1:nmax + n) - 6)
+         ! the Reynolds film's pattern (pavefric_reynolds, assemble_and_solve):
+         ! full nodes -kd beside kd + kd' + leak; partial nodes -c/2 on the
+         ! diagonal and c/2 below (weakly dominant); coefficients over 12 decades
+         do i = 1, n + 1
+            kd(i) = 10.0_wp**(12 * u(i) - 6)
+            runf(i) = 10.0_wp**(-6 * u(nmax + i))
+            c(i) = 10.0_wp**(6 * u(2 * nmax + i) - 3)
+         end do
+         full(1:n) = merge(1.0_wp, 0.0_wp, u(3 * nmax + 1:3 * nmax + n) > 0.4_wp)
+         do i = 1, n
+            if (full(i) > 0.5_wp) then
+               d0(i) = kd(i) + kd(i + 1) + kd(i) * runf(i) + kd(i + 1) * runf(i + 1)
+            else
+               d0(i) = -0.5_wp * c(i + 1)
+            end if
+            if (i > 1) l0(i - 1) = merge(-kd(i), 0.5_wp * c(i), full(i - 1) > 0.5_wp)
+            if (i < n) u0(i) = merge(-kd(i + 1), 0.0_wp, full(i + 1) > 0.5_wp)
+         end do
       end select
+      ! where partial pivoting would swap rows (the entry below a pivot the
+      ! larger), and the growth of the pivots, in an elimination of this test
       dl = l0; d = d0; du = u0
-      call tridiagonal_factor(n, dl, d, du, du2, swapped, info)
-      if (info /= 0) cycle
-      swaps = swaps + nint(sum(swapped(1:n - 1)))
+      do i = 1, n - 1
+         piv = d(i)
+         if (abs(dl(i)) > abs(piv)) would_swap = would_swap + 1
+         d(i + 1) = d(i + 1) - dl(i) / piv * du(i)
+      end do
+      growth = max(growth, maxval(abs(d(1:n))) / (maxval(abs(d0(1:n))) + maxval(abs(l0(1:n))) &
+         & + maxval(abs(u0(1:n)))))
+      dl = l0; d = d0; du = u0
+      call tridiagonal_factor(n, dl, d, du, info)
+      if (info /= 0) stop 3
       ! two right sides with the same factors
       do rhs = 1, 2
          call random_number(b(1:n))
          x(1:n) = b(1:n)
-         call tridiagonal_solve(n, dl, d, du, du2, swapped, x)
+         call tridiagonal_solve(n, dl, d, du, x)
          ! the residual of the original system, scaled (backward stability)
          do i = 1, n
             r(i) = d0(i) * x(i) - b(i)
@@ -590,37 +626,41 @@ program check
          worst = max(worst, maxval(abs(r(1:n))) / (scale * maxval(abs(x(1:n))) + maxval(abs(b(1:n)))))
       end do
    end do
-   ! a singular matrix: its third row zero
+   ! a singular matrix: its third column zero
    n = 5
-   dl(1:4) = [1.0_wp, 0.0_wp, 2.0_wp, 1.0_wp]
+   dl(1:4) = [1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp]
    d(1:5) = [4.0_wp, 4.0_wp, 0.0_wp, 4.0_wp, 4.0_wp]
-   du(1:4) = [1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp]
-   call tridiagonal_factor(n, dl, d, du, du2, swapped, singular)
+   du(1:4) = [1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp]
+   call tridiagonal_factor(n, dl, d, du, singular)
    ! a 1 x 1 system
    d(1) = 4.0_wp
-   call tridiagonal_factor(1, dl, d, du, du2, swapped, info)
+   call tridiagonal_factor(1, dl, d, du, info)
    x(1) = 2.0_wp
-   call tridiagonal_solve(1, dl, d, du, du2, swapped, x)
-   print '(es12.4, 2i8, es25.17)', worst, swaps, singular, x(1)
+   call tridiagonal_solve(1, dl, d, du, x)
+   print '(es12.4, i8, es12.4, i8, es25.17)', worst, would_swap, growth, singular, x(1)
 end program check
 """
 
 
 def test_the_tridiagonal_solver_solves_and_reuses_its_factors(tmp_path):
     """The film's tridiagonal solver (src/base/pavefric_tridiagonal.f90,
-    elimination with partial pivoting, its factors kept for a second right
-    side): on 3,000 random systems of 1-40 rows (diagonally dominant, with
-    sub-diagonals that force row swaps, and with entries over 12 decades)
-    both right sides solved with one factorisation leave a residual of
-    rounding size (backward stability: |A x - b| <= 1e-13 (|A| |x| + |b|));
-    rows were swapped; a matrix with a zero row is reported singular
-    (the swaps carry its zero pivot down to U's last row); a 1 x 1 system
-    divides."""
+    elimination without pivoting, for column diagonally dominant matrices,
+    its factors kept for a second right side): on 3,000 random such systems
+    of 1-40 rows (entries of both signs, over 12 decades, and the Reynolds
+    film's pattern of full and partial nodes, whose partial columns are
+    only weakly dominant) both right sides solved with one factorisation
+    leave a residual of rounding size (backward stability: |A x - b| <=
+    1e-13 (|A| |x| + |b|)); partial pivoting would have swapped no row and
+    the pivots stay within twice the matrix's entries (the reason no
+    pivoting is needed); a matrix with a zero column (after elimination, a
+    zero pivot) is reported singular at that row; a 1 x 1 system divides."""
     out = _compile_and_run(tmp_path, TRIDIAGONAL_CHECK)
-    worst, swaps, singular, one = float(out[0]), int(out[1]), int(out[2]), float(out[3])
+    worst, would_swap, growth = float(out[0]), int(out[1]), float(out[2])
+    singular, one = int(out[3]), float(out[4])
     assert worst <= 1e-13, worst
-    assert swaps > 1000
-    assert singular == 5
+    assert would_swap == 0
+    assert growth <= 2.0, growth
+    assert singular == 3
     assert one == 0.5
 
 

@@ -24,8 +24,9 @@
 !> Elrod-Adams form: at each node either the film is full (theta = 1,
 !> p >= 0) or partial (p = 0, 0 <= theta <= 1), solved as a complementarity
 !> problem by a primal-dual active-set iteration, one tridiagonal solve
-!> (pavefric_tridiagonal: elimination with partial pivoting, its factors
-!> kept for the load's derivative) per iteration, started from the set of
+!> (pavefric_tridiagonal: elimination without pivoting, which the system's
+!> column diagonal dominance allows (assemble_and_solve); its factors kept
+!> for the load's derivative) per iteration, started from the set of
 !> the lane's last
 !> solve (its workspace; the complementarity solution does not depend on
 !> where the iteration starts, so neither do the numbers).
@@ -69,21 +70,21 @@ module pavefric_reynolds
    integer, parameter :: max_warm = 20
 
    !> A lane's workspace (reynolds_work_size): the warm-start flag, the set
-   !> (n values), then arrays of n values: the gap's terms h_T, c, k, run,
-   !> the derivatives of c and k with respect to the penetration, the
-   !> derivative's right side, the nodes' pressure and fill, the solver's
-   !> right side and three diagonals (its factors after a solve), the
-   !> factors' second super-diagonal and their row swaps, and the gap field
-   !> of the last load (load_in_work); then three values: whether that
+   !> (n values), then arrays of n values: the gap's terms h_T, c, k / ds and
+   !> 6 (ds / run)**2 (film_terms), the derivatives of c and k / ds with
+   !> respect to the penetration, the derivative's right side, the nodes'
+   !> pressure and fill, the solver's right side and three diagonals (its
+   !> factors after a solve), and the gap field of the last load
+   !> (load_in_work); then three values: whether that
    !> load's solution is kept (0 no, 1 settled, 2 not settled) and its
    !> inlet's tc0 and p0, so that the report at the balance's root, which
    !> is where the balance evaluated the load last, reads it instead of
    !> solving the film once more.
    integer, parameter :: w_ht = 1, w_c = 2, w_k = 3, w_run = 4, w_dc = 5, w_dk = 6, &
       & w_rhs = 7, w_p = 8, w_theta = 9, w_y = 10, w_dl = 11, w_dd = 12, w_du = 13, &
-      & w_du2 = 14, w_swap = 15, w_gap = 16
+      & w_gap = 14
    !> Arrays of n values in a lane's workspace, the set's included.
-   integer, parameter :: n_work_arrays = 17
+   integer, parameter :: n_work_arrays = 15
    !> Values after the arrays: the kept solution's flag, tc0 and p0.
    integer, parameter :: n_work_values = 3
 
@@ -308,19 +309,16 @@ contains
          & y => w(at(w_y, n) : at(w_y, n) + n - 1), &
          & dl => w(at(w_dl, n) : at(w_dl, n) + n - 1), &
          & dd => w(at(w_dd, n) : at(w_dd, n) + n - 1), &
-         & du => w(at(w_du, n) : at(w_du, n) + n - 1), &
-         & du2 => w(at(w_du2, n) : at(w_du2, n) + n - 1), &
-         & swap => w(at(w_swap, n) : at(w_swap, n) + n - 1))
+         & du => w(at(w_du, n) : at(w_du, n) + n - 1))
          if (info /= 0) return
-         call derivative_rhs(self%length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, rhs)
+         call derivative_rhs(speed, k, run, dc, dk, p0, dtc0, dp0, set, y, rhs)
          if (converged) then
             ! the last iteration's system is the settled set's: its factors
             y(1:n - 1) = rhs(1:n - 1)
-            call tridiagonal_solve(n - 1, dl, dd, du, du2, swap, y)
+            call tridiagonal_solve(n - 1, dl, dd, du, y)
          else
             ! (the set was flipped after the last solve)
-            call assemble_and_solve(self%length, speed, c, k, run, tc0, p0, set, y, dl, dd, &
-               & du, du2, swap, info, rhs)
+            call assemble_and_solve(speed, c, k, run, tc0, p0, set, y, dl, dd, du, info, rhs)
             if (info /= 0) return
          end if
          ! the load's nodes: the full ones at a positive pressure (p, as the
@@ -368,13 +366,12 @@ contains
             & w(2 : n + 1), w(1), load, iterations, settled, &
             & w(at(w_y, n) : at(w_y, n) + n - 1), w(at(w_dl, n) : at(w_dl, n) + n - 1), &
             & w(at(w_dd, n) : at(w_dd, n) + n - 1), w(at(w_du, n) : at(w_du, n) + n - 1), &
-            & w(at(w_du2, n) : at(w_du2, n) + n - 1), w(at(w_swap, n) : at(w_swap, n) + n - 1), &
             & solver_info)
       end associate
       if (present(info)) info = solver_info
    end subroutine solve_in_work
 
-   !> Where the workspace's array i (w_ht .. w_gap2) of a pad of n elements
+   !> Where the workspace's array i (w_ht .. w_gap) of a pad of n elements
    !> starts: after the warm-start flag and the set.
    pure integer function at(i, n)
       integer, intent(in) :: i, n
@@ -447,7 +444,7 @@ contains
       !> phi(8.5) / 8.5 = 1e-17 is below half an ulp of 1 (and both fall
       !> as h / sigma grows).
       real(wp), parameter :: far_gap = 8.5_wp
-      real(wp) :: hs, phi_x, phi_s, big_phi, e_x, dphi_s
+      real(wp) :: hs, phi_x, phi_s, big_phi, e_x, dphi_s, e_g
       if (h <= 0.0_wp) then
          ! an element in contact (most of them, often): the same numbers as
          ! below at hs = 0, without the transcendental functions (erfc(0)
@@ -467,13 +464,19 @@ contains
          big_phi = 1.0_wp
          h_t = h
       else
-         big_phi = 0.5_wp * erfc(-hs * inv_sqrt2)
-         h_t = h * big_phi + sigma * inv_sqrt2pi * exp(-0.5_wp * hs * hs)
+         ! Phi(hs) = erfc(-hs / sqrt(2)) / 2 = 1 - erfc_scaled(y) exp(-y**2) / 2,
+         ! y = hs / sqrt(2): the exponential is the one h_T needs (one
+         ! evaluation for both)
+         e_g = exp(-0.5_wp * hs * hs)
+         big_phi = 1.0_wp - 0.5_wp * erfc_scaled(hs * inv_sqrt2) * e_g
+         h_t = h * big_phi + sigma * inv_sqrt2pi * e_g
       end if
       e_x = exp(-0.56_wp * hs)
       phi_x = 1.0_wp - 0.90_wp * e_x
       if (hs <= 5.0_wp) then
-         phi_s = 1.899_wp * hs**0.98_wp * exp(-0.92_wp * hs + 0.05_wp * hs * hs)
+         ! (hs**0.98 inside the exponential: one exp and a log for the two
+         ! exps of a power and the product)
+         phi_s = 1.899_wp * exp(0.98_wp * log(hs) - 0.92_wp * hs + 0.05_wp * hs * hs)
          ! d phi_s / d hs; phi_s / hs bounded below hs = 1e-100 (Newton's
          ! slope only)
          dphi_s = phi_s * (0.1_wp * hs - 0.92_wp) + 0.98_wp * phi_s / max(hs, 1.0e-100_wp)
@@ -503,33 +506,34 @@ contains
       logical, intent(out) :: converged
       real(wp) :: p0, tc0, warm
       real(wp) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap)), set(size(gap))
-      real(wp), dimension(max(1, size(gap))) :: y, dl, dd, du, du2, swap
+      real(wp), dimension(max(1, size(gap))) :: y, dl, dd, du
       integer :: info
       call film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, k, run, &
          & tc0, p0)
       warm = 0.0_wp
       call solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, set, warm, load, &
-         & iterations, converged, y, dl, dd, du, du2, swap, info)
+         & iterations, converged, y, dl, dd, du, info)
       full = set > 0.5_wp
    end subroutine reynolds_solve
 
-   !> The active-set iteration on the gap's terms (film_terms): the nodes'
+   !> The active-set iteration on the gap's terms (film_terms: k / ds and
+   !> 6 (ds / run)**2 in the places of k and run): the nodes'
    !> pressure and fill, the load. `set` (1 full, 0 partial per node) is
    !> where it starts when warm > 0 (else every node full) and the settled
    !> set on return; warm is 1 on return when it settled (else 0). A warm
    !> start that does not settle in max_warm iterations starts again cold.
-   !> y, dl, dd, du, du2, swap: scratch of at least size(c); on return
-   !> where it settled, y the last solution and dl .. swap the factors of its
-   !> system (the settled set's). info: 0, or the solver's (a singular
-   !> system: not settled, no load).
+   !> y, dl, dd, du: scratch of at least size(c); on return where it
+   !> settled, y the last solution and dl .. du the factors of its system
+   !> (the settled set's). info: 0, or the solver's (a singular system: not
+   !> settled, no load).
    pure subroutine solve_terms(width, length, speed, c, k, run, tc0, p0, p, theta, set, warm, &
-         & load, iterations, converged, y, dl, dd, du, du2, swap, info)
+         & load, iterations, converged, y, dl, dd, du, info)
       real(wp), intent(in) :: width, length, speed, c(:), k(:), run(:), tc0, p0
       real(wp), intent(out) :: p(:), theta(:), load
       real(wp), intent(inout) :: set(:), warm
       integer, intent(out) :: iterations
       logical, intent(out) :: converged
-      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:), du2(:), swap(:)
+      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
       integer, intent(out) :: info
       logical :: changed
       integer :: j, n, attempt, budget, it
@@ -547,8 +551,7 @@ contains
          budget = merge(max_warm, max_active_set, attempt == 1)
          do it = 1, budget
             iterations = iterations + 1
-            call assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
-               & du2, swap, info)
+            call assemble_and_solve(speed, c, k, run, tc0, p0, set, y, dl, dd, du, info)
             if (info /= 0) exit
             changed = .false.
             do j = 1, n - 1
@@ -588,38 +591,45 @@ contains
    end function nodes_load
 
    !> The gap's terms, in order from the leading edge (element n first): the
-   !> mean gap h_T, transport c and flow coefficient k per element, its drainage length
-   !> (the run of open, or of touching, elements holding it, capped at the
-   !> pad width), and the inlet: the flux coefficient tc0 (the leading gap's
-   !> c, or 2 H_in if starved) and the dynamic pressure p0 (Pa) of the water
-   !> the leading edge stops. They do not depend on the active set.
+   !> mean gap h_T, transport c and flow coefficient k per element (as
+   !> kd = k / ds, the conductance between two nodes), its drainage length
+   !> run (the run of open, or of touching, elements holding it, capped at
+   !> the pad width; as runf = 6 (ds / run)**2, so that the side leakage
+   !> 12 k / run**2 over a cell of length ds is kd runf: no division in the
+   !> systems built from them), and the inlet: the flux coefficient tc0 (the
+   !> leading gap's c, or 2 H_in if starved) and the dynamic pressure p0
+   !> (Pa) of the water the leading edge stops. They do not depend on the
+   !> active set.
    !> With dc, dk, dtc0 and dp0 present (all or none), also the derivatives
-   !> of c, k, tc0 and p0 with respect to the penetration x (gap = d - x
+   !> of c, kd, tc0 and p0 with respect to the penetration x (gap = d - x
    !> where open).
    pure subroutine film_terms(depth, eta, sigma, width, length, density, speed, gap, h_t, c, &
-         & k, run, tc0, p0, dc, dk, dtc0, dp0)
+         & kd, runf, tc0, p0, dc, dk, dtc0, dp0)
       real(wp), intent(in) :: depth, eta, sigma, width, length, density, speed, gap(:)
-      real(wp), intent(out) :: h_t(size(gap)), c(size(gap)), k(size(gap)), run(size(gap))
+      real(wp), intent(out) :: h_t(size(gap)), c(size(gap)), kd(size(gap)), runf(size(gap))
       real(wp), intent(out) :: tc0, p0
       real(wp), intent(out), optional :: dc(size(gap)), dk(size(gap)), dtc0, dp0
-      real(wp) :: ds
+      real(wp) :: ds, inv_ds, run
       integer :: j, n, i1
       logical :: slopes
       n = size(gap)
       ds = length / real(n, wp)
+      inv_ds = real(n, wp) / length
       slopes = present(dc)
       if (slopes) then
          do j = 1, n
-            call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j), dc(j), &
+            call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), kd(j), dc(j), &
                & dk(j))
             dc(j) = -dc(j)
-            dk(j) = -dk(j)
+            dk(j) = -dk(j) * inv_ds
+            kd(j) = kd(j) * inv_ds
          end do
          dtc0 = 0.0_wp
          dp0 = 0.0_wp
       else
          do j = 1, n
-            call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), k(j))
+            call reynolds_cell_terms(gap(n + 1 - j), sigma, eta, h_t(j), c(j), kd(j))
+            kd(j) = kd(j) * inv_ds
          end do
       end if
       ! each run of open (or of touching) elements in one pass: its length,
@@ -631,7 +641,8 @@ contains
             if ((gap(n - i1) > 0.0_wp) .neqv. (gap(n + 1 - j) > 0.0_wp)) exit
             i1 = i1 + 1
          end do
-         run(j:i1) = min(width, real(i1 - j + 1, wp) * ds)
+         run = min(width, real(i1 - j + 1, wp) * ds)
+         runf(j:i1) = 6.0_wp * (ds / run)**2
          j = i1 + 1
       end do
       tc0 = 0.0_wp
@@ -651,82 +662,84 @@ contains
 
    !> Vertex-centred: the gap per element, the pressure and fill at the nodes
    !> between elements; element j carries q_j = (V/2) theta_(j-1) c_j +
-   !> k_j (p_(j-1) - p_j) / ds; node m balances q_(m+1) - q_m + leak = 0.
+   !> kd_j (p_(j-1) - p_j) (kd = k / ds); node m balances q_(m+1) - q_m +
+   !> leak = 0, the leak from the parabolic pressure across the drainage
+   !> length, (kd_m runf_m + kd_(m+1) runf_(m+1)) p_m (film_terms).
    !> y: the full nodes' pressure, the partial nodes' 1 - theta (set: 1
-   !> full, 0 partial). dl, dd, du, du2, swap: scratch of at least size(c),
-   !> the system's factors on return (tridiagonal_factor's; info its
-   !> status). With rhs present, the system's matrix solved for rhs(1:n-1)
-   !> instead.
-   pure subroutine assemble_and_solve(length, speed, c, k, run, tc0, p0, set, y, dl, dd, du, &
-         & du2, swap, info, rhs)
-      real(wp), intent(in) :: length, speed, c(:), k(:), run(:), tc0, p0, set(:)
-      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:), du2(:), swap(:)
+   !> full, 0 partial). dl, dd, du: scratch of at least size(c), the
+   !> system's factors on return (tridiagonal_factor's; info its status).
+   !> With rhs present, the system's matrix solved for rhs(1:n-1) instead.
+   !> The matrix is column diagonally dominant, so it needs no pivoting
+   !> (pavefric_tridiagonal): a full node's column holds kd_m + kd_(m+1) +
+   !> leak on the diagonal and -kd_m, -kd_(m+1) beside it (the leak > 0);
+   !> a partial node's, -(V/2) c_(m+1) on the diagonal, (V/2) c_(m+1) below
+   !> and 0 above (the transport is upwind).
+   pure subroutine assemble_and_solve(speed, c, kd, runf, tc0, p0, set, y, dl, dd, du, &
+         & info, rhs)
+      real(wp), intent(in) :: speed, c(:), kd(:), runf(:), tc0, p0, set(:)
+      real(wp), intent(inout) :: y(:), dl(:), dd(:), du(:)
       integer, intent(out) :: info
       real(wp), intent(in), optional :: rhs(:)
-      real(wp) :: ds, half_v, lam
+      real(wp) :: half_v
       integer :: n, m
       n = size(c)
-      ds = length / real(n, wp)
       half_v = 0.5_wp * speed
       info = 0
       y(1:n) = 0.0_wp
       if (n < 2) return
       do m = 1, n - 1
-         lam = 6.0_wp * (k(m) / run(m)**2 + k(m + 1) / run(m + 1)**2) * ds
          if (set(m) > 0.5_wp) then
-            dd(m) = (k(m) + k(m + 1)) / ds + lam
+            dd(m) = kd(m) + kd(m + 1) + (kd(m) * runf(m) + kd(m + 1) * runf(m + 1))
          else
             dd(m) = -half_v * c(m + 1)
          end if
          y(m) = -half_v * c(m + 1)
          if (m == 1) then
-            y(m) = y(m) + half_v * tc0 + k(1) * p0 / ds
+            y(m) = y(m) + half_v * tc0 + kd(1) * p0
          else
             y(m) = y(m) + half_v * c(m)
-            dl(m - 1) = merge(-k(m) / ds, half_v * c(m), set(m - 1) > 0.5_wp)
+            dl(m - 1) = merge(-kd(m), half_v * c(m), set(m - 1) > 0.5_wp)
          end if
-         if (m < n - 1) du(m) = merge(-k(m + 1) / ds, 0.0_wp, set(m + 1) > 0.5_wp)
+         if (m < n - 1) du(m) = merge(-kd(m + 1), 0.0_wp, set(m + 1) > 0.5_wp)
       end do
       if (present(rhs)) y(1:n - 1) = rhs(1:n - 1)
-      call tridiagonal_factor(n - 1, dl, dd, du, du2, swap, info)
-      if (info == 0) call tridiagonal_solve(n - 1, dl, dd, du, du2, swap, y)
+      call tridiagonal_factor(n - 1, dl, dd, du, info)
+      if (info == 0) call tridiagonal_solve(n - 1, dl, dd, du, y)
    end subroutine assemble_and_solve
 
    !> The derivative's right side db/dx - (dA/dx) y of the system
    !> assemble_and_solve builds at a set (y its solution there), from the
-   !> derivatives dc, dk, dtc0, dp0 of its terms (the drainage lengths
+   !> derivatives dc, dkd, dtc0, dp0 of its terms (the drainage lengths
    !> held): row m of A y = b differentiated, y fixed. Its terms are those
    !> of assemble_and_solve differentiated one by one: change both together
    !> (tests/test_reynolds.py, "the load slope", compares the result with
    !> differences of the load).
-   pure subroutine derivative_rhs(length, speed, k, run, dc, dk, p0, dtc0, dp0, set, y, &
-         & rhs)
-      real(wp), intent(in) :: length, speed, k(:), run(:), dc(:), dk(:), p0, dtc0, dp0
+   pure subroutine derivative_rhs(speed, kd, runf, dc, dkd, p0, dtc0, dp0, set, y, rhs)
+      real(wp), intent(in) :: speed, kd(:), runf(:), dc(:), dkd(:), p0, dtc0, dp0
       real(wp), intent(in) :: set(:), y(:)
       real(wp), intent(out) :: rhs(:)
-      real(wp) :: ds, half_v, r
+      real(wp) :: half_v, r
       integer :: n, m
-      n = size(k)
-      ds = length / real(n, wp)
+      n = size(kd)
       half_v = 0.5_wp * speed
       do m = 1, n - 1
          ! db/dx
          r = -half_v * dc(m + 1)
          if (m == 1) then
-            r = r + half_v * dtc0 + (dk(1) * p0 + k(1) * dp0) / ds
+            r = r + half_v * dtc0 + dkd(1) * p0 + kd(1) * dp0
          else
             r = r + half_v * dc(m)
          end if
          ! - (dA/dx) y: the diagonal, then the neighbours
          if (set(m) > 0.5_wp) then
-            r = r - ((dk(m) + dk(m + 1)) / ds &
-               & + 6.0_wp * (dk(m) / run(m)**2 + dk(m + 1) / run(m + 1)**2) * ds) * y(m)
+            r = r - (dkd(m) + dkd(m + 1) + (dkd(m) * runf(m) + dkd(m + 1) * runf(m + 1))) &
+               & * y(m)
          else
             r = r + half_v * dc(m + 1) * y(m)
          end if
-         if (m > 1) r = r - merge(-dk(m) / ds, half_v * dc(m), set(m - 1) > 0.5_wp) * y(m - 1)
+         if (m > 1) r = r - merge(-dkd(m), half_v * dc(m), set(m - 1) > 0.5_wp) * y(m - 1)
          if (m < n - 1) then
-            if (set(m + 1) > 0.5_wp) r = r + dk(m + 1) / ds * y(m + 1)
+            if (set(m + 1) > 0.5_wp) r = r + dkd(m + 1) * y(m + 1)
          end if
          rhs(m) = r
       end do
