@@ -1047,6 +1047,23 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "clearances from the previous penetration lost the root's digits at tiny "
         "compressions (docs/numerics.md, \"Tried and not kept\").",
         "",
+        "In the session of 2026-12-07 (eighteenth) the Reynolds film's tridiagonal "
+        "systems are eliminated without pivoting (they are column diagonally dominant: "
+        "partial pivoting swapped no row; tests/test_reynolds.py), its conductances "
+        "and side leakage are computed once per evaluation instead of once per "
+        "active-set iteration, and its cell terms take one exponential fewer: the "
+        "Reynolds film 2.136 s and 1.656 s a run side by side with the build before, "
+        "the paper's wet model 0.098 and 0.099 s, the dry pad 0.041 s both (`python "
+        "tools/compare_builds.py <before> <after> --runs reynolds_wet paper_wet "
+        "kelvin_voigt`). This run of the benchmark is the first on an AMD EPYC host "
+        "since 2026-12-06: there the plain loop, a branchy insertion sort and scan, ran "
+        "148-169 M element-steps/s where the Intel Xeon host of the run before gave it "
+        "88-89 M, while the core ran 170-174 M against 210-221 M, so the dry core's "
+        "ratio to it fell from 2.35-2.51x to 1.00-1.18x with no change to either "
+        "(the dry kernel's code did not change this session): the dry kernel target is "
+        "a ratio to a loop whose speed depends on the host's branch prediction more "
+        "than the core's does.",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
