@@ -599,3 +599,26 @@ def test_validate_quiet_has_no_progress(tmp_path):
     assert " elapsed, about " not in r.stderr + r.stdout
     assert "validate: alpha = " in r.stdout and "validate: wrote " in r.stdout
     assert (tmp_path / "validation.md").is_file()
+
+
+def test_cli_json_replaces_only_its_own_file(synthetic_csv, tmp_path):
+    """`calibrate -o` writes JSON whose first member is `written_by` and
+    replaces an existing file only if it begins so (the core's
+    check_text_replaceable): another JSON file of the user's is refused,
+    naming it, and stays byte for byte; the command's own earlier JSON is
+    replaced."""
+    args = (synthetic_csv, "--scenes", SURFACES, "--fit", "alpha", "--start", "alpha=3")
+    theirs = tmp_path / "theirs.json"
+    theirs.write_text('{"my": "notes"}\n')
+    before = theirs.read_bytes()
+    r = cli(*args, "-o", theirs)
+    assert r.returncode != 0
+    assert "exists and is not a file this command wrote" in r.stderr + r.stdout
+    assert str(theirs) in r.stderr + r.stdout and "calibration of" not in r.stdout
+    assert theirs.read_bytes() == before
+    own = tmp_path / "own.json"
+    assert cli(*args, "-o", own).returncode == 0
+    got = json.loads(own.read_text())
+    assert got["written_by"] == f"pavefric calibrate {pavefric.__version__}"
+    assert list(got)[0] == "written_by"
+    assert cli(*args, "-o", own).returncode == 0

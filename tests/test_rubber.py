@@ -573,3 +573,71 @@ def test_python_shifts_data_with_the_cores_wlf():
         wlf_log10_shift([-90.0], 20.0, 8.86, 101.6)
     with pytest.raises(ValueError, match="more than 100 decades"):
         wlf_log10_shift([-81.5], 20.0, 1000.0, 101.6)
+
+
+def test_prony_replaces_only_its_own_files(tmp_path):
+    """`prony -o` and `--write-representative` replace an existing file only
+    if this command wrote it (it begins with the command's signature, the
+    core's check_text_replaceable): a user's scene or data named by mistake
+    is refused with exit status 1, naming it, and stays byte for byte; the
+    command's own earlier output and an empty file are replaced."""
+    path = _prony_data(tmp_path, 3e6, [4e8, 5e7], [1e-6, 1e-3], [-10.0, 10.0, 30.0])
+
+    def prony(*args):
+        return subprocess.run([sys.executable, "-m", "pavefric", "prony", *map(str, args)],
+                              capture_output=True, text=True, cwd=tmp_path, timeout=300)
+
+    scene = tmp_path / "scene.nml"
+    scene.write_text("&surface profile_file = 'p.txt', dx = 1e-3 /\n&rubber stiffness = 1e8 /\n")
+    before = scene.read_bytes()
+    r = prony(path, "-o", scene)
+    assert r.returncode == 1
+    assert f"'{scene}': exists and is not a file this command wrote" in r.stderr
+    assert "replaces only its own outputs" in r.stderr
+    assert scene.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir() if ".tmp" in p.name) == []
+    # its own output, and an empty file, are replaced
+    own = tmp_path / "own.nml"
+    assert prony(path, "-o", own).returncode == 0
+    own.write_text(own.read_text() + "! an edit\n")
+    assert prony(path, "-o", own).returncode == 0
+    assert "an edit" not in own.read_text()
+    empty = tmp_path / "empty.nml"
+    empty.touch()
+    assert prony(path, "-o", empty).returncode == 0
+    assert empty.read_text().startswith("! Prony series fitted by `python -m pavefric prony")
+    # the representative data set: a user's DMA file is not replaced, its own is
+    dma = tmp_path / "mine.csv"
+    dma.write_text("temperature_c,frequency_hz,storage_pa,loss_pa\n20,1,1e7,1e6\n")
+    before = dma.read_bytes()
+    r = prony("--write-representative", dma)
+    assert r.returncode == 1 and "is not a file this command wrote" in r.stderr
+    assert dma.read_bytes() == before
+    rep = tmp_path / "rep.csv"
+    assert prony("--write-representative", rep).returncode == 0
+    assert prony("--write-representative", rep).returncode == 0
+    assert rep.read_text().startswith("# Representative dynamic mechanical data")
+
+
+def test_surface_replaces_only_a_profile_it_wrote(tmp_path):
+    """`python -m pavefric surface -o` replaces an existing file only if it
+    begins as the profiles it writes do ("# pavefric synthetic profile:"): a
+    measured profile named by mistake is refused, exit status 1, and stays
+    byte for byte; its own earlier profile is replaced."""
+    def surface(out, seed):
+        return subprocess.run([sys.executable, "-m", "pavefric", "surface", "-o", str(out),
+                               "--seed", str(seed), "--points", "256"],
+                              capture_output=True, text=True, cwd=tmp_path, timeout=300)
+
+    measured = tmp_path / "measured.txt"
+    measured.write_text("height_mm\n0.1\n0.2\n0.15\n")
+    before = measured.read_bytes()
+    r = surface(measured, 1)
+    assert r.returncode == 1
+    assert "exists and is not a file this command wrote" in r.stderr
+    assert measured.read_bytes() == before
+    own = tmp_path / "own.txt"
+    assert surface(own, 1).returncode == 0
+    first = own.read_text()
+    assert surface(own, 2).returncode == 0
+    assert own.read_text() != first and "seed=2" in own.read_text()

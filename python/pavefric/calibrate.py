@@ -806,15 +806,32 @@ def _check_output(path: Path, inputs: Sequence[Path]) -> None:
             raise CalibrationError(f"-o {path}: is an input ({p}); choose another name")
     if path.exists() and not path.is_file():
         raise CalibrationError(f"-o {path}: exists and is not a regular file")
+    # before the fit, not after it: a file this command did not write stays
+    from .core import PavefricError, check_output
+
+    try:
+        check_output(path, signature=JSON_SIGNATURE)
+    except PavefricError as exc:
+        raise CalibrationError(f"-o {path}: {exc}") from None
+
+
+#: What every JSON file ``calibrate -o`` writes begins with (its first
+#: member, ``written_by``): an existing file at ``-o`` is replaced only if it
+#: begins so (a user's file named by mistake stays; the core's rule,
+#: ``check_output``'s ``signature``).
+JSON_SIGNATURE = '{\n  "written_by": "pavefric calibrate'
 
 
 def _write_json(path: Path, data: dict) -> None:
-    """Write beside the final name, then rename: no partial file under the name."""
+    """Write beside the final name, then rename: no partial file under the name;
+    ``written_by`` first, the signature of the files this command writes."""
+    from . import __version__
     from .core import PavefricError, atomic_output
 
+    data = {"written_by": f"pavefric calibrate {__version__}", **data}
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        with atomic_output(path) as tmp:
+        with atomic_output(path, signature=JSON_SIGNATURE) as tmp:
             tmp.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
     except OSError as exc:
         raise CalibrationError(f"-o {path}: cannot write ({exc.strerror})") from None

@@ -149,7 +149,8 @@ def _check(status: int, message: Any, keywords: bool = False) -> None:
     raise PavefricError(text)
 
 
-def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None) -> None:
+def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None,
+                 signature: str | None = None) -> None:
     """The rule every pavefric writer follows, from the core (the program's
     and the C API's own): ``path`` must be missing or a regular file (never a
     FIFO, a device or a directory) and not the same file as any of ``inputs``
@@ -170,6 +171,11 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
         kind, another tool's NetCDF or a file that is not NetCDF is refused;
         an empty file may be replaced. None: no such check (writers of other
         formats).
+    signature : str or None, optional
+        For a writer of text (a namelist, a CSV, JSON): the characters it
+        puts first in every file it writes. An existing non-empty file that
+        does not begin with them is refused (a user's scene or data named by
+        mistake); an empty file may be replaced. Not with ``replaces``.
 
     Returns
     -------
@@ -182,6 +188,12 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
     """
     if replaces not in (None, "results", "profiles"):
         raise ValueError(f"check_output replaces = {replaces!r}: 'results' or 'profiles'")
+    if signature is not None:
+        if replaces is not None:
+            raise ValueError("check_output: replaces or signature, not both")
+        if not signature.strip():
+            raise ValueError("check_output signature: empty")
+        replaces = "text:" + signature
     joined = "\n".join(os.fspath(p) for p in inputs if p)
     # (f2py takes no empty strings: a blank says no kind)
     status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n",
@@ -190,7 +202,8 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
 
 
 @contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = None):
+def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = None,
+                  signature: str | None = None):
     """Write ``path`` whole or not at all, as every pavefric writer does:
     ``check_output(path, inputs)``, then the caller writes the temporary this
     yields (``path.tmpPID`` beside ``path``, the program's own name, so that a
@@ -206,13 +219,15 @@ def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = Non
         The files the data written came from (never overwritten).
     replaces : {"results", "profiles"} or None
         ``check_output``'s: the kind of file a NetCDF writer may replace.
+    signature : str or None
+        ``check_output``'s: what a text writer's files begin with.
 
     Yields
     ------
     pathlib.Path
         The temporary file to write.
     """
-    check_output(path, inputs, replaces)
+    check_output(path, inputs, replaces, signature)
     tmp = Path(_text(_core.pf_temporary_name(_b(os.fspath(path)))))
     try:
         yield tmp

@@ -334,6 +334,10 @@ def representative_dma() -> DMAData:
                    source="representative tread compound (pavefric.rubber.REPRESENTATIVE)")
 
 
+#: What every compound ``prony -o`` writes begins with: an existing file at
+#: ``-o`` is replaced only if it begins so (``check_output``'s ``signature``).
+NAMELIST_SIGNATURE = "! Prony series fitted by `python -m pavefric prony"
+
 REPRESENTATIVE_HEADER = """\
 # Representative dynamic mechanical data of a passenger-car tread compound.
 # NOT A MEASUREMENT: written by `python -m pavefric prony --write-representative
@@ -352,14 +356,24 @@ REPRESENTATIVE_HEADER = """\
 """
 
 
-def write_dma(path: str | os.PathLike, data: DMAData, header: str = "") -> Path:
+def write_dma(path: str | os.PathLike, data: DMAData, header: str = "",
+              signature: str | None = None) -> Path:
+    """Write DMA data as the CSV ``read_dma`` reads, whole or not at all
+    (``pavefric.core.atomic_output``). ``signature``: what the files of this
+    kind begin with; an existing file that does not is refused (None: the
+    header's first line when there is a header, else the CSV's column line)."""
+    from .core import atomic_output
+
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     rows = [header.rstrip("\n"), "temperature_c,frequency_hz,storage_pa,loss_pa"] if header \
         else ["temperature_c,frequency_hz,storage_pa,loss_pa"]
     for t, f, s, l in zip(data.temperature, data.frequency, data.storage, data.loss):
         rows.append(f"{t:g},{f:.6g},{s:.6e},{l:.6e}")
-    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    if signature is None:
+        signature = rows[0].splitlines()[0]
+    with atomic_output(path, signature=signature) as tmp:
+        tmp.write_text("\n".join(rows) + "\n", encoding="utf-8")
     return path
 
 
@@ -436,7 +450,7 @@ def main_prony(args) -> int:
                     per_decade=args.per_decade, fit_wlf=args.fit_wlf)
     header = [ln for ln in data.source.split("; ") if ln][:2] or [str(args.data)]
     comments = [
-        f"Prony series fitted by `python -m pavefric prony {args.data}` "
+        f"{NAMELIST_SIGNATURE[2:]} {args.data}` "
         f"({time.strftime('%Y-%m-%d')}).",
         f"Data ({args.data}): {header[0]}",
         *[f"  {ln}" for ln in header[1:]],
@@ -451,9 +465,13 @@ def main_prony(args) -> int:
     ]
     text = fit.namelist(args.thickness, comments)
     if args.output:
+        from .core import atomic_output
+
         out = Path(args.output)
         out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_text(text, encoding="utf-8")
+        # replaces only a compound this command wrote (never the user's scene)
+        with atomic_output(out, inputs=[args.data], signature=NAMELIST_SIGNATURE) as tmp:
+            tmp.write_text(text, encoding="utf-8")
         print(f"wrote {out}")
     else:
         print(text, end="")

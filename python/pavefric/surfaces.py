@@ -49,11 +49,22 @@ def spectral_profile(n: int = CTM_POINTS, dx: float = CTM_DX, *, rms: float = 0.
     return z
 
 
-def write_profile(path: str, heights_m: np.ndarray, header: str = "") -> None:
-    """Write heights (m) as a one-column text profile in mm, with a header comment."""
+def write_profile(path: str, heights_m: np.ndarray, header: str = "",
+                  signature: str | None = None) -> None:
+    """Write heights (m) as a one-column text profile in mm, with a header
+    comment. With ``signature`` (what the files of its writer begin with),
+    written whole or not at all and replacing an existing file only if it
+    begins so (``pavefric.core.atomic_output``): a measured profile named by
+    mistake stays."""
     lines = [f"# {line}" for line in header.splitlines()] if header else []
     lines.append("height_mm")
     lines.extend(f"{1e3 * z:.6f}" for z in heights_m)
+    if signature is not None:
+        from .core import atomic_output
+
+        with atomic_output(path, signature=signature) as tmp:
+            tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        return
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(lines) + "\n")
 

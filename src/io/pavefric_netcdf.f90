@@ -24,6 +24,7 @@ module pavefric_netcdf
    private
 
    public :: write_results, temporary_name, commit_temporary, check_replaceable
+   public :: check_text_replaceable
    public :: nc_writer_type
 
    !> A NetCDF file being written and the first error met: every call goes
@@ -336,6 +337,47 @@ contains
       call fatal_error(error, setting(what, path) // ": exists and is a NetCDF file " // &
          & "pavefric did not write (" // source // ")" // advice, stat_input)
    end subroutine check_replaceable
+
+   !> check_replaceable for a writer of text (a namelist, a CSV, JSON):
+   !> an existing non-empty file at `path` is replaced only if it begins with
+   !> `signature`, the bytes that writer puts first in every file it writes
+   !> (`python -m pavefric prony -o` a namelist beginning "! Prony series
+   !> fitted by `python -m pavefric prony", `calibrate -o` JSON beginning
+   !> with its "written_by" member). A user's scene, data or notes named by
+   !> mistake stay as they are.
+   subroutine check_text_replaceable(path, what, signature, error)
+      character(len=*), intent(in) :: path, what, signature
+      type(error_type), allocatable, intent(out) :: error
+      character(len=len(signature)) :: head, shown
+      character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
+         & "remove or rename the file, or choose another path"
+      integer(i8) :: size
+      integer :: unit, status, k
+      logical :: exists
+      inquire(file=path, exist=exists, size=size)
+      if (.not. exists .or. size == 0) return
+      head = ""
+      if (size >= len(signature)) then
+         open(newunit=unit, file=path, access="stream", form="unformatted", action="read", &
+            & status="old", iostat=status)
+         if (status /= 0) then
+            call fatal_error(error, setting(what, path) // ": exists and cannot be read " // &
+               & "to tell whether pavefric wrote it" // advice, stat_input)
+            return
+         end if
+         read(unit, iostat=status) head
+         close(unit)
+         if (status /= 0) head = ""
+      end if
+      if (head == signature) return
+      ! the signature on one line (JSON's spans two)
+      shown = signature
+      do k = 1, len(shown)
+         if (shown(k:k) == achar(10)) shown(k:k) = " "
+      end do
+      call fatal_error(error, setting(what, path) // ": exists and is not a file this " // &
+         & "command wrote (it does not begin with '" // shown // "')" // advice, stat_input)
+   end subroutine check_text_replaceable
 
    !> Rename a finished temporary file onto `path`; remove it when writing
    !> failed (`error` allocated on entry) or the rename fails. An existing

@@ -53,6 +53,7 @@ def main(args: argparse.Namespace) -> int:
               f"dx={args.dx_mm} mm, rms={args.rms_mm} mm, exponent={args.exponent}, "
               f"wavelengths {args.wavelength_min_mm}-{args.wavelength_max_mm} mm, "
               f"skew={args.skew}, seed={args.seed})")
-    write_profile(args.output, z, header)
+    # replaces only a profile this command wrote (never a measured one)
+    write_profile(args.output, z, header, signature="# pavefric synthetic profile:")
     print(f"wrote {args.output}")
     return 0
