@@ -59,14 +59,15 @@ def write_profile(path: str, heights_m: np.ndarray, header: str = "",
     lines = [f"# {line}" for line in header.splitlines()] if header else []
     lines.append("height_mm")
     lines.extend(f"{1e3 * z:.6f}" for z in heights_m)
+    text = "\n".join(lines) + "\n"
     if signature is not None:
         from .core import atomic_output
 
         with atomic_output(path, signature=signature) as tmp:
-            tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
+            tmp.write_text(text, encoding="utf-8")
         return
     with open(path, "w", encoding="utf-8") as fh:
-        fh.write("\n".join(lines) + "\n")
+        fh.write(text)
 
 
 def road_profiles(directory: str, n: int = 300, points: int = 512, dx: float = CTM_DX,

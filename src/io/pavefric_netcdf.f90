@@ -25,6 +25,11 @@ module pavefric_netcdf
 
    public :: write_results, temporary_name, commit_temporary, check_replaceable
    public :: check_text_replaceable
+
+   !> What check_replaceable and check_text_replaceable advise when they
+   !> refuse a file.
+   character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
+      & "remove or rename the file, or choose another path"
    public :: nc_writer_type
 
    !> A NetCDF file being written and the first error met: every call goes
@@ -292,8 +297,6 @@ contains
       integer(i8) :: size
       logical :: exists, profiles
       character(len=:), allocatable :: source
-      character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
-         & "remove or rename the file, or choose another path"
       profiles = .false.
       if (present(replaces)) profiles = replaces == "profiles"
       inquire(file=path, exist=exists, size=size)
@@ -349,8 +352,6 @@ contains
       character(len=*), intent(in) :: path, what, signature
       type(error_type), allocatable, intent(out) :: error
       character(len=len(signature)) :: head, shown
-      character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
-         & "remove or rename the file, or choose another path"
       integer(i8) :: size
       integer :: unit, status, k
       logical :: exists
