@@ -163,14 +163,15 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
         The file about to be written.
     inputs : iterable of path-like, optional
         The files the data written came from.
-    replaces : {"results", "profiles"} or None, optional
-        What a NetCDF writer writes, and so the only kind of existing file it
-        may replace (the program's rule): ``"results"`` (a run's, a batch's
-        or ``merge``'s output, NetCDF ``source`` 'pavefric <version>') or
-        ``"profiles"`` (a survey ``write_profiles`` wrote). A file of another
-        kind, another tool's NetCDF or a file that is not NetCDF is refused;
-        an empty file may be replaced. None: no such check (writers of other
-        formats).
+    replaces : {"results", "profiles", "png"} or None, optional
+        What a writer writes, and so the only kind of existing file it may
+        replace (the program's rule): ``"results"`` (a run's, a batch's or
+        ``merge``'s output, NetCDF ``source`` 'pavefric <version>'),
+        ``"profiles"`` (a survey ``write_profiles`` wrote) or ``"png"`` (a
+        figure pavefric's plots drew: a PNG whose text chunk ``Software``
+        begins with 'pavefric'). A file of another kind, another tool's
+        NetCDF, a figure of the user's or a file of another format is
+        refused; an empty file may be replaced. None: no such check.
     signature : str or None, optional
         For a writer of text (a namelist, a CSV, JSON): the characters it
         puts first in every file it writes. An existing non-empty file that
@@ -186,8 +187,9 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
     PavefricError
         Naming the path and why it may not be written.
     """
-    if replaces not in (None, "results", "profiles"):
-        raise ValueError(f"check_output replaces = {replaces!r}: 'results' or 'profiles'")
+    if replaces not in (None, "results", "profiles", "png"):
+        raise ValueError(f"check_output replaces = {replaces!r}: 'results', 'profiles' "
+                         "or 'png'")
     if signature is not None:
         if replaces is not None:
             raise ValueError("check_output: replaces or signature, not both")
@@ -217,8 +219,8 @@ def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = Non
         The file to write.
     inputs : iterable of path-like
         The files the data written came from (never overwritten).
-    replaces : {"results", "profiles"} or None
-        ``check_output``'s: the kind of file a NetCDF writer may replace.
+    replaces : {"results", "profiles", "png"} or None
+        ``check_output``'s: the kind of file the writer may replace.
     signature : str or None
         ``check_output``'s: what a text writer's files begin with.
 

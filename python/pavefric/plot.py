@@ -2,7 +2,52 @@
 from __future__ import annotations
 
 import os
-from typing import Sequence
+from pathlib import Path
+from typing import Iterable, Sequence
+
+#: What every figure pavefric draws carries in its PNG text chunk
+#: ``Software`` (then a space and the version): an existing file at a
+#: figure's path is replaced only if its ``Software`` begins so (the core's
+#: rule, ``check_output(..., replaces="png")``).
+PNG_SOFTWARE = "pavefric"
+
+
+def save_figure(fig, output: str | os.PathLike, inputs: Iterable = ()) -> str:
+    """Write a matplotlib figure as the PNG ``output``, whole or not at all,
+    by the rule every pavefric writer follows (``pavefric.core.check_output``):
+    ``output`` must end in ``.png``, be missing or a regular file, not be one
+    of ``inputs`` (the files the figure was drawn from, links seen through),
+    and an existing non-empty file there is replaced only if it is a figure
+    pavefric drew (its PNG ``Software`` text begins with 'pavefric'; a
+    user's own figure, scene or data named by mistake is refused and left
+    byte for byte). Written through a temporary and a rename. Returns the
+    path."""
+    from . import __version__
+    from .core import atomic_output
+
+    inputs = [p for p in inputs if p is not None]
+    with atomic_output(_png_path(output), inputs, replaces="png") as tmp:
+        fig.savefig(tmp, format="png", metadata={"Software": f"{PNG_SOFTWARE} {__version__}"})
+    return os.fspath(output)
+
+
+def _checked(output, inputs: Iterable = ()) -> None:
+    """save_figure's checks before a figure is drawn (so that a refused path
+    costs no drawing and leaves nothing behind)."""
+    from .core import check_output
+
+    check_output(_png_path(output), [p for p in inputs if p is not None], replaces="png")
+
+
+def _png_path(output) -> Path:
+    """``output`` as a Path, refused unless it ends in .png."""
+    from .core import PavefricError
+
+    path = Path(output)
+    if path.suffix.lower() != ".png":
+        raise PavefricError(f"'{path}': pavefric draws its figures as PNG; give a path "
+                            "ending in .png")
+    return path
 
 
 def is_batch(ds) -> bool:
@@ -22,7 +67,8 @@ def water_label(ds) -> str:
 
 
 def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
-                  labels: Sequence[str] | None = None, title: str | None = None) -> str:
+                  labels: Sequence[str] | None = None, title: str | None = None,
+                  inputs: Iterable = ()) -> str:
     """Friction coefficient against sliding speed, one curve per dataset.
 
     A batch output (one file) is drawn by ``plot_batch`` instead: friction
@@ -38,11 +84,15 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
         One label per dataset (default: from the files or the datasets).
     title : str, optional
         The figure's title.
+    inputs : iterable of path-like, optional
+        Further files the figure comes from (a run's scene), never
+        overwritten; the datasets given as files are inputs too.
 
     Returns
     -------
     str
-        The PNG path.
+        The PNG path (``save_figure``'s rule: a file there is replaced only
+        if pavefric drew it).
     """
     import matplotlib
 
@@ -51,6 +101,8 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
 
     from .core import PavefricError, open_dataset
 
+    inputs = [*inputs, *(ds for ds in datasets if not hasattr(ds, "variables"))]
+    _checked(output, inputs)
     opened = []
     for i, ds in enumerate(datasets):
         if not hasattr(ds, "variables"):
@@ -60,7 +112,7 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
     if any(is_batch(ds) for _, ds in opened):
         if len(opened) != 1:
             raise PavefricError("plot: a batch output is plotted on its own (one file)")
-        return plot_batch(opened[0][1], output, title=title)
+        return plot_batch(opened[0][1], output, title=title, inputs=inputs)
     fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=120)
     for i, (label_default, ds) in enumerate(opened):
         label = labels[i] if labels else label_default
@@ -74,9 +126,10 @@ def plot_mu_speed(datasets: Sequence, output: str | os.PathLike,
     if title:
         ax.set_title(title)
     fig.tight_layout()
-    fig.savefig(output)
-    plt.close(fig)
-    return str(output)
+    try:
+        return save_figure(fig, output, inputs)
+    finally:
+        plt.close(fig)
 
 
 def batch_curves(ds) -> tuple:
@@ -98,10 +151,15 @@ def batch_curves(ds) -> tuple:
     return x, xlabel, curves
 
 
-def plot_batch(ds, output: str | os.PathLike, title: str | None = None) -> str:
+def plot_batch(ds, output: str | os.PathLike, title: str | None = None,
+               inputs: Iterable = ()) -> str:
     """A batch output (a path or dataset): friction along the road, one panel
     per water depth and one line per speed, failed profiles as gaps (and
-    marked), with the texture depth (MPD) below. Returns the PNG path."""
+    marked), with the texture depth (MPD) below. Returns the PNG path
+    (``save_figure``'s rule; ``inputs``: further files never overwritten,
+    the batch output's file among them when ``ds`` is a path)."""
+    inputs = [*inputs, *(() if hasattr(ds, "variables") else (ds,))]
+    _checked(output, inputs)
     import matplotlib
 
     matplotlib.use("Agg")
@@ -141,9 +199,10 @@ def plot_batch(ds, output: str | os.PathLike, title: str | None = None) -> str:
     axes[-1].grid(alpha=0.3)
     fig.suptitle(title or ds.attrs.get("title", "pavefric batch"), fontsize=10)
     fig.tight_layout()
-    fig.savefig(output)
-    plt.close(fig)
-    return str(output)
+    try:
+        return save_figure(fig, output, inputs)
+    finally:
+        plt.close(fig)
 
 
 def plot_profile(profile, output: str | os.PathLike, title: str | None = None,
@@ -165,8 +224,11 @@ def plot_profile(profile, output: str | os.PathLike, title: str | None = None,
     Returns
     -------
     str
-        The PNG path.
+        The PNG path (``save_figure``'s rule: a file there is replaced only
+        if pavefric drew it; never the profile's own file).
     """
+    inputs = [getattr(profile, "path", None)]
+    _checked(output, inputs)
     import matplotlib
 
     matplotlib.use("Agg")
@@ -196,6 +258,7 @@ def plot_profile(profile, output: str | os.PathLike, title: str | None = None,
     for ax in (a, b):
         ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(output)
-    plt.close(fig)
-    return str(output)
+    try:
+        return save_figure(fig, output, inputs)
+    finally:
+        plt.close(fig)

@@ -397,15 +397,21 @@ def compound(path: str | os.PathLike) -> dict:
 
 # --- the command ---------------------------------------------------------------
 
-def plot_fit(fit: PronyFit, data: DMAData, path: str | os.PathLike, title: str = "") -> Path:
+def plot_fit(fit: PronyFit, data: DMAData, path: str | os.PathLike, title: str = "",
+             inputs=()) -> Path:
     """The master curve: data shifted to the reference temperature against the
-    fitted series, and tan delta."""
+    fitted series, and tan delta. Written by ``pavefric.plot.save_figure``'s
+    rule (a PNG; a file at ``path`` is replaced only if pavefric drew it,
+    never one of ``inputs``, the DMA data's file among them)."""
+    from .plot import _checked, save_figure
+
+    path = Path(path)
+    _checked(path, inputs)
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     w = data.omega * 10.0 ** wlf_log10_shift(data.temperature, fit.reference_temperature,
                                              fit.c1, fit.c2)
@@ -428,8 +434,10 @@ def plot_fit(fit: PronyFit, data: DMAData, path: str | os.PathLike, title: str =
     b.legend(fontsize=8)
     fig.suptitle(title or "Prony series fitted to the master curve")
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    try:
+        save_figure(fig, path, inputs)
+    finally:
+        plt.close(fig)
     return path
 
 
@@ -445,6 +453,19 @@ def main_prony(args) -> int:
     if not args.data:
         print("pavefric prony: error: give a DMA CSV file (or --write-representative PATH)")
         return 2
+    if args.plot:
+        # both outputs checked before the fit: a refused path costs nothing
+        from .core import PavefricError
+        from .plot import _checked
+
+        if args.output and Path(args.plot).resolve() == Path(args.output).resolve():
+            raise PavefricError(f"prony: --plot '{args.plot}' is the -o path; give the "
+                                "figure its own .png")
+        _checked(args.plot, [args.data])
+    if args.output:
+        from .core import check_output
+
+        check_output(args.output, inputs=[args.data], signature=NAMELIST_SIGNATURE)
     data = read_dma(args.data, modulus=args.modulus, temperature=args.reference_temperature)
     fit = fit_prony(data, reference=args.reference_temperature, c1=args.c1, c2=args.c2,
                     per_decade=args.per_decade, fit_wlf=args.fit_wlf)
@@ -476,5 +497,5 @@ def main_prony(args) -> int:
     else:
         print(text, end="")
     if args.plot:
-        print(f"wrote {plot_fit(fit, data, args.plot)}")
+        print(f"wrote {plot_fit(fit, data, args.plot, inputs=[args.data])}")
     return 0

@@ -24,7 +24,7 @@ module pavefric_netcdf
    private
 
    public :: write_results, temporary_name, commit_temporary, check_replaceable
-   public :: check_text_replaceable
+   public :: check_text_replaceable, check_png_replaceable
 
    !> What check_replaceable and check_text_replaceable advise when they
    !> refuse a file.
@@ -379,6 +379,87 @@ contains
       call fatal_error(error, setting(what, path) // ": exists and is not a file this " // &
          & "command wrote (it does not begin with '" // shown // "')" // advice, stat_input)
    end subroutine check_text_replaceable
+
+   !> check_replaceable for a figure (Python's plots, matplotlib's PNG): an
+   !> existing non-empty file at `path` is replaced only if it is a PNG
+   !> whose text chunk "Software", before its image data, begins with
+   !> "pavefric" (what pavefric's plots write there). Any other file, a
+   !> figure of the user's included, is refused.
+   subroutine check_png_replaceable(path, what, error)
+      character(len=*), intent(in) :: path, what
+      type(error_type), allocatable, intent(out) :: error
+      integer(i8) :: size
+      logical :: exists, ours
+      inquire(file=path, exist=exists, size=size)
+      if (.not. exists .or. size == 0) return
+      ours = index(png_software(path), "pavefric") == 1
+      if (ours) return
+      call fatal_error(error, setting(what, path) // ": exists and is not a figure " // &
+         & "pavefric drew (a PNG whose text 'Software' begins with 'pavefric')" // advice, &
+         & stat_input)
+   end subroutine check_png_replaceable
+
+   !> The text of a PNG file's "Software" chunk (tEXt, or iTXt uncompressed)
+   !> found before its image data in its first 64 KiB; "" when the file
+   !> cannot be read, is not a PNG or has none. The chunks are walked by
+   !> their lengths, each checked against what was read, so a truncated or
+   !> forged file ends the walk.
+   function png_software(path) result(text)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: text
+      character(len=8), parameter :: magic = achar(137) // "PNG" // achar(13) // achar(10) // &
+         & achar(26) // achar(10)
+      character(len=*), parameter :: key = "Software" // achar(0)
+      integer, parameter :: most = 65536
+      character(len=:), allocatable :: buf
+      integer(i8) :: size
+      integer :: unit, status, n, at, length, j, k, data_end
+      character(len=4) :: kind
+      text = ""
+      inquire(file=path, size=size)
+      if (size < 8) return
+      n = int(min(size, int(most, i8)))
+      allocate(character(len=n) :: buf)
+      open(newunit=unit, file=path, access="stream", form="unformatted", action="read", &
+         & status="old", iostat=status)
+      if (status /= 0) return
+      read(unit, iostat=status) buf
+      close(unit)
+      if (status /= 0 .or. buf(1:8) /= magic) return
+      at = 9
+      do while (at + 7 <= n)
+         length = 0
+         do k = 0, 3
+            length = 256 * length + ichar(buf(at+k:at+k))
+            if (length > most) return                ! (a chunk longer than what is read)
+         end do
+         kind = buf(at+4:at+7)
+         if (kind == "IDAT" .or. kind == "IEND") return
+         data_end = at + 7 + length
+         if (data_end > n) return
+         if ((kind == "tEXt" .or. kind == "iTXt") .and. length >= len(key)) then
+            if (buf(at+8:at+7+len(key)) == key) then
+               k = at + 8 + len(key)
+               if (kind == "iTXt") then
+                  ! compression flag (0: none), method, language tag \0,
+                  ! translated keyword \0, then the text
+                  if (k + 1 > data_end) return
+                  if (ichar(buf(k:k)) /= 0) return
+                  k = k + 2
+                  j = index(buf(k:data_end), achar(0))        ! the language tag
+                  if (j == 0) return
+                  k = k + j
+                  j = index(buf(k:data_end), achar(0))        ! the translated keyword
+                  if (j == 0) return
+                  k = k + j
+               end if
+               text = buf(k:data_end)
+               return
+            end if
+         end if
+         at = data_end + 5                           ! past the chunk's CRC
+      end do
+   end function png_software
 
    !> Rename a finished temporary file onto `path`; remove it when writing
    !> failed (`error` allocated on entry) or the rename fails. An existing

@@ -27,12 +27,24 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="write the cleaned profile as two columns (distance, height; mm)")
 
 
+#: The first characters of every file ``--export`` writes: an existing file
+#: at its path is replaced only if it begins so (``check_output``'s
+#: ``signature``), so a measured profile named by mistake stays as it is.
+EXPORT_SIGNATURE = "# pavefric profile: cleaned from "
+
+
 def main(args: argparse.Namespace) -> int:
-    from ..core import PavefricError
-    from ..plot import plot_profile
+    from ..core import PavefricError, atomic_output, check_output
+    from ..plot import _checked, plot_profile
     from ..profiles import read_profile
     from ..texture import texture
 
+    # the outputs checked before any work (the profile's own file and a
+    # file pavefric did not write are never replaced)
+    if args.plot:
+        _checked(args.plot, [args.file])
+    if args.export:
+        check_output(args.export, [args.file, args.plot], signature=EXPORT_SIGNATURE)
     prof = read_profile(args.file, args.height_unit, format=args.format,
                         dropouts=args.dropouts, trim_plates=not args.no_trim_plates,
                         spike_slope=args.spike_slope, resample_dx=args.resample_mm * 1e-3,
@@ -51,7 +63,9 @@ def main(args: argparse.Namespace) -> int:
         import numpy as np
 
         x = np.arange(prof.heights.size) * prof.dx
-        np.savetxt(args.export, np.column_stack([x * 1e3, prof.heights * 1e3]),
-                   fmt="%.17g", header=f"cleaned from {args.file}\ndistance_mm height_mm")
+        with atomic_output(args.export, [args.file, args.plot],
+                           signature=EXPORT_SIGNATURE) as tmp:
+            np.savetxt(tmp, np.column_stack([x * 1e3, prof.heights * 1e3]), fmt="%.17g",
+                       header=f"{EXPORT_SIGNATURE[2:]}{args.file}\ndistance_mm height_mm")
         print(f"wrote {args.export}")
     return 0

@@ -24,8 +24,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def main(args: argparse.Namespace) -> int:
     from ..core import ProfilesFailedWarning, run
-    from ..plot import plot_mu_speed
+    from ..plot import _checked, plot_mu_speed
 
+    if args.plot:
+        # checked before the run: a refused figure path costs no run
+        _checked(args.plot, [args.scene, args.output])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", ProfilesFailedWarning)
         out = run(args.scene, args.output, progress=False if args.quiet else None)
@@ -35,7 +38,7 @@ def main(args: argparse.Namespace) -> int:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     print(f"wrote {out}")
     if args.plot:
-        print(f"wrote {plot_mu_speed([out], args.plot)}")
+        print(f"wrote {plot_mu_speed([out], args.plot, inputs=[args.scene])}")
     if failed:
         # as the program: the batch finished, some profiles failed
         print(f"pavefric: {failed[0].message}", file=sys.stderr)

@@ -342,7 +342,7 @@ def run_report(report: str | Path = "docs/rubber.md",
     same_fit = (shipped.size == fit.e_arms.size and
                 np.allclose(shipped, fit.e_arms, rtol=1e-5) and
                 np.allclose(rubber["prony_times"], fit.times, rtol=1e-5))
-    fig_fit = plot_fit(fit, data, figdir / "rubber_compound.png",
+    fig_fit = plot_fit(fit, data, figdir / "rubber_compound.png", inputs=[DATA],
                        title="The example tread compound: DMA data shifted to 20 °C and its "
                        "Prony series")
     log("rubber-report: friction curves ...")

@@ -855,14 +855,15 @@ end subroutine pf_profile_read_seconds
 subroutine pf_check_output(path, inputs, replaces, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_fsys, only: output_guard_type, check_output_path
-   use pavefric_netcdf, only: check_replaceable, check_text_replaceable
+   use pavefric_netcdf, only: check_replaceable, check_text_replaceable, check_png_replaceable
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path, inputs
    !> The kind of file the writer may replace ('results' or 'profiles':
    !> pavefric_netcdf's check_replaceable, the program's own rule), or
    !> 'text:' and the bytes a text writer begins its files with
-   !> (check_text_replaceable), or blank (no such check).
+   !> (check_text_replaceable), or 'png' (a figure pavefric drew:
+   !> check_png_replaceable), or blank (no such check).
    character(len=*), intent(in) :: replaces
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
@@ -883,6 +884,8 @@ subroutine pf_check_output(path, inputs, replaces, status, message)
       if (index(replaces, "text:") == 1) then
          call check_text_replaceable(path, "the output path", replaces(6:len_trim(replaces)), &
             & error)
+      else if (trim(replaces) == "png") then
+         call check_png_replaceable(path, "the output path", error)
       else
          call check_replaceable(path, "the output path", error, trim(replaces))
       end if
