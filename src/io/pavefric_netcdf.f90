@@ -388,12 +388,13 @@ contains
    subroutine check_png_replaceable(path, what, error)
       character(len=*), intent(in) :: path, what
       type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: software
       integer(i8) :: size
-      logical :: exists, ours
+      logical :: exists
       inquire(file=path, exist=exists, size=size)
       if (.not. exists .or. size == 0) return
-      ours = index(png_software(path), "pavefric") == 1
-      if (ours) return
+      call png_software(path, software)
+      if (index(software, "pavefric") == 1) return
       call fatal_error(error, setting(what, path) // ": exists and is not a figure " // &
          & "pavefric drew (a PNG whose text 'Software' begins with 'pavefric')" // advice, &
          & stat_input)
@@ -403,10 +404,11 @@ contains
    !> found before its image data in its first 64 KiB; "" when the file
    !> cannot be read, is not a PNG or has none. The chunks are walked by
    !> their lengths, each checked against what was read, so a truncated or
-   !> forged file ends the walk.
-   function png_software(path) result(text)
+   !> forged file ends the walk. (A subroutine: a deferred-length function
+   !> result costs a static length per call site, which threads share.)
+   subroutine png_software(path, text)
       character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
+      character(len=:), allocatable, intent(out) :: text
       character(len=8), parameter :: magic = achar(137) // "PNG" // achar(13) // achar(10) // &
          & achar(26) // achar(10)
       character(len=*), parameter :: key = "Software" // achar(0)
@@ -459,7 +461,7 @@ contains
          end if
          at = data_end + 5                           ! past the chunk's CRC
       end do
-   end function png_software
+   end subroutine png_software
 
    !> Rename a finished temporary file onto `path`; remove it when writing
    !> failed (`error` allocated on entry) or the rename fails. An existing

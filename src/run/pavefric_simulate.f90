@@ -3520,25 +3520,30 @@ contains
       real(wp), intent(out) :: c(nl, n), cmin(nl)
       type(dry_start_type), intent(inout) :: start
       integer :: i, j
-      real(wp) :: low, total, counted, ci
+      real(wp) :: low, total, counted, ci, lo, hi, gg
       associate (g => start%guess, sums => start%sums, counts => start%counts, &
             & below => start%below, above => start%above)
          if (nl == 1) then
             ! one lane: plain loops (a lane loop of one trip costs more than the work)
+            ! (the sums and bounds in locals: in the start's components
+            ! each element's update waited on a store and a load)
             low = huge(1.0_wp)
             total = 0.0_wp
             counted = 0.0_wp
-            below(1) = -huge(1.0_wp)
-            above(1) = huge(1.0_wp)
+            lo = -huge(1.0_wp)
+            hi = huge(1.0_wp)
+            gg = g(1)
             do i = 1, n
                ci = h(i) - z(i) + u_free(1, i)
                c(1, i) = ci
                low = min(low, ci)
-               total = total + merge(ci - g(1), 0.0_wp, ci < g(1))
-               counted = counted + merge(1.0_wp, 0.0_wp, ci < g(1))
-               below(1) = max(below(1), merge(ci, -huge(1.0_wp), ci < g(1)))
-               above(1) = min(above(1), merge(huge(1.0_wp), ci, ci < g(1)))
+               total = total + merge(ci - gg, 0.0_wp, ci < gg)
+               counted = counted + merge(1.0_wp, 0.0_wp, ci < gg)
+               lo = max(lo, merge(ci, -huge(1.0_wp), ci < gg))
+               hi = min(hi, merge(huge(1.0_wp), ci, ci < gg))
             end do
+            below(1) = lo
+            above(1) = hi
             cmin(1) = low
             sums(1) = total
             counts(1) = counted
@@ -3614,7 +3619,53 @@ contains
          & sum_fa(nl), w(nl), total(nl)
       real(wp), intent(inout) :: u_max(nl)
       real(wp) :: p, in_contact, u, f, u_prev, s
+      real(wp) :: a_f, a_c, a_fa, a_u, a_w, a_t, a_k, xd, w1, w2, w3, dd
       integer :: i, j
+      if (nl == 1) then
+         ! one lane (a single speed): the same operations in the same order,
+         ! its sums in registers (through the arrays of nl, each element's
+         ! six additions waited on a store and a load), and lane_clamps' count
+         ! in the same pass (its sum over the clamped elements in their
+         ! order; the others add an exact 0)
+         a_k = 0.0_wp
+         a_f = 0.0_wp
+         a_c = 0.0_wp
+         a_fa = 0.0_wp
+         a_w = 0.0_wp
+         a_t = 0.0_wp
+         a_u = u_max(1)
+         xd = x(1)
+         w1 = weights(1, 1)
+         w2 = weights(1, 2)
+         w3 = weights(1, 3)
+         dd = ddelta(1)
+         do i = 1, n
+            p = max(0.0_wp, xd - (d(1, i) - dref(1)))
+            in_contact = merge(1.0_wp, 0.0_wp, p > 0.0_wp)
+            a_f = a_f + p
+            a_c = a_c + in_contact
+            a_fa = a_fa + p * adhesion(i)
+            a_u = max(a_u, u_free(1, i) + p)
+            u = u_free(1, i) + p
+            u_prev = state(1, i)
+            s = push_prev(1, i) + p
+            f = merge(1.0_wp, 0.0_wp, s > 0.0_wp) * &
+               & (w1 * u_prev + w2 * u - w3 * max(0.0_wp, (u_prev - u_free(1, i)) - s))
+            a_w = a_w + f * ((u - u_prev) - dd)
+            a_t = a_t + f
+            a_k = a_k + in_contact * clamped(i)
+            push_prev(1, i) = p
+            state(1, i) = u
+         end do
+         clamps(1) = a_k
+         sum_f(1) = a_f
+         contacts(1) = a_c
+         sum_fa(1) = a_fa
+         u_max(1) = a_u
+         w(1) = a_w
+         total(1) = a_t
+         return
+      end if
       sum_f = 0.0_wp
       contacts = 0.0_wp
       sum_fa = 0.0_wp
