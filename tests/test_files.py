@@ -393,7 +393,7 @@ def test_a_batch_over_the_directory_of_its_output_resumes(tmp_path, interrupt):
     scene = tmp_path / "b.nml"
     scene.write_text("&batch profiles = 'seg', depths = 0.0 /\n&surface closed = .false. /\n"
                      "&operation speeds_kmh = 20 /\n")
-    (tmp_path / "seg" / "out.nc.tmp999999999").write_text("a temporary a killed writer left\n")
+    (tmp_path / "seg" / "out.nc.tmp999999999.pavefric").write_text("a temporary a killed writer left\n")
     if interrupt:
         r = run_program(scene, "-o", "seg/out.nc", "--max-profiles", "2", cwd=tmp_path)
         assert r.returncode == 3, r.stderr

@@ -138,16 +138,23 @@ def test_sigkill_while_writing_then_a_rerun_leaves_no_temporary(tmp_path):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     wait_stopped(proc)
     temps = list(tmp_path.glob("out.nc.tmp*"))
-    assert temps == [tmp_path / f"out.nc.tmp{proc.pid}"]
+    assert temps == [tmp_path / f"out.nc.tmp{proc.pid}.pavefric"]
     proc.send_signal(signal.SIGKILL)                   # no handler runs
     proc.communicate(timeout=60)
     assert temps[0].exists()                           # what a SIGKILL leaves
-    # another process's live temporary and a look-alike of the user's stay
-    alive = tmp_path / f"out.nc.tmp{os.getpid()}"
+    # another process's live temporary and look-alikes of the user's stay:
+    # a file of the user's named <output>.tmp<a dead PID> (without the
+    # temporaries' suffix) was deleted by the sweep until 2026-12-07
+    # (attack19 F8)
+    alive = tmp_path / f"out.nc.tmp{os.getpid()}.pavefric"
     alive.write_bytes(b"being written")
     mine = tmp_path / "out.nc.tmpfile"
     mine.write_bytes(b"the user's")
-    dead_other = tmp_path / f"other.nc.tmp{_dead_pid()}"
+    users = [tmp_path / f"out.nc.tmp{_dead_pid()}", tmp_path / f"out.nc.tmp{_dead_pid()}.bak",
+             tmp_path / f"out.nc.tmp{_dead_pid()}.pavefricx"]
+    for k, f in enumerate(users):
+        f.write_bytes(b"the user's %d" % k)
+    dead_other = tmp_path / f"other.nc.tmp{_dead_pid()}.pavefric"
     dead_other.write_bytes(b"not this output's")
     r = run_program(scene, "-o", "out.nc", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
@@ -155,14 +162,16 @@ def test_sigkill_while_writing_then_a_rerun_leaves_no_temporary(tmp_path):
     assert alive.read_bytes() == b"being written"
     assert mine.read_bytes() == b"the user's"
     assert dead_other.exists()
+    for k, f in enumerate(users):
+        assert f.read_bytes() == b"the user's %d" % k
     assert sorted(p.name for p in tmp_path.glob("out.nc*")) == sorted(
-        ["out.nc", alive.name, mine.name])
+        ["out.nc", alive.name, mine.name] + [f.name for f in users])
 
 
 def test_a_dead_writers_temporary_of_a_batch_is_removed(tmp_path):
     from test_batch import make_batch
     scene = make_batch(tmp_path)
-    stale = tmp_path / f"b.nc.tmp{_dead_pid()}"
+    stale = tmp_path / f"b.nc.tmp{_dead_pid()}.pavefric"
     stale.write_bytes(b"half a file")
     r = run_program(scene, "-o", "b.nc", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
@@ -199,7 +208,7 @@ def test_a_default_given_again_is_no_reason_to_warn(tmp_path):
 def test_python_writers_share_the_programs_temporaries(tmp_path, profile_m):
     """Issue 19: one implementation of 'a temporary beside the output, then a
     rename' for every writer. A Python writer killed outright (SIGKILL) leaves
-    path.tmpPID, as the program would; the next writer of that path, from any
+    path.tmpPID.pavefric, as the program would; the next writer of that path, from any
     interface, removes it; a live process's temporary stays."""
     out = tmp_path / "p.nc"
     code = ("import os, signal, numpy as np, pavefric\n"
@@ -211,13 +220,13 @@ def test_python_writers_share_the_programs_temporaries(tmp_path, profile_m):
     assert proc.returncode == -signal.SIGKILL
     left = list(tmp_path.glob("p.nc.tmp*"))
     assert len(left) == 1 and left[0].read_bytes() == b"half a file"
-    alive = tmp_path / f"p.nc.tmp{os.getppid()}"    # a live process, not this one
+    alive = tmp_path / f"p.nc.tmp{os.getppid()}.pavefric"    # a live process, not this one
     alive.write_bytes(b"being written")
     pavefric.write_profiles(out, [profile_m, profile_m[:500]], names=["a", "b"], dx=DX)
     assert not left[0].exists() and alive.exists()
     assert [e.name for e in pavefric.list_profiles(out)] == ["a", "b"]
     # the merge and the example write through the same helper
-    stale = tmp_path / "ex" / f"ctm_dry.nml.tmp{_dead_pid()}"
+    stale = tmp_path / "ex" / f"ctm_dry.nml.tmp{_dead_pid()}.pavefric"
     stale.parent.mkdir()
     stale.write_bytes(b"stale")
     from pavefric.example import write_example

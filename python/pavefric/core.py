@@ -11,6 +11,7 @@ import contextlib
 import functools
 import os
 import shlex
+import stat
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -150,7 +151,7 @@ def _check(status: int, message: Any, keywords: bool = False) -> None:
 
 
 def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None,
-                 signature: str | None = None) -> None:
+                 signature: str | None = None, writable: bool = False) -> None:
     """The rule every pavefric writer follows, from the core (the program's
     and the C API's own): ``path`` must be missing or a regular file (never a
     FIFO, a device or a directory) and not the same file as any of ``inputs``
@@ -177,6 +178,11 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
         puts first in every file it writes. An existing non-empty file that
         does not begin with them is refused (a user's scene or data named by
         mistake); an empty file may be replaced. Not with ``replaces``.
+    writable : bool, optional
+        Also that a file can be made beside ``path`` now (its directory
+        exists and may be written: the program's check before a run). Leave
+        it False where the writer makes the directory later;
+        ``atomic_output`` checks it as it starts writing.
 
     Returns
     -------
@@ -196,10 +202,20 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
         if not signature.strip():
             raise ValueError("check_output signature: empty")
         replaces = "text:" + signature
+    if not os.fspath(path):
+        raise PavefricError("the output path is empty: give a file name")
+    # an input that does not exist yet (another output of the same command,
+    # written later) is the same file only by its path
+    target = os.path.abspath(os.fspath(path))
+    for p in inputs:
+        if p and not os.path.lexists(p) and os.path.abspath(os.fspath(p)) == target:
+            raise PavefricError(f"the output path '{os.fspath(path)}': is also '{os.fspath(p)}', "
+                                "another file this command reads or writes; give each its own "
+                                "path")
     joined = "\n".join(os.fspath(p) for p in inputs if p)
     # (f2py takes no empty strings: a blank says no kind)
     status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n",
-                                            _b(replaces or " "))
+                                            _b(replaces or " "), 1 if writable else 0)
     _check(status, message)
 
 
@@ -208,7 +224,7 @@ def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = Non
                   signature: str | None = None):
     """Write ``path`` whole or not at all, as every pavefric writer does:
     ``check_output(path, inputs)``, then the caller writes the temporary this
-    yields (``path.tmpPID`` beside ``path``, the program's own name, so that a
+    yields (``path.tmpPID.pavefric`` beside ``path``, the program's own name, so that a
     later writer removes it if this process is killed outright), which is
     renamed onto ``path`` when the ``with`` block ends without an exception and
     removed otherwise.
@@ -229,14 +245,34 @@ def atomic_output(path: str | os.PathLike, inputs=(), replaces: str | None = Non
     pathlib.Path
         The temporary file to write.
     """
-    check_output(path, inputs, replaces, signature)
+    check_output(path, inputs, replaces, signature, writable=True)
     tmp = Path(_text(_core.pf_temporary_name(_b(os.fspath(path)))))
     try:
         yield tmp
+        try:
+            # the permission bits of the file replaced (a private result
+            # stays private), as the core's own writers keep them
+            os.chmod(tmp, stat.S_IMODE(os.stat(path).st_mode))
+        except FileNotFoundError:
+            pass
         os.replace(tmp, path)
     finally:
         if os.path.lexists(tmp):
             tmp.unlink()
+
+
+def write_text_output(path: str | os.PathLike, text: str, signature: str, inputs=()) -> Path:
+    """Write ``text`` to ``path`` by the rule of every pavefric writer
+    (``atomic_output``): never over one of ``inputs``, a FIFO, a device or a
+    directory; an existing non-empty file replaced only if it begins with
+    ``signature`` (what this writer's files begin with, so a user's file
+    named by mistake stays byte for byte); whole or not at all. ``text``
+    must begin with ``signature``. Returns the path."""
+    if not text.startswith(signature):
+        raise ValueError(f"write_text_output: the text does not begin with {signature!r}")
+    with atomic_output(path, inputs, signature=signature) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return Path(path)
 
 
 def _warn(text: str) -> None:

@@ -100,7 +100,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
         if not p.is_file():
             raise MergeError(f"merge: '{p}' is not a file")
     try:        # the rule of every pavefric writer: never over an input, a FIFO, a device
-        check_output(out, paths, replaces="results")
+        check_output(out, paths, replaces="results", writable=True)
     except PavefricError as exc:
         raise MergeError(f"merge: {exc}") from None
 

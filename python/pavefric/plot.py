@@ -31,12 +31,14 @@ def save_figure(fig, output: str | os.PathLike, inputs: Iterable = ()) -> str:
     return os.fspath(output)
 
 
-def _checked(output, inputs: Iterable = ()) -> None:
+def _checked(output, inputs: Iterable = (), writable: bool = True) -> None:
     """save_figure's checks before a figure is drawn (so that a refused path
-    costs no drawing and leaves nothing behind)."""
+    costs no drawing and leaves nothing behind). ``writable``: also that its
+    directory exists and may be written (False where the caller makes it)."""
     from .core import check_output
 
-    check_output(_png_path(output), [p for p in inputs if p is not None], replaces="png")
+    check_output(_png_path(output), [p for p in inputs if p is not None], replaces="png",
+                 writable=writable)
 
 
 def _png_path(output) -> Path:

@@ -357,11 +357,12 @@ REPRESENTATIVE_HEADER = """\
 
 
 def write_dma(path: str | os.PathLike, data: DMAData, header: str = "",
-              signature: str | None = None) -> Path:
+              signature: str | None = None, inputs=()) -> Path:
     """Write DMA data as the CSV ``read_dma`` reads, whole or not at all
     (``pavefric.core.atomic_output``). ``signature``: what the files of this
     kind begin with; an existing file that does not is refused (None: the
-    header's first line when there is a header, else the CSV's column line)."""
+    header's first line when there is a header, else the CSV's column line).
+    ``inputs``: files never written over (the command's own data)."""
     from .core import atomic_output
 
     path = Path(path)
@@ -372,7 +373,7 @@ def write_dma(path: str | os.PathLike, data: DMAData, header: str = "",
         rows.append(f"{t:g},{f:.6g},{s:.6e},{l:.6e}")
     if signature is None:
         signature = rows[0].splitlines()[0]
-    with atomic_output(path, signature=signature) as tmp:
+    with atomic_output(path, [p for p in inputs if p], signature=signature) as tmp:
         tmp.write_text("\n".join(rows) + "\n", encoding="utf-8")
     return path
 
@@ -406,7 +407,7 @@ def plot_fit(fit: PronyFit, data: DMAData, path: str | os.PathLike, title: str =
     from .plot import _checked, save_figure
 
     path = Path(path)
-    _checked(path, inputs)
+    _checked(path, inputs, writable=False)      # (its directory is made below)
     import matplotlib
 
     matplotlib.use("Agg")
@@ -444,9 +445,10 @@ def plot_fit(fit: PronyFit, data: DMAData, path: str | os.PathLike, title: str =
 def main_prony(args) -> int:
     """``python -m pavefric prony`` (see __main__)."""
     if args.write_representative:
+        # (never over the data the same command fits next)
         p = write_dma(args.write_representative, representative_dma(),
                       REPRESENTATIVE_HEADER.format(**REPRESENTATIVE, c1=WLF_C1, c2=WLF_C2,
-                                                   tref=T_REF))
+                                                   tref=T_REF), inputs=[args.data])
         print(f"wrote {p}")
         if not args.data:
             return 0
@@ -461,7 +463,7 @@ def main_prony(args) -> int:
         if args.output and Path(args.plot).resolve() == Path(args.output).resolve():
             raise PavefricError(f"prony: --plot '{args.plot}' is the -o path; give the "
                                 "figure its own .png")
-        _checked(args.plot, [args.data])
+        _checked(args.plot, [args.data], writable=False)     # (plot_fit makes the directory)
     if args.output:
         from .core import check_output
 

@@ -53,6 +53,16 @@ module pavefric_fsys
          import :: c_int
          integer(c_int) :: pid
       end function c_getpid
+      function c_may_replace(path) bind(C, name="pavefric_may_replace") result(yes)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int) :: yes
+      end function c_may_replace
+      function c_keep_mode(path, tmp) bind(C, name="pavefric_keep_mode") result(stat)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*), tmp(*)
+         integer(c_int) :: stat
+      end function c_keep_mode
       function c_is_symlink(path) bind(C, name="pavefric_is_symlink") result(yes)
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -114,9 +124,13 @@ contains
       yes = c_is_symlink(path // c_null_char) /= 0
    end function is_symlink
 
+   !> Rename `old` onto `new`, `old` first given the permission bits of the
+   !> file it replaces (a private 0600 result stays private).
    function rename_file(old, new) result(ok)
       character(len=*), intent(in) :: old, new
       logical :: ok
+      integer(c_int) :: stat
+      stat = c_keep_mode(new // c_null_char, old // c_null_char)
       ok = c_rename(old // c_null_char, new // c_null_char) == 0
    end function rename_file
 
@@ -284,10 +298,19 @@ contains
          return
       end if
       guard%exists = kind /= kind_missing
-      if (guard%exists .and. kind /= kind_regular) call fatal_error(error, &
-         & setting(what, path) // ": exists and is " // kind_name(int(kind)) // &
-         & ", not a regular file; the output must be a regular file (it would replace this one)", &
-         & stat_input)
+      if (guard%exists .and. kind /= kind_regular) then
+         call fatal_error(error, &
+            & setting(what, path) // ": exists and is " // kind_name(int(kind)) // &
+            & ", not a regular file; the output must be a regular file (it would replace " // &
+            & "this one)", stat_input)
+         return
+      end if
+      ! a file made read-only is not replaced (a rename would, whatever its mode)
+      if (guard%exists) then
+         if (c_may_replace(path // c_null_char) == 0) call fatal_error(error, &
+            & setting(what, path) // ": exists and is read-only; pavefric does not replace " // &
+            & "a file you made read-only: make it writable, or choose another path", stat_input)
+      end if
    end subroutine check_output_path
 
    !> Refuse the output if it is the same file as `input` (same device and
@@ -353,7 +376,7 @@ contains
       slot = c_temp_register(path // c_null_char)
    end subroutine register_temporary
 
-   !> Remove the temporaries (`path`.tmpPID) that writers killed outright
+   !> Remove the temporaries (`path`.tmpPID.pavefric) that writers killed outright
    !> left beside `path` (their process is gone); how many were removed.
    function remove_stale_temporaries(path) result(removed)
       character(len=*), intent(in) :: path

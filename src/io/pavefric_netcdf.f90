@@ -24,7 +24,11 @@ module pavefric_netcdf
    private
 
    public :: write_results, temporary_name, commit_temporary, check_replaceable
-   public :: check_text_replaceable, check_png_replaceable
+   public :: check_text_replaceable, check_png_replaceable, temporary_suffix
+
+   !> What ends the name of every temporary a pavefric writer makes
+   !> (`<output>.tmp<PID>.pavefric`).
+   character(len=*), parameter :: temporary_suffix = ".pavefric"
 
    !> What check_replaceable and check_text_replaceable advise when they
    !> refuse a file.
@@ -224,16 +228,19 @@ contains
       if (allocated(w%error)) call move_alloc(w%error, error)
    end subroutine writer_close
 
-   !> The temporary name a final path is first written under. The name goes
-   !> on the list of temporary files a fatal signal removes (in the
-   !> program); `commit_temporary` takes it off. Temporaries of `path` left
-   !> by writers killed outright (SIGKILL: no handler ran) are removed first.
+   !> The temporary name a final path is first written under,
+   !> `<path>.tmp<PID>.pavefric` (the suffix tells pavefric's temporaries
+   !> from a user's file of a like name, which the sweep below never
+   !> touches). The name goes on the list of temporary files a fatal signal
+   !> removes (in the program); `commit_temporary` takes it off. Temporaries
+   !> of `path` left by writers killed outright (SIGKILL: no handler ran) are
+   !> removed first.
    subroutine temporary_name(path, tmp)
       character(len=*), intent(in) :: path
       character(len=:), allocatable, intent(out) :: tmp
       integer :: removed
       removed = remove_stale_temporaries(path)
-      tmp = path // ".tmp" // to_str(process_id())
+      tmp = path // ".tmp" // to_str(process_id()) // temporary_suffix
       call register_temporary(tmp)
    end subroutine temporary_name
 

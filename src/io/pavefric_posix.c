@@ -58,6 +58,39 @@ int pavefric_file_id(const char *path, long long *dev, long long *ino, int *kind
     return 0;
 }
 
+/* Whether an existing file may be replaced by this process: 1, or 0 when
+ * it is read-only: no write permission for this process (access(2), links
+ * followed) or no write bit at all in its mode (a file made read-only on
+ * purpose, which root's access would pass). 1 when nothing is there. */
+int pavefric_may_replace(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return 1;
+    if ((st.st_mode & 0222) == 0) return 0;
+    return access(path, W_OK) == 0 ? 1 : 0;
+}
+
+/* The permission bits of the existing file `path` (links followed) into
+ * *mode; 0 on success, -1 when nothing is there, else the errno. */
+int pavefric_file_mode(const char *path, int *mode)
+{
+    struct stat st;
+    *mode = 0;
+    if (stat(path, &st) != 0) return errno == ENOENT || errno == ENOTDIR ? -1 : errno;
+    *mode = (int)(st.st_mode & 07777);
+    return 0;
+}
+
+/* Give `tmp` the permission bits of the file it replaces, `path`, so that a
+ * private result (0600) stays private; nothing when `path` is missing.
+ * Returns 0 or the errno of the chmod. */
+int pavefric_keep_mode(const char *path, const char *tmp)
+{
+    int mode;
+    if (pavefric_file_mode(path, &mode) != 0) return 0;
+    return chmod(tmp, (mode_t)mode) == 0 ? 0 : errno;
+}
+
 /* Whether `path` is itself a symbolic link (not followed): 1 or 0; 0 when
  * nothing is there or it cannot be inspected (the callers' stat says why). */
 int pavefric_is_symlink(const char *path)
@@ -69,10 +102,14 @@ int pavefric_is_symlink(const char *path)
 
 /* ---- stale temporaries -------------------------------------------------- */
 
-/* Remove the temporaries `<path>.tmp<PID>` that a writer killed outright
- * (SIGKILL, a node failure: no handler runs) left beside `path`: regular
- * files of this user whose PID names no live process on this host, other
- * than this process. Each writer calls it before it starts its own
+/* What ends every temporary's name (pavefric_netcdf's temporary_suffix). */
+#define PF_TEMP_SUFFIX ".pavefric"
+
+/* Remove the temporaries `<path>.tmp<PID>.pavefric` that a writer killed
+ * outright (SIGKILL, a node failure: no handler runs) left beside `path`:
+ * regular files of this user whose PID names no live process on this host,
+ * other than this process. Only names of exactly that form: a user's own
+ * `<path>.tmp123` (or any other name) is never touched. Each writer calls it before it starts its own
  * temporary, so a re-run cleans up after the run that was killed. On a
  * file system shared between hosts a PID is only checked on this host: two
  * hosts writing one output at once is refused nowhere else either.
@@ -105,12 +142,15 @@ int pavefric_remove_stale_temporaries(const char *path)
         struct stat st;
         if (strncmp(n, base, baselen) != 0 || strncmp(n + baselen, ".tmp", 4) != 0) continue;
         p = n + baselen + 4;
-        if (*p == '\0' || strlen(p) > 9) continue;
-        for (; *p; ++p) {
-            if (*p < '0' || *p > '9') break;
-            pid = pid * 10 + (*p - '0');
+        {
+            const char *digits = p;
+            for (; *p >= '0' && *p <= '9'; ++p) {
+                if (p - digits >= 9) break;            /* more digits than a PID has */
+                pid = pid * 10 + (*p - '0');
+            }
+            if (p == digits || strcmp(p, PF_TEMP_SUFFIX) != 0) continue;
         }
-        if (*p != '\0' || pid <= 0 || (pid_t)pid == self) continue;
+        if (pid <= 0 || (pid_t)pid == self) continue;
         if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue;   /* alive, or not ours to ask */
         if (snprintf(full, sizeof full, "%s/%s", dir, n) >= (int)sizeof full) continue;
         if (lstat(full, &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != geteuid()) continue;

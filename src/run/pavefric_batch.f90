@@ -30,7 +30,7 @@ module pavefric_batch
    use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
    use pavefric_fsys, only: output_guard_type, check_output_path, os_message, is_symlink, &
       & setting, canonical_path
-   use pavefric_netcdf, only: check_replaceable
+   use pavefric_netcdf, only: check_replaceable, temporary_suffix
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
       & block_unpack, block_values, block_allocate, block_clear, status_computed, status_failed, &
@@ -100,7 +100,7 @@ contains
    !> Remove from `paths` (a pattern's or a directory's files) the batch's
    !> own files: its output where it is a pavefric output and its journal
    !> where it is a pavefric journal (the same files, links seen through),
-   !> and its temporaries (`<output>.tmp<digits>` in the output's
+   !> and its temporaries (`<output>.tmp<digits>.pavefric` in the output's
    !> directory). A file of the user's at either path stays a profile, so
    !> that the output checks refuse it as an input. Refused when nothing
    !> else is left.
@@ -186,15 +186,17 @@ contains
          if (len(d) == 0) d = "."
       end subroutine dir_of
 
-      !> Whether a base name is tmp_prefix followed by digits (a writer's
-      !> temporary, pavefric_netcdf's temporary_name).
+      !> Whether a base name is tmp_prefix, digits and temporary_suffix (a
+      !> writer's temporary, pavefric_netcdf's temporary_name).
       logical function is_temporary_of(name)
          character(len=*), intent(in) :: name
-         integer :: k
+         integer :: k, last
          is_temporary_of = .false.
-         if (len(name) <= len(tmp_prefix)) return
+         last = len(name) - len(temporary_suffix)
+         if (last <= len(tmp_prefix)) return
          if (name(1:len(tmp_prefix)) /= tmp_prefix) return
-         do k = len(tmp_prefix) + 1, len(name)
+         if (name(last+1:) /= temporary_suffix) return
+         do k = len(tmp_prefix) + 1, last
             if (index("0123456789", name(k:k)) == 0) return
          end do
          is_temporary_of = .true.

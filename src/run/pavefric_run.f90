@@ -27,7 +27,7 @@ module pavefric_run
    public :: run_scene, run_profile, load_scene_profile, ctm_dx, preprocess_summary, timestamp
    public :: scene_estimate, estimate_text, announce_interface, checked_estimate
    public :: rms_plausible_low, rms_plausible_high, mu_plausible_high
-   public :: texture_warning, result_warnings
+   public :: texture_warning, result_warnings, check_writable
 
    !> Spacing of a Circular Track Meter profile (m), the default dx.
    real(wp), parameter :: ctm_dx = 0.87e-3_wp

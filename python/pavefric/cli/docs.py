@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 
 NAME = "docs"
 HELP = "regenerate reference documents from the core's declarations"
@@ -25,8 +26,15 @@ def needs_checkout(args: argparse.Namespace) -> bool:
 
 
 def main(args: argparse.Namespace) -> int:
-    from ..studies.docs import write_inputs, write_outputs
+    from ..core import PavefricError, check_output
+    from ..studies.docs import INPUTS_SIGNATURE, OUTPUTS_SIGNATURE, write_inputs, write_outputs
 
+    # both pages checked before either is written
+    if args.inputs and args.outputs and \
+            os.path.abspath(args.inputs) == os.path.abspath(args.outputs):
+        raise PavefricError(f"docs: --inputs and --outputs are one path ('{args.inputs}')")
+    check_output(args.inputs, signature=INPUTS_SIGNATURE, writable=True)
+    check_output(args.outputs, signature=OUTPUTS_SIGNATURE, writable=True)
     print(f"wrote {write_inputs(args.inputs)}")
     print(f"wrote {write_outputs(args.outputs)}")
     return 0

@@ -44,7 +44,8 @@ def main(args: argparse.Namespace) -> int:
     if args.plot:
         _checked(args.plot, [args.file])
     if args.export:
-        check_output(args.export, [args.file, args.plot], signature=EXPORT_SIGNATURE)
+        check_output(args.export, [args.file, args.plot], signature=EXPORT_SIGNATURE,
+                     writable=True)
     prof = read_profile(args.file, args.height_unit, format=args.format,
                         dropouts=args.dropouts, trim_plates=not args.no_trim_plates,
                         spike_slope=args.spike_slope, resample_dx=args.resample_mm * 1e-3,

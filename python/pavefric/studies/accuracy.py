@@ -215,6 +215,8 @@ def plot_order(rows: Sequence[dict], path: str | os.PathLike) -> str:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from ..plot import save_figure
+
     legend_in = 0.12 * (-(-len(rows) // 3)) + 0.2     # the legend's height (inches)
     height = 4.2 + legend_in
     fig, axes = plt.subplots(1, 2, figsize=(11, height), dpi=110, sharey=True)
@@ -240,9 +242,10 @@ def plot_order(rows: Sequence[dict], path: str | os.PathLike) -> str:
     fig.legend(handles, labels, fontsize=6, loc="lower center", ncol=3, frameon=False)
     axes[0].set_ylabel("largest |mu - mu(limit)| over the speeds", fontsize=8)
     fig.tight_layout(rect=(0, legend_in / height, 1, 1))
-    fig.savefig(path)
-    plt.close(fig)
-    return str(path)
+    try:
+        return save_figure(fig, path)
+    finally:
+        plt.close(fig)
 
 
 def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequence[float],
@@ -281,24 +284,38 @@ def tolerance_study(scene_path: str | os.PathLike, mu_limit, speeds_kmh: Sequenc
     return rows
 
 
+#: The column line every accuracy CSV begins with (the replace rule's
+#: signature: a file at the path that does not begin so is refused).
+CSV_SIGNATURE = "scene,knob,value,error,convergence,time_s,element_steps,"
+
+
 def to_csv(table, path: str | os.PathLike) -> None:
-    """One row per setting: knob, value, error, time, element-steps, mu per speed."""
+    """One row per setting: knob, value, error, time, element-steps, mu per
+    speed (``write_text_output``'s rule: replaces only such a CSV)."""
+    from ..core import write_text_output
+
     speeds = table["speed_kmh"].values
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write("scene,knob,value,error,convergence,time_s,element_steps,"
-                 + ",".join(f"mu_{s:g}kmh" for s in speeds) + "\n")
-        for i in range(table.sizes["setting"]):
-            mu = ",".join(f"{m:.12g}" for m in table["mu"].values[i])
-            fh.write(f"{table.attrs['label']},{table['knob'].values[i]},"
-                     f"{table['value'].values[i]:g},{table['error'].values[i]:.6g},"
-                     f"{table['convergence'].values[i]:.6g},"
-                     f"{table['time_s'].values[i]:.6g},{table['element_steps'].values[i]},{mu}\n")
+    rows = [CSV_SIGNATURE + ",".join(f"mu_{s:g}kmh" for s in speeds)]
+    for i in range(table.sizes["setting"]):
+        mu = ",".join(f"{m:.12g}" for m in table["mu"].values[i])
+        rows.append(f"{table.attrs['label']},{table['knob'].values[i]},"
+                    f"{table['value'].values[i]:g},{table['error'].values[i]:.6g},"
+                    f"{table['convergence'].values[i]:.6g},"
+                    f"{table['time_s'].values[i]:.6g},{table['element_steps'].values[i]},{mu}")
+    write_text_output(path, "\n".join(rows) + "\n", CSV_SIGNATURE)
 
 
 def to_netcdf(table, path: str | os.PathLike) -> None:
+    """The table as NetCDF (source 'pavefric <version> ...': replaces only a
+    pavefric results file, ``atomic_output``'s 'results' rule)."""
+    from .. import __version__
+    from ..core import atomic_output
+
     out = table.copy()
     out["knob"] = out["knob"].astype(str)
-    out.to_netcdf(path)
+    out.attrs["source"] = f"pavefric {__version__} (accuracy study)"
+    with atomic_output(path, replaces="results") as tmp:
+        out.to_netcdf(tmp, format="NETCDF4")
 
 
 def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) -> str:
@@ -308,6 +325,8 @@ def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) ->
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from ..plot import save_figure
 
     knobs = list(dict.fromkeys(k for t in tables for k in t["knob"].values))
     ncols = 2
@@ -341,9 +360,10 @@ def plot(tables: Sequence, path: str | os.PathLike, title: str | None = None) ->
     fig.suptitle(title or "error against cost, per knob (each knob's own finest setting as "
                  "reference)", fontsize=10)
     fig.tight_layout(rect=(0, 0.06, 1, 0.97))
-    fig.savefig(path)
-    plt.close(fig)
-    return str(path)
+    try:
+        return save_figure(fig, path)
+    finally:
+        plt.close(fig)
 
 
 def recommend(tables: Sequence) -> dict[str, dict]:

@@ -766,9 +766,16 @@ def run(report: str | None = None, largest: int = 10_000_000, quick: bool = Fals
     MODEL.md's simulate() (tests/reference.py) to time beside the core; the
     NumPy figures are NaN (and the report says "not measured") without it."""
     from . import bench_io
+    from ..core import check_output
     from ..progress import Progress
-    from .reports import machine_description
+    from .reports import PERFORMANCE_SIGNATURE, machine_description
 
+    if report:
+        # the page and its figure checked before minutes of measuring
+        check_output(report, signature=PERFORMANCE_SIGNATURE)
+        figure = Path(report).parent / "figures" / "performance.png"
+        if figure.parent.is_dir():            # (else made later: nothing there to lose)
+            check_output(figure, replaces="png")
     lines: list[str] = []
     progress = Progress("bench", len(SECTIONS), "sections", quiet=quiet)
 

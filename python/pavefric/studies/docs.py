@@ -130,11 +130,18 @@ def inputs_markdown() -> str:
     return "\n".join(lines)
 
 
+#: The first line of each page (the replace rule's signature: a file at the
+#: path that does not begin so is refused, ``write_text_output``).
+INPUTS_SIGNATURE = "# Scene namelist reference"
+OUTPUTS_SIGNATURE = "# NetCDF output reference"
+
+
 def write_inputs(path: str | Path) -> Path:
-    """Write docs/inputs.md (or `path`) from the core's declarations."""
-    path = Path(path)
-    path.write_text(inputs_markdown(), encoding="utf-8")
-    return path
+    """Write docs/inputs.md (or `path`) from the core's declarations; an
+    existing file is replaced only if it is such a page."""
+    from ..core import write_text_output
+
+    return write_text_output(path, inputs_markdown(), INPUTS_SIGNATURE)
 
 
 _TYPE = {1: "double", 2: "int64", 3: "int", 4: "byte (0/1 flag)"}
@@ -279,10 +286,11 @@ def outputs_markdown() -> str:
 
 
 def write_outputs(path: str | Path) -> Path:
-    """Write docs/outputs.md (or `path`) from the core's output table."""
-    path = Path(path)
-    path.write_text(outputs_markdown(), encoding="utf-8")
-    return path
+    """Write docs/outputs.md (or `path`) from the core's output table; an
+    existing file is replaced only if it is such a page."""
+    from ..core import write_text_output
+
+    return write_text_output(path, outputs_markdown(), OUTPUTS_SIGNATURE)
 
 
 __all__ = ["inputs_markdown", "write_inputs", "outputs_markdown", "write_outputs"]

@@ -35,6 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core import write_text_output
+
 from ..surfaces import CTM_DX, CTM_POINTS, spectral_profile, write_profile
 
 NAMES = ["GSP", "GSS", "GSSB", "RSBA", "MCA", "VTAC"]
@@ -160,12 +162,25 @@ SCENE_TEMPLATE = """! Reference surface {name} ({description}) of Kane et al. (2
 """
 
 
+#: What the profiles and scenes this module writes begin with (the replace
+#: rule's signatures).
+PROFILE_SIGNATURE = "# pavefric reference surface "
+SCENE_SIGNATURE = "! Reference surface "
+
+
 def write_surfaces(outdir: str | Path, table_csv: str | Path, alpha: float = 1.0,
                    beta: float = 1.75, viscosity: float = 100.0, log=print) -> dict:
     """Tune and write the six profiles and their scene files; return the
-    tuning results."""
+    tuning results. Every file is checked before the tuning (a profile or
+    scene of the user's at one of the twelve paths is refused, and nothing
+    is written)."""
+    from ..core import check_output
+
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
+    for name in NAMES:
+        check_output(outdir / f"{name}.txt", [table_csv], signature=PROFILE_SIGNATURE)
+        check_output(outdir / f"{name}.nml", [table_csv], signature=SCENE_SIGNATURE)
     paper = paper_table(table_csv)
     results = {}
     for name in NAMES:
@@ -185,10 +200,14 @@ def write_surfaces(outdir: str | Path, table_csv: str | Path, alpha: float = 1.0
                   f"MPD {r['texture']['mpd'] * 1e3:.4f} mm (target {MPD_MM[name]}), "
                   f"dry mu with mu_loc {srt}: {np.round(r['dry_mu'], 4).tolist()} "
                   f"(paper V13 mean {target:.4f}).")
-        write_profile(str(outdir / f"{name}.txt"), r["heights"], header)
-        (outdir / f"{name}.nml").write_text(SCENE_TEMPLATE.format(
+        # (each replaces only a file of its own kind: a user's profile or
+        # scene of the same name stays, write_text_output's rule)
+        write_profile(str(outdir / f"{name}.txt"), r["heights"], header,
+                      signature=PROFILE_SIGNATURE)
+        write_text_output(outdir / f"{name}.nml", SCENE_TEMPLATE.format(
             name=name, description=DESCRIPTION[name], mpd_mm=MPD_MM[name], srt=srt,
-            alpha=f"{alpha:.6g}", beta=f"{beta:.6g}", viscosity=f"{viscosity:.6g}"))
+            alpha=f"{alpha:.6g}", beta=f"{beta:.6g}", viscosity=f"{viscosity:.6g}"),
+            SCENE_SIGNATURE)
         log(f"{name:5s} MPD {r['texture']['mpd'] * 1e3:.3f} mm, RMS slope "
             f"{r['texture']['rms_slope']:.3f}, dry mu {np.round(r['dry_mu'], 3).tolist()} "
             f"vs V13 {[v13[s] for s in sorted(v13)]}")

@@ -852,10 +852,11 @@ end subroutine pf_profile_read_seconds
 !> device or a directory), and not the same file as any of `inputs` (paths
 !> separated by newlines: what the data written came from). status 0: the
 !> path may be written (through a temporary in its directory and a rename).
-subroutine pf_check_output(path, inputs, replaces, status, message)
+subroutine pf_check_output(path, inputs, replaces, writable, status, message)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_fsys, only: output_guard_type, check_output_path
    use pavefric_netcdf, only: check_replaceable, check_text_replaceable, check_png_replaceable
+   use pavefric_run, only: check_writable
    use pavefric_error, only: error_type
    implicit none
    character(len=*), intent(in) :: path, inputs
@@ -865,6 +866,9 @@ subroutine pf_check_output(path, inputs, replaces, status, message)
    !> (check_text_replaceable), or 'png' (a figure pavefric drew:
    !> check_png_replaceable), or blank (no such check).
    character(len=*), intent(in) :: replaces
+   !> Non-zero: also that a file can be made beside `path` (its directory
+   !> exists and is writable; the program's check_writable).
+   integer(c_int), intent(in) :: writable
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
    type(output_guard_type) :: guard
@@ -890,13 +894,17 @@ subroutine pf_check_output(path, inputs, replaces, status, message)
          call check_replaceable(path, "the output path", error, trim(replaces))
       end if
    end if
+   ! a file can be made beside it (the directory exists and is writable:
+   ! the program's own check, before any work)
+   if (.not. allocated(error) .and. writable /= 0) &
+      & call check_writable(path, "the output path", error)
    if (allocated(error)) then
       status = error%stat
       message = error%message
    end if
 end subroutine pf_check_output
 
-!> The temporary a writer of `path` uses (path.tmpPID, the program's own
+!> The temporary a writer of `path` uses (path.tmpPID.pavefric, the program's own
 !> name), after removing those that writers killed outright left beside
 !> `path` (their process is gone): one naming and one clean-up for every
 !> writer, Python's included.
