@@ -159,6 +159,12 @@ def test_profile_list_format_errors_and_quoted_paths(tmp_path):
     lst.write_text("profiles/seg_0001.txt\nprofiles/seg_0002.txt\nprofiles/seg_0001.txt\n")
     r = run_program(scene, "-o", tmp_path / "o.nc")
     assert r.returncode == 1 and "is given twice (entries 1 and 3)" in r.stderr
+    # the same file by another spelling of its path (attack17 V8: it ran twice)
+    lst.write_text("profiles/seg_0001.txt\nprofiles/seg_0002.txt\n./profiles//./seg_0001.txt\n")
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1, r.stderr
+    assert ("is given twice (entries 1 and 3), as 'profiles/seg_0001.txt' and "
+            "'./profiles//./seg_0001.txt'") in r.stderr.replace(str(tmp_path) + "/", ""), r.stderr
     # a path with blanks, quoted; '#' comments; two files of the same name
     (tmp_path / "my dir").mkdir()
     (tmp_path / "other").mkdir()

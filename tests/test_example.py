@@ -79,6 +79,20 @@ def test_example_refuses_a_directory_in_the_way(tmp_path):
     assert not (tmp_path / "ex" / "ctm_wet.nml").exists()    # nothing written
 
 
+def test_example_force_never_writes_through_a_linked_directory(tmp_path):
+    """attack19 F12: with DIR/profiles a symbolic link to another directory,
+    `example DIR --force` replaced the file of that name there."""
+    (tmp_path / "mydata").mkdir()
+    (tmp_path / "mydata" / "ctm_medium.txt").write_text("measured\n")
+    (tmp_path / "e").mkdir()
+    (tmp_path / "e" / "profiles").symlink_to("../mydata")
+    r = cli("example", "e", "--force", cwd=tmp_path)
+    assert r.returncode == 1 and "Traceback" not in r.stderr, r.stderr
+    assert "'e/profiles': is a symbolic link" in r.stderr, r.stderr
+    assert (tmp_path / "mydata" / "ctm_medium.txt").read_text() == "measured\n"
+    assert sorted(p.name for p in (tmp_path / "e").iterdir()) == ["profiles"]
+
+
 @pytest.mark.parametrize("command", ["bench", "validate", "docs", "speed-gradient",
                                      "rubber-report", "surfaces"])
 def test_maintainer_commands_need_a_checkout(tmp_path, command):

@@ -178,3 +178,20 @@ def test_a_read_only_output_is_refused_and_a_private_one_stays_private(tmp_path)
     before = png.read_bytes()
     refused(cli("plot", out, "-o", png, cwd=tmp_path), png, "is read-only")
     assert png.read_bytes() == before
+
+
+def test_road_profiles_replace_only_their_own_segments(tmp_path):
+    from pavefric.surfaces import road_profiles
+
+    road = tmp_path / "road"
+    road.mkdir()
+    (road / "seg_0002.txt").write_text("my measured segment\n")
+    with pytest.raises(__import__("pavefric").PavefricError, match="is not a file this command"):
+        road_profiles(str(road), n=3, points=64)
+    assert sorted(p.name for p in road.iterdir()) == ["seg_0002.txt"]    # none written
+    assert (road / "seg_0002.txt").read_text() == "my measured segment\n"
+    (road / "seg_0002.txt").unlink()
+    first = road_profiles(str(road), n=3, points=64)
+    again = road_profiles(str(road), n=3, points=64)                   # its own: replaced
+    assert first == again and all(open(p).read().startswith("# demo road segment ")
+                                  for p in again)

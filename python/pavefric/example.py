@@ -45,12 +45,19 @@ def write_example(directory: str | os.PathLike = DEFAULT_DIRECTORY, force: bool 
 
     Raises FileExistsError naming the files that are there already unless
     ``force`` (nothing is written then), and PavefricError when a path may
-    not be written (a directory, a FIFO, a device: pavefric's writer rule).
+    not be written (a directory, a FIFO, a device: pavefric's writer rule)
+    or when a directory below ``directory`` is a symbolic link (``--force``
+    would otherwise replace files in a directory the user did not name).
     """
-    from .core import atomic_output, check_output
+    from .core import PavefricError, atomic_output, check_output
 
     root = Path(directory)
     targets = [root / name for name in FILES]
+    for sub in sorted({t.parent for t in targets if t.parent != root}):
+        if sub.is_symlink():
+            raise PavefricError(f"'{sub}': is a symbolic link (to '{os.readlink(sub)}'); "
+                                f"example writes only inside '{root}': remove the link or "
+                                "choose another directory")
     present = [t for t in targets if os.path.lexists(t)]
     if present and not force:
         raise FileExistsError(f"{', '.join(map(str, present))}: already there (--force "

@@ -70,14 +70,26 @@ def write_profile(path: str, heights_m: np.ndarray, header: str = "",
         fh.write(text)
 
 
+#: What every segment ``road_profiles`` writes begins with.
+ROAD_SIGNATURE = "# demo road segment "
+
+
 def road_profiles(directory: str, n: int = 300, points: int = 512, dx: float = CTM_DX,
                   seed: int = 7) -> list:
     """Write ``n`` seeded profiles of consecutive road segments (texture depth
     drifting along the road, as on a worn wheel path) as ``seg_0001.txt``...
-    Used by the demo batch (inputs/batch_demo.nml); returns the paths."""
+    Used by the demo batch (inputs/batch_demo.nml); returns the paths. Each
+    replaces only a segment this function wrote (its files begin "# demo
+    road segment"; ``write_text_output``): a file of the user's of that name
+    is refused, and none is written then."""
     import os
 
+    from .core import check_output, write_text_output
+
     os.makedirs(directory, exist_ok=True)
+    for k in range(n):
+        check_output(os.path.join(directory, f"seg_{k + 1:04d}.txt"),
+                     signature=ROAD_SIGNATURE)
     rng = np.random.default_rng(seed)
     rms_along = 0.35e-3 + 0.25e-3 * np.sin(np.linspace(0, 3 * np.pi, n)) ** 2
     paths = []
@@ -85,9 +97,8 @@ def road_profiles(directory: str, n: int = 300, points: int = 512, dx: float = C
         z = spectral_profile(points, dx, rms=float(rms_along[k] * rng.uniform(0.85, 1.15)),
                              skew=-0.5, seed=seed * 100000 + k)
         path = os.path.join(directory, f"seg_{k + 1:04d}.txt")
-        with open(path, "w", encoding="utf-8") as fh:
-            fh.write("# demo road segment %d of %d (pavefric.surfaces.road_profiles, seed %d)\n"
-                     "height_mm\n" % (k + 1, n, seed))
-            fh.write("\n".join(f"{1e3 * v:.4f}" for v in z) + "\n")
+        text = (f"{ROAD_SIGNATURE}{k + 1} of {n} (pavefric.surfaces.road_profiles, seed {seed})"
+                "\nheight_mm\n" + "\n".join(f"{1e3 * v:.4f}" for v in z) + "\n")
+        write_text_output(path, text, ROAD_SIGNATURE)
         paths.append(path)
     return paths

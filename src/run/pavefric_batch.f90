@@ -511,22 +511,26 @@ contains
    end subroutine list_entry
 
    !> Profile names: the file names without directory and extension, or,
-   !> when two files share a name, their paths below the common directory.
-   !> A profile given twice is an error (names index the output).
-   subroutine profile_names(scene, paths, names, error)
+   !> when two files share a name, their paths below the common directory,
+   !> each path read without its "." components and doubled slashes (so
+   !> that 'seg/a.txt' and './seg/a.txt' are one profile). A profile given
+   !> twice is an error (names index the output).
+   subroutine profile_names(scene, paths_given, names, error)
       type(scene_type), intent(in) :: scene
-      type(string_type), intent(in) :: paths(:)
+      type(string_type), intent(in) :: paths_given(:)
       type(string_type), allocatable, intent(out) :: names(:)
       type(error_type), allocatable, intent(out) :: error
+      type(string_type), allocatable :: paths(:)
       integer :: i, j, n, common
       character(len=:), allocatable :: where
-      n = size(paths)
-      allocate(names(n), stat=i)
+      n = size(paths_given)
+      allocate(names(n), paths(n), stat=i)
       if (i /= 0) then
          call no_memory(n, "profile names", error)
          return
       end if
       do i = 1, n
+         call tidy_path(paths_given(i)%s, paths(i)%s)
          names(i)%s = base_name(paths(i)%s)
       end do
       call first_duplicate(names, i, j)
@@ -558,9 +562,36 @@ contains
       where = "&batch profiles = '" // scene%batch_profiles // "'"
       if (len(scene%batch_profile_list) > 0) where = "&batch profile_list = '" // &
          & scene%batch_profile_list // "'"
-      call fatal_error(error, where // ": profile '" // paths(i)%s // "' is given twice " // &
-         & "(entries " // to_str(min(i, j)) // " and " // to_str(max(i, j)) // ")")
+      where = where // ": profile '" // paths_given(i)%s // "' is given twice (entries " // &
+         & to_str(min(i, j)) // " and " // to_str(max(i, j)) // ")"
+      if (paths_given(i)%s /= paths_given(j)%s) where = where // ", as '" // &
+         & paths_given(min(i, j))%s // "' and '" // paths_given(max(i, j))%s // "'"
+      call fatal_error(error, where)
    end subroutine profile_names
+
+   !> `path` without its "." components ("./a", "a/./b") and doubled
+   !> slashes: the same file by its text alone ("a/../b" is left as it is:
+   !> a link would make it another file).
+   pure subroutine tidy_path(path, tidy)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: tidy
+      integer :: k
+      tidy = path
+      do
+         k = index(tidy, "//")
+         if (k == 0) exit
+         tidy = tidy(1:k) // tidy(k+2:)
+      end do
+      do
+         k = index(tidy, "/./")
+         if (k == 0) exit
+         tidy = tidy(1:k) // tidy(k+3:)
+      end do
+      do while (len(tidy) > 2)
+         if (tidy(1:2) /= "./") exit
+         tidy = tidy(3:)
+      end do
+   end subroutine tidy_path
 
    pure function strip_extension(path) result(out)
       character(len=*), intent(in) :: path
