@@ -1119,6 +1119,20 @@ def performance_report(report: Path, results: dict, lines: list[str]) -> None:
         "a ratio to a loop whose speed depends on the host's branch prediction more "
         "than the core's does.",
         "",
+        "In the session after (2026-12-07, nineteenth) a single speed runs faster with "
+        "the same bits: with one lane (a batch of one speed, a long profile) the "
+        "Kelvin-Voigt step (`lane_step_kv`) and the dry balance's first pass "
+        "(`lane_gaps_from`) keep their sums and bounds in registers, where through the "
+        "lanes' arrays each element's additions waited on a store and a load, and the "
+        "contacts on clamped facets are counted in the step's pass (the same operations "
+        "in the same order: the regression record unchanged). Side by side, `python "
+        "tools/compare_builds.py <before> <after> --runs kelvin_voigt "
+        "kelvin_voigt_one_speed paper_wet`: one speed on 65,536 points 0.0226 and "
+        "0.0191 s a run, the 4-speed runs unchanged (0.0415 and 0.0409 s; the paper's "
+        "wet model 0.1001 and 0.1003 s). The rows that run one speed move with it (the "
+        "10,000,000-point profile, the scaling in profile length); the 6-speed sweep "
+        "the kernel targets are measured on does not.",
+        "",
         "## Where the time goes",
         "",
         "`tools/profile_kernel.sh` profiles three workloads with `perf` (one thread, no "
