@@ -94,7 +94,17 @@ def test_one_point_profile_names_the_pad_not_the_plates(tmp_path):
 
 def test_empty_profile_file(tmp_path):
     scene = write_scene(tmp_path, profile_text="")
-    assert_rejected(tmp_path, scene, "&surface profile_file", "holds no heights")
+    assert_rejected(tmp_path, scene, "&surface profile_file", "holds no heights",
+                    "the file is empty (0 bytes")
+
+
+def test_a_kernel_file_is_named_empty(tmp_path):
+    """A file of /proc reports a size of 0 and read as empty: the message said it
+    held 'only comments or blank lines' (it has text: no profile's)."""
+    scene = write_scene(tmp_path, groups={"surface": "profile_file = '/proc/self/stat'"})
+    line = assert_rejected(tmp_path, scene, "&surface profile_file = '/proc/self/stat'",
+                           "the file is empty (0 bytes; a file of /proc or /sys")
+    assert "only comments" not in line
 
 
 def test_unreadable_profile_file(tmp_path):

@@ -1,6 +1,7 @@
 """Batch output conventions (issue 10 item 10), exit codes and the summary
 (item 7), the profile list (items 8 and 10), plots of batch files."""
 import json
+import os
 import subprocess
 import sys
 import warnings
@@ -165,6 +166,20 @@ def test_profile_list_format_errors_and_quoted_paths(tmp_path):
     assert r.returncode == 1, r.stderr
     assert ("is given twice (entries 1 and 3), as 'profiles/seg_0001.txt' and "
             "'./profiles//./seg_0001.txt'") in r.stderr.replace(str(tmp_path) + "/", ""), r.stderr
+    # one file by two names (a symbolic link, a hard link: it ran twice)
+    links = tmp_path / "links"
+    links.mkdir()
+    (links / "soft.txt").symlink_to(tmp_path / "profiles" / "seg_0001.txt")
+    os.link(tmp_path / "profiles" / "seg_0002.txt", links / "hard.txt")
+    for twin, entries in (("soft.txt", "1 and 2"), ("hard.txt", "2 and 3")):
+        lst.write_text("profiles/seg_0001.txt\nprofiles/seg_0002.txt\nlinks/" + twin + "\n"
+                       if twin == "hard.txt" else
+                       "profiles/seg_0001.txt\nlinks/soft.txt\nprofiles/seg_0002.txt\n")
+        r = run_program(scene, "-o", tmp_path / "o.nc")
+        assert r.returncode == 1, r.stderr
+        assert f"is given twice (entries {entries})" in r.stderr and "(one file)" in r.stderr \
+            and f"'links/{twin}'" in r.stderr.replace(str(tmp_path) + "/", ""), r.stderr
+        assert not (tmp_path / "o.nc").exists()
     # a path with blanks, quoted; '#' comments; two files of the same name
     (tmp_path / "my dir").mkdir()
     (tmp_path / "other").mkdir()

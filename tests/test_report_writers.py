@@ -57,6 +57,19 @@ def test_docs_pages_replace_only_themselves(tmp_path):
         assert r.returncode == 0, r.stderr
     assert (tmp_path / "i.md").read_text().startswith("# Scene namelist reference")
     assert not [p for p in tmp_path.iterdir() if ".tmp" in p.name]
+    # one path given to both pages, however spelled, whether or not it exists
+    # yet: refused before either is written (it would hold only the second)
+    for page in ("new.md", "i.md"):
+        before = (tmp_path / page).read_bytes() if (tmp_path / page).exists() else None
+        r = cli("docs", "--inputs", page, "--outputs", f"./{page}", cwd=tmp_path)
+        assert r.returncode != 0 and "Traceback" not in r.stderr, r.stderr
+        # (a page not yet written is the other by its path; one written, by the core's
+        # test of the file's identity)
+        said = "another file this command reads or writes" if page == "new.md" else \
+            "would destroy an input"
+        assert f"'{page}'" in r.stderr and said in r.stderr, r.stderr
+        after = (tmp_path / page).read_bytes() if (tmp_path / page).exists() else None
+        assert after == before
 
 
 def test_accuracy_refuses_before_its_runs(tmp_path):

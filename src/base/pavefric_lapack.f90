@@ -5,7 +5,7 @@ module pavefric_lapack
    implicit none
    private
 
-   public :: dlasrt, dgels
+   public :: dlasrt
 
    interface
       !> Sort d(1:n): increasing with id = 'I', decreasing with 'D'.
@@ -16,16 +16,6 @@ module pavefric_lapack
          real(wp), intent(inout) :: d(*)
          integer, intent(out) :: info
       end subroutine dlasrt
-
-      !> Least squares by QR: min |A x - B| for a full-rank m x n A.
-      pure subroutine dgels(trans, m, n, nrhs, a, lda, b, ldb, work, lwork, info)
-         import :: wp
-         character, intent(in) :: trans
-         integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
-         real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-         real(wp), intent(out) :: work(*)
-         integer, intent(out) :: info
-      end subroutine dgels
    end interface
 
 end module pavefric_lapack

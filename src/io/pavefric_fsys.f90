@@ -14,7 +14,8 @@ module pavefric_fsys
       & join_path, is_absolute
    public :: output_guard_type, check_output_path, canonical_path, os_message
    public :: register_temporary, release_temporary, install_signal_cleanup, test_pause
-   public :: remove_stale_temporaries, setting, is_symlink
+   public :: remove_stale_temporaries, setting, is_symlink, temporary_path, &
+      & is_temporary_name, file_identity
 
    !> Kinds of file (pavefric_file_id in pavefric_posix.c).
    integer, parameter :: kind_missing = 0, kind_regular = 1
@@ -108,6 +109,19 @@ module pavefric_fsys
          character(kind=c_char), intent(in) :: path(*)
          integer(c_int) :: removed
       end function c_remove_stale
+      function c_temporary_name(path, out, outlen) bind(C, name="pavefric_temporary_name") &
+            & result(need)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         character(kind=c_char), intent(out) :: out(*)
+         integer(c_int), value :: outlen
+         integer(c_int) :: need
+      end function c_temporary_name
+      function c_temporary_pid(base, name) bind(C, name="pavefric_temporary_pid") result(pid)
+         import :: c_char, c_long_long
+         character(kind=c_char), intent(in) :: base(*), name(*)
+         integer(c_long_long) :: pid
+      end function c_temporary_pid
       subroutine c_test_pause(point) bind(C, name="pavefric_test_pause")
          import :: c_char
          character(kind=c_char), intent(in) :: point(*)
@@ -339,6 +353,21 @@ contains
          & stat_input)
    end subroutine guard_check_input
 
+   !> A regular file's identity as text, '<device>:<inode>' (one file by any
+   !> name: symbolic and hard links, '..'); empty where nothing is there or it
+   !> cannot be inspected (its reader says why).
+   subroutine file_identity(path, id)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: id
+      integer(c_long_long) :: dev, ino
+      integer(c_int) :: kind, stat
+      id = ""
+      if (len(path) == 0) return
+      stat = c_file_id(path // c_null_char, dev, ino, kind)
+      if (stat /= 0 .or. kind /= kind_regular) return
+      id = to_str(dev) // ":" // to_str(ino)
+   end subroutine file_identity
+
    !> The canonical absolute path of an existing file (symbolic links, '.'
    !> and '..' resolved); empty if it cannot be resolved.
    subroutine canonical_path(path, full)
@@ -383,6 +412,34 @@ contains
       integer :: removed
       removed = int(c_remove_stale(path // c_null_char))
    end function remove_stale_temporaries
+
+   !> The name `path` is first written under, `<path>.tmp<PID>.pavefric`
+   !> (made in pavefric_posix.c, which alone knows the form; empty if it
+   !> cannot be formed).
+   subroutine temporary_path(path, tmp)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: tmp
+      integer(c_int) :: need
+      allocate(character(len=len(path) + 40) :: tmp)
+      need = c_temporary_name(path // c_null_char, tmp, len(tmp, c_int))
+      if (need > len(tmp)) then
+         deallocate(tmp)
+         allocate(character(len=need) :: tmp)
+         need = c_temporary_name(path // c_null_char, tmp, len(tmp, c_int))
+      end if
+      if (need < 0) then
+         tmp = ""
+      else
+         tmp = tmp(1:need)
+      end if
+   end subroutine temporary_path
+
+   !> Whether the file name `name` is a pavefric temporary of a file named
+   !> `base` (`<base>.tmp<PID>.pavefric`; both last path components).
+   logical function is_temporary_name(base, name)
+      character(len=*), intent(in) :: base, name
+      is_temporary_name = c_temporary_pid(base // c_null_char, name // c_null_char) > 0
+   end function is_temporary_name
 
    !> Forget the temporary file `path` once it is renamed into place or removed.
    subroutine release_temporary(path)

@@ -16,19 +16,18 @@ module pavefric_netcdf
       & dim_speed
    use pavefric_model, only: param_spec_type, parameter_table, kind_real, &
       & kind_integer, kind_logical, kind_text, kind_real_list
-   use pavefric_fsys, only: rename_file, remove_file, process_id, register_temporary, &
+   use pavefric_fsys, only: rename_file, remove_file, register_temporary, &
       & release_temporary, test_pause, output_guard_type, check_output_path, &
-      & remove_stale_temporaries, setting
+      & remove_stale_temporaries, setting, temporary_path
    use pavefric_format, only: to_str
    implicit none
    private
 
    public :: write_results, temporary_name, commit_temporary, check_replaceable
-   public :: check_text_replaceable, check_png_replaceable, temporary_suffix
+   public :: check_text_replaceable, check_png_replaceable
 
    !> What ends the name of every temporary a pavefric writer makes
    !> (`<output>.tmp<PID>.pavefric`).
-   character(len=*), parameter :: temporary_suffix = ".pavefric"
 
    !> What check_replaceable and check_text_replaceable advise when they
    !> refuse a file.
@@ -240,7 +239,7 @@ contains
       character(len=:), allocatable, intent(out) :: tmp
       integer :: removed
       removed = remove_stale_temporaries(path)
-      tmp = path // ".tmp" // to_str(process_id()) // temporary_suffix
+      call temporary_path(path, tmp)
       call register_temporary(tmp)
    end subroutine temporary_name
 

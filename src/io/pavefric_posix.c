@@ -102,14 +102,54 @@ int pavefric_is_symlink(const char *path)
 
 /* ---- stale temporaries -------------------------------------------------- */
 
-/* What ends every temporary's name (pavefric_netcdf's temporary_suffix). */
+/* What ends every temporary's name. The form `<path>.tmp<PID>.pavefric` is
+ * made and recognised here only: pavefric_temporary_name builds it (the
+ * Fortran writers and Python's atomic_output call it), and
+ * pavefric_temporary_pid recognises it (the sweep below and the batch,
+ * which leaves its own temporaries out of a directory's profiles). */
 #define PF_TEMP_SUFFIX ".pavefric"
+
+/* `<path>.tmp<this process's PID>.pavefric` into out (outlen bytes, not
+ * terminated). Returns its length, which may exceed outlen (call again with
+ * a larger buffer), or -1. */
+int pavefric_temporary_name(const char *path, char *out, int outlen)
+{
+    char tail[64];
+    int nt = snprintf(tail, sizeof tail, ".tmp%lld" PF_TEMP_SUFFIX, (long long)getpid());
+    size_t np = strlen(path);
+    if (nt < 0 || np > (size_t)INT_MAX - (size_t)nt) return -1;
+    if (np + (size_t)nt <= (size_t)outlen) {
+        memcpy(out, path, np);
+        memcpy(out + np, tail, (size_t)nt);
+    }
+    return (int)(np + (size_t)nt);
+}
+
+/* The PID in `name` when it is exactly `<base>.tmp<PID>.pavefric` (base a
+ * file's last path component, the PID one to nine digits, not 0); else 0. */
+long long pavefric_temporary_pid(const char *base, const char *name)
+{
+    size_t baselen = strlen(base);
+    const char *p, *digits;
+    long long pid = 0;
+    if (baselen == 0 || strncmp(name, base, baselen) != 0) return 0;
+    p = name + baselen;
+    if (strncmp(p, ".tmp", 4) != 0) return 0;
+    digits = p += 4;
+    for (; *p >= '0' && *p <= '9'; ++p) {
+        if (p - digits >= 9) return 0;             /* more digits than a PID has */
+        pid = pid * 10 + (*p - '0');
+    }
+    if (p == digits || strcmp(p, PF_TEMP_SUFFIX) != 0) return 0;
+    return pid;
+}
 
 /* Remove the temporaries `<path>.tmp<PID>.pavefric` that a writer killed
  * outright (SIGKILL, a node failure: no handler runs) left beside `path`:
  * regular files of this user whose PID names no live process on this host,
- * other than this process. Only names of exactly that form: a user's own
- * `<path>.tmp123` (or any other name) is never touched. Each writer calls it before it starts its own
+ * other than this process. Only names of exactly that form
+ * (pavefric_temporary_pid): a user's own `<path>.tmp123`, or any other
+ * name, is never touched. Each writer calls it before it starts its own
  * temporary, so a re-run cleans up after the run that was killed. On a
  * file system shared between hosts a PID is only checked on this host: two
  * hosts writing one output at once is refused nowhere else either.
@@ -137,19 +177,9 @@ int pavefric_remove_stale_temporaries(const char *path)
     d = opendir(dir);
     if (!d) return 0;
     while ((e = readdir(d)) != NULL) {
-        const char *n = e->d_name, *p;
-        long long pid = 0;
+        const char *n = e->d_name;
+        long long pid = pavefric_temporary_pid(base, n);
         struct stat st;
-        if (strncmp(n, base, baselen) != 0 || strncmp(n + baselen, ".tmp", 4) != 0) continue;
-        p = n + baselen + 4;
-        {
-            const char *digits = p;
-            for (; *p >= '0' && *p <= '9'; ++p) {
-                if (p - digits >= 9) break;            /* more digits than a PID has */
-                pid = pid * 10 + (*p - '0');
-            }
-            if (p == digits || strcmp(p, PF_TEMP_SUFFIX) != 0) continue;
-        }
         if (pid <= 0 || (pid_t)pid == self) continue;
         if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue;   /* alive, or not ours to ask */
         if (snprintf(full, sizeof full, "%s/%s", dir, n) >= (int)sizeof full) continue;

@@ -119,6 +119,15 @@ contains
       integer :: unit, ios, st
       call open_stream(path, unit, nbytes, error)
       if (allocated(error)) return
+      if (nbytes == 0) then
+         ! (the kernel's files, /proc and /sys, report no size either: they
+         ! read as empty here, and their text is no profile)
+         close(unit)
+         call fatal_error(error, "&surface profile_file = '" // path // "': holds no " // &
+            & "heights: the file is empty (0 bytes; a file of /proc or /sys reports no " // &
+            & "size and is not read: copy it to a file first)")
+         return
+      end if
       allocate(character(len=nbytes) :: buf, stat=st)
       if (st /= 0) then
          close(unit)

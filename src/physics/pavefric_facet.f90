@@ -48,6 +48,8 @@ contains
    !> closed profile, one-sided at the ends of an open one), theta clamped to
    !> [-theta_max, theta_max]; `clamped(k)` says whether the clamp acted.
    !> FF = F tan(theta) equals F (sin a + mu cos a)/(cos a - mu sin a) (Eq. 10).
+   !> The tangent is formed by facet_tangent's addition formula (no atan and
+   !> tan per sample: they were 6 % of a 10-million-point run).
    pure subroutine facet_friction(z, dx, closed, mu_loc, theta_max_deg, tan_theta, clamped, &
          & slopes)
       real(wp), intent(in) :: z(:), dx, mu_loc, theta_max_deg
@@ -56,11 +58,10 @@ contains
       logical, intent(out) :: clamped(:)
       !> Optional: the facet slopes tan(alpha_k) themselves.
       real(wp), intent(out), optional :: slopes(:)
-      real(wp) :: slope, theta, theta_max, phi
+      real(wp) :: slope, tan_max
       integer :: k, n
       n = size(z)
-      theta_max = theta_max_deg * pi / 180.0_wp
-      phi = atan(mu_loc)
+      tan_max = tan(theta_max_deg * pi / 180.0_wp)
       do k = 1, n
          if (n == 1) then
             slope = 0.0_wp
@@ -80,10 +81,7 @@ contains
             slope = (z(k+1) - z(k-1)) / (2.0_wp * dx)
          end if
          if (present(slopes)) slopes(k) = slope
-         theta = atan(slope) + phi
-         clamped(k) = abs(theta) > theta_max
-         theta = max(-theta_max, min(theta_max, theta))
-         tan_theta(k) = tan(theta)
+         call facet_tangent(slope, mu_loc, tan_max, tan_theta(k), clamped(k))
       end do
    end subroutine facet_friction
 

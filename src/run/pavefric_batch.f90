@@ -29,8 +29,8 @@ module pavefric_batch
    use pavefric_texture, only: texture_type, texture_metrics
    use pavefric_fsys, only: dir_name, base_name, join_path, make_directory
    use pavefric_fsys, only: output_guard_type, check_output_path, os_message, is_symlink, &
-      & setting, canonical_path
-   use pavefric_netcdf, only: check_replaceable, temporary_suffix
+      & setting, canonical_path, is_temporary_name, file_identity
+   use pavefric_netcdf, only: check_replaceable
    use pavefric_batch_hash, only: sha256_hex, sha256_file, digest_len, no_digest
    use pavefric_batch_types, only: batch_type, block_type, string_type, block_pack, &
       & block_unpack, block_values, block_allocate, block_clear, status_computed, status_failed, &
@@ -111,7 +111,7 @@ contains
       type(output_guard_type) :: own(2)
       type(error_type), allocatable :: clash
       type(string_type), allocatable :: kept(:)
-      character(len=:), allocatable :: out_dir, tmp_prefix, dir, name
+      character(len=:), allocatable :: out_dir, out_name, dir, name
       logical :: keep, ours(2)
       integer :: i, k, n
       ! (check_output_path's identity of each; an error there is the
@@ -134,8 +134,7 @@ contains
       end if
       call dir_of(output, dir)
       call canonical_path(dir, out_dir)
-      call file_of(output, tmp_prefix)
-      tmp_prefix = tmp_prefix // ".tmp"
+      call file_of(output, out_name)
       allocate(kept(size(paths)))
       n = 0
       do i = 1, size(paths)
@@ -150,7 +149,7 @@ contains
          end do
          if (keep) then
             call file_of(paths(i)%s, name)
-            if (is_temporary_of(name)) then
+            if (is_temporary_name(out_name, name)) then
                call dir_of(paths(i)%s, dir)
                call canonical_path(dir, name)
                keep = len(name) == 0 .or. name /= out_dir
@@ -186,21 +185,6 @@ contains
          if (len(d) == 0) d = "."
       end subroutine dir_of
 
-      !> Whether a base name is tmp_prefix, digits and temporary_suffix (a
-      !> writer's temporary, pavefric_netcdf's temporary_name).
-      logical function is_temporary_of(name)
-         character(len=*), intent(in) :: name
-         integer :: k, last
-         is_temporary_of = .false.
-         last = len(name) - len(temporary_suffix)
-         if (last <= len(tmp_prefix)) return
-         if (name(1:len(tmp_prefix)) /= tmp_prefix) return
-         if (name(last+1:) /= temporary_suffix) return
-         do k = len(tmp_prefix) + 1, last
-            if (index("0123456789", name(k:k)) == 0) return
-         end do
-         is_temporary_of = .true.
-      end function is_temporary_of
    end subroutine drop_own_files
 
    !> Read a batch scene and expand its profiles: everything but the journal
@@ -514,7 +498,8 @@ contains
    !> when two files share a name, their paths below the common directory,
    !> each path read without its "." components and doubled slashes (so
    !> that 'seg/a.txt' and './seg/a.txt' are one profile). A profile given
-   !> twice is an error (names index the output).
+   !> twice is an error (names index the output), and so is one file given
+   !> by two names (symbolic or hard links: the same device and inode).
    subroutine profile_names(scene, paths_given, names, error)
       type(scene_type), intent(in) :: scene
       type(string_type), intent(in) :: paths_given(:)
@@ -529,15 +514,24 @@ contains
          call no_memory(n, "profile names", error)
          return
       end if
+      where = "&batch profiles = '" // scene%batch_profiles // "'"
+      if (len(scene%batch_profile_list) > 0) where = "&batch profile_list = '" // &
+         & scene%batch_profile_list // "'"
+      ! one file by two names (symbolic or hard links) is one profile too
+      do i = 1, n
+         call file_identity(paths_given(i)%s, names(i)%s)
+         if (len(names(i)%s) == 0) names(i)%s = "#" // to_str(i)     ! read later, or refused
+      end do
+      if (.not. looked(i, j)) return
+      if (i > 0) then
+         call given_twice(i, j)
+         return
+      end if
       do i = 1, n
          call tidy_path(paths_given(i)%s, paths(i)%s)
          names(i)%s = base_name(paths(i)%s)
       end do
-      call first_duplicate(names, i, j)
-      if (i < 0) then
-         call no_memory(n, "profile names", error)
-         return
-      end if
+      if (.not. looked(i, j)) return
       if (i == 0) return
       ! the longest directory prefix every path shares
       common = 0
@@ -553,20 +547,30 @@ contains
       do i = 1, n
          names(i)%s = strip_extension(paths(i)%s(common+1:))
       end do
-      call first_duplicate(names, i, j)
-      if (i < 0) then
-         call no_memory(n, "profile names", error)
-         return
-      end if
+      if (.not. looked(i, j)) return
       if (i == 0) return
-      where = "&batch profiles = '" // scene%batch_profiles // "'"
-      if (len(scene%batch_profile_list) > 0) where = "&batch profile_list = '" // &
-         & scene%batch_profile_list // "'"
-      where = where // ": profile '" // paths_given(i)%s // "' is given twice (entries " // &
-         & to_str(min(i, j)) // " and " // to_str(max(i, j)) // ")"
-      if (paths_given(i)%s /= paths_given(j)%s) where = where // ", as '" // &
-         & paths_given(min(i, j))%s // "' and '" // paths_given(max(i, j))%s // "'"
-      call fatal_error(error, where)
+      call given_twice(i, j)
+   contains
+      !> The first two equal entries of names (i = 0: none); .false. when
+      !> there was no memory to look (the error set).
+      logical function looked(i, j)
+         integer, intent(out) :: i, j
+         call first_duplicate(names, i, j)
+         looked = i >= 0
+         if (.not. looked) call no_memory(n, "profile names", error)
+      end function looked
+
+      !> The error for entries i and j naming one profile (one name, or one
+      !> file by two names).
+      subroutine given_twice(i, j)
+         integer, intent(in) :: i, j
+         where = where // ": profile '" // paths_given(i)%s // "' is given twice (entries " // &
+            & to_str(min(i, j)) // " and " // to_str(max(i, j)) // ")"
+         if (paths_given(i)%s /= paths_given(j)%s) where = where // ", as '" // &
+            & paths_given(min(i, j))%s // "' and '" // paths_given(max(i, j))%s // &
+            & "' (one file)"
+         call fatal_error(error, where)
+      end subroutine given_twice
    end subroutine profile_names
 
    !> `path` without its "." components ("./a", "a/./b") and doubled

@@ -347,7 +347,7 @@ def _write_report(report: Path, res, rows, pred, figs, description, mpd_mm, tabl
     d = res["diagnostic"]
     lines += [
         "",
-        f"Paper: R² 0.9875 (20 km/h), 0.9301 (60 km/h), 0.9653 (all speeds), slope 0.98.",
+        "Paper: R² 0.9875 (20 km/h), 0.9301 (60 km/h), 0.9653 (all speeds), slope 0.98.",
         "",
         f"**Target (R² ≥ 0.95 and slope in [0.95, 1.05] over all speeds, 40 and 60 km/h "
         f"predicted): {'met' if ok else 'not met'}.**",
