@@ -145,3 +145,11 @@ def test_the_shared_check_is_public(tmp_path):
     pavefric.check_output(tmp_path / "out.nc", [tmp_path / "in.txt"])     # fine
     with pytest.raises(pavefric.PavefricError, match="would destroy an input"):
         pavefric.check_output(tmp_path / "in.txt", [tmp_path / "in.txt"])
+    # inputs given as an iterator are read once, whole: the output among the
+    # later ones (existing or not yet written) is still found; None names nothing
+    with pytest.raises(pavefric.PavefricError, match="would destroy an input"):
+        pavefric.check_output(tmp_path / "in.txt",
+                              iter([None, tmp_path / "new.md", tmp_path / "in.txt"]))
+    with pytest.raises(pavefric.PavefricError, match="is also"):
+        pavefric.check_output(tmp_path / "new.md",
+                              (p for p in [None, "", tmp_path / "in.txt", tmp_path / "new.md"]))

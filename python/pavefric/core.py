@@ -204,15 +204,17 @@ def check_output(path: str | os.PathLike, inputs=(), replaces: str | None = None
         replaces = "text:" + signature
     if not os.fspath(path):
         raise PavefricError("the output path is empty: give a file name")
+    # (read once: an iterator is read here and below; None and '' name nothing)
+    inputs = [p for p in inputs if p]
     # an input that does not exist yet (another output of the same command,
     # written later) is the same file only by its path
     target = os.path.abspath(os.fspath(path))
     for p in inputs:
-        if p and not os.path.lexists(p) and os.path.abspath(os.fspath(p)) == target:
+        if not os.path.lexists(p) and os.path.abspath(os.fspath(p)) == target:
             raise PavefricError(f"the output path '{os.fspath(path)}': is also '{os.fspath(p)}', "
                                 "another file this command reads or writes; give each its own "
                                 "path")
-    joined = "\n".join(os.fspath(p) for p in inputs if p)
+    joined = "\n".join(os.fspath(p) for p in inputs)
     # (f2py takes no empty strings: a blank says no kind)
     status, message = _core.pf_check_output(_b(os.fspath(path)), _b(joined) or b"\n",
                                             _b(replaces or " "), 1 if writable else 0)

@@ -25,7 +25,6 @@ def save_figure(fig, output: str | os.PathLike, inputs: Iterable = ()) -> str:
     from . import __version__
     from .core import atomic_output
 
-    inputs = [p for p in inputs if p is not None]
     with atomic_output(_png_path(output), inputs, replaces="png") as tmp:
         fig.savefig(tmp, format="png", metadata={"Software": f"{PNG_SOFTWARE} {__version__}"})
     return os.fspath(output)
@@ -37,8 +36,7 @@ def _checked(output, inputs: Iterable = (), writable: bool = True) -> None:
     directory exists and may be written (False where the caller makes it)."""
     from .core import check_output
 
-    check_output(_png_path(output), [p for p in inputs if p is not None], replaces="png",
-                 writable=writable)
+    check_output(_png_path(output), inputs, replaces="png", writable=writable)
 
 
 def _png_path(output) -> Path:

@@ -373,7 +373,7 @@ def write_dma(path: str | os.PathLike, data: DMAData, header: str = "",
         rows.append(f"{t:g},{f:.6g},{s:.6e},{l:.6e}")
     if signature is None:
         signature = rows[0].splitlines()[0]
-    with atomic_output(path, [p for p in inputs if p], signature=signature) as tmp:
+    with atomic_output(path, inputs, signature=signature) as tmp:
         tmp.write_text("\n".join(rows) + "\n", encoding="utf-8")
     return path
 
