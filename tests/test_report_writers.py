@@ -114,6 +114,18 @@ def test_maintainers_reports_refuse_a_users_file_before_the_work(tmp_path, comma
     assert not [p for p in tmp_path.iterdir() if p.name != "notes.md"]
 
 
+@pytest.mark.parametrize("side", ["comparison.csv", "validation.json"])
+def test_validate_refuses_a_users_side_file_before_the_work(tmp_path, side):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / side).write_text(NOTES)
+    r = cli("validate", "--report", tmp_path / "v.md", "--outdir", out, cwd=ROOT, timeout=120)
+    refused(r, out / side)
+    assert (out / side).read_text() == NOTES
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+    assert [p.name for p in out.iterdir()] == [side]
+
+
 def test_rubber_report_never_writes_over_its_compound(tmp_path):
     compound = tmp_path / "c.nml"
     compound.write_text((ROOT / "inputs/rubber/tread_compound.nml").read_text())

@@ -153,3 +153,23 @@ def test_the_shared_check_is_public(tmp_path):
     with pytest.raises(pavefric.PavefricError, match="is also"):
         pavefric.check_output(tmp_path / "new.md",
                               (p for p in [None, "", tmp_path / "in.txt", tmp_path / "new.md"]))
+
+
+def test_a_text_writer_writes_only_text_with_its_signature(tmp_path):
+    """write_text_output refuses text that does not begin with its signature
+    (a file it could never replace again), writing nothing; with it, it
+    replaces its own file and refuses a user's."""
+    from pavefric.core import write_text_output
+
+    out = tmp_path / "r.md"
+    with pytest.raises(ValueError, match="does not begin with '# pavefric test'"):
+        write_text_output(out, "# something else\n", "# pavefric test")
+    assert list(tmp_path.iterdir()) == []
+    for text in ("# pavefric test: one\n", "# pavefric test: two\n"):
+        assert write_text_output(out, text, "# pavefric test") == out
+        assert out.read_text() == text
+    out.write_text("the user's\n")
+    with pytest.raises(pavefric.PavefricError, match="not a file this command wrote"):
+        write_text_output(out, "# pavefric test: three\n", "# pavefric test")
+    assert out.read_text() == "the user's\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.md"]
