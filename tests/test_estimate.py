@@ -291,9 +291,91 @@ def test_python_warns_before_a_long_run(monkeypatch, profile_m, tmp_path):
 def test_a_run_that_cannot_fit_is_refused_before_allocating(profile_m):
     """Series of 4096 elements per sample at 60 speeds: terabytes. Refused
     with the estimate and the knobs to change; the Python process lives on."""
-    with pytest.raises(MemoryError, match=r"needs about \d+ MiB.*elements_per_sample"):
+    with pytest.raises(pavefric.PavefricMemoryError,
+                       match=r"needs about \d+ MiB.*elements_per_sample"):
         pavefric.simulate(profile_m, DX, list(np.linspace(1, 120, 60)), series=True,
                           elements_per_sample=4096)
+
+
+def test_memory_errors_are_pavefric_errors(profile_m):
+    """An element_length of 1e-300 (in range) asks for more points than can
+    be held: a PavefricError (attack20: a bare MemoryError escaped `except
+    pavefric.PavefricError`), still a MemoryError."""
+    with pytest.raises(pavefric.PavefricMemoryError, match=r"&pad element_length = 1e-300"):
+        pavefric.simulate(profile_m, DX, [20.0], element_length=1e-300)
+    assert issubclass(pavefric.PavefricMemoryError, pavefric.PavefricError)
+    assert issubclass(pavefric.PavefricMemoryError, MemoryError)
+
+
+def test_a_pad_of_millions_of_elements_is_announced_at_once(tmp_path):
+    """&pad element_length = 1e-9 m on a short profile: a pad of 20,000,000
+    elements. The probe that foresees min_contacts' refinement ran on it
+    before the estimate was printed or the memory checked (attack20: no
+    output in 120 s and 6.9 GB resident; 79 s of silence at 1e-8). The
+    probe's cost is now bounded: the estimate (or, where the machine is
+    smaller, the refusal for memory) is the first thing said, at once. (The
+    60 s below only tells a hang from an answer.)"""
+    import select
+
+    scene = write_scene(tmp_path, profile=np.sin(np.arange(128) * 0.3) * 0.5e-3,
+                        groups={"pad": "element_length = 1e-9",
+                                "operation": "speeds_kmh = 20"})
+    proc = subprocess.Popen([str(program()), str(scene), "-o", str(tmp_path / "o.nc")],
+                            stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    try:
+        ready, _, _ = select.select([proc.stderr], [], [], 60.0)
+        assert ready, "nothing said in 60 s"
+        line = proc.stderr.readline()
+        assert ("estimate:" in line and "element-steps" in line) or \
+            ("needs about" in line and "element_length" in line), line
+    finally:
+        proc.kill()
+        proc.wait(timeout=60)
+    assert not (tmp_path / "o.nc").exists()
+    # the library: the cost warning (or the refusal) before the run, as soon
+    code = ("import warnings, numpy as np, pavefric\n"
+            "warnings.simplefilter('error', pavefric.PavefricCostWarning)\n"
+            "try:\n"
+            "    pavefric.simulate(np.sin(np.arange(128) * 0.3) * 0.5e-3, 0.87e-3, [20.0],\n"
+            "                      element_length=1e-9)\n"
+            "except (pavefric.PavefricCostWarning, pavefric.PavefricMemoryError) as w:\n"
+            "    print('announced:', w)\n")
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    try:
+        ready, _, _ = select.select([proc.stdout], [], [], 60.0)
+        assert ready, "nothing said in 60 s"
+        assert proc.stdout.readline().startswith("announced:")
+    finally:
+        proc.kill()
+        proc.wait(timeout=60)
+
+
+def test_the_run_command_warns_of_the_cost_before_the_run(tmp_path):
+    """`python -m pavefric run` recorded every warning and replayed them when
+    the run had finished, so its cost warning ('... s on one thread', said so
+    that an expensive run can be stopped) came after the run (attack20). It
+    comes while the run is still going."""
+    import select
+
+    scene = write_scene(tmp_path, groups={
+        "numerics": "elements_per_sample = 4096, min_contacts = 0, error_estimate = .false."})
+    proc = subprocess.Popen([sys.executable, "-m", "pavefric", "run", str(scene), "-o",
+                             str(tmp_path / "o.nc"), "-q"], stderr=subprocess.PIPE, text=True,
+                            cwd=tmp_path)
+    try:
+        said = ""
+        while "PavefricCostWarning" not in said:
+            ready, _, _ = select.select([proc.stderr], [], [], 120.0)
+            assert ready, said
+            line = proc.stderr.readline()
+            assert line, said                       # the run ended without the warning
+            said += line
+        assert proc.poll() is None, said              # the run is still going
+        assert "on one thread" in said
+    finally:
+        proc.kill()
+        proc.wait(timeout=60)
+    assert not (tmp_path / "o.nc").exists()
 
 
 def _limited(megabytes):

@@ -65,3 +65,28 @@ def test_an_ordinary_wet_scene_is_quiet(medium):
     is said by the error estimate's warning: not a regime of Eq. 15)."""
     _, said = run(medium, [20.0, 40.0, 60.0], depth=1e-3)
     assert [w for w in said if "mu_error_estimate" not in w] == []
+
+
+def test_a_film_that_keeps_the_load_at_a_creeping_speed_is_flagged(medium):
+    """attack20: on a smooth texture the paper's bearing carries most of the
+    load at 1e-3 and 1 km/h alike (Eq. 15's load grows without bound as the
+    film closes), so friction does not return to dry as the speed goes to 0:
+    a warning names the slowest such speed. The default scene's texture at 1
+    km/h (its film carries 0.4 %) and the drainage model stay quiet."""
+    from pavefric.surfaces import spectral_profile
+
+    smooth = spectral_profile(512, DX, rms=2e-5, seed=3)
+    dry, _ = run(smooth, [1.0])
+    wet, said = run(smooth, [1e-3, 1.0, 20.0], depth=1e-3)
+    share = wet["film_load_share"].values
+    assert share[0] > 0.5 and share[1] > 0.5, share
+    assert float(wet["mu"].values[1]) < 0.5 * float(dry["mu"].values[0])
+    slow = [s for s in said if "creeping speed" in s]
+    assert len(slow) == 1, said
+    assert slow[0].startswith("&operation speeds_kmh(1) = 0.001 km h-1")
+    assert f"carries {round(100 * share[0])} % of the load" in slow[0]
+    assert "wet_model = 'squeeze' does" in slow[0]
+    _, said = run(medium, [1.0, 20.0], depth=1e-3)
+    assert not [s for s in said if "creeping speed" in s], said
+    _, said = run(smooth, [1e-3, 1.0], depth=1e-3, wet_model="squeeze")
+    assert not [s for s in said if "creeping speed" in s], said

@@ -48,6 +48,13 @@ class PavefricKeywordError(PavefricError, TypeError):
     """An unknown keyword argument (also a TypeError, as Python reports those)."""
 
 
+class PavefricMemoryError(PavefricError, MemoryError):
+    """A run that would not fit in the memory the process may use, or input
+    asking for more than can be held (``&pad element_length = 1e-300``): a
+    PavefricError naming what to change, and a MemoryError, as Python reports
+    those. The process lives on."""
+
+
 class PavefricWarning(UserWarning):
     """Plausible-but-suspicious input or results (also recorded in the output's
     ``warnings`` attribute)."""
@@ -115,7 +122,8 @@ def _text(raw: Any) -> str:
 
 
 # The core's status kinds (src/base/pavefric_error.f90): stat_memory is "not enough
-# memory for the work asked for", which Python reports as MemoryError.
+# memory for the work asked for", which Python reports as PavefricMemoryError (a
+# PavefricError and a MemoryError).
 _STAT_MEMORY = 3
 
 
@@ -146,7 +154,7 @@ def _check(status: int, message: Any, keywords: bool = False) -> None:
                 text = f"{key}{value} ({head}): {tail}" if sep else f"{key} ({head}){rest}"
                 break
     if int(status) == _STAT_MEMORY:
-        raise MemoryError(text)
+        raise PavefricMemoryError(text)
     raise PavefricError(text)
 
 

@@ -1153,7 +1153,7 @@ contains
             if (seen(j)%s == line) new = .false.
          end do
          if (.not. new) cycle
-         seen = [seen, string_type(line)]
+         call remember(line)
          blk%n_warnings = blk%n_warnings + 1
          if (blk%n_warnings > max_block_warnings) cycle
          if (len(blk%message) > 0) blk%message = blk%message // achar(10)
@@ -1161,6 +1161,19 @@ contains
       end do
       if (blk%n_warnings > max_block_warnings) blk%message = blk%message // achar(10) // &
          & "... " // to_str(blk%n_warnings - max_block_warnings) // " more warnings (n_warnings)"
+   contains
+      !> `seen` grown by one (not `seen = [seen, string_type(line)]`: an array
+      !> constructor of these leaks their text in gfortran 12).
+      subroutine remember(text)
+         character(len=*), intent(in) :: text
+         type(string_type), allocatable :: grown(:)
+         integer :: m
+         m = size(seen)
+         allocate(grown(m + 1))
+         grown(1:m) = seen
+         grown(m + 1)%s = text
+         call move_alloc(grown, seen)
+      end subroutine remember
    end subroutine record_warnings
 
    !> (files) Refuse a batch output or journal that is not a regular file, or

@@ -38,6 +38,9 @@ module pavefric_run
    !> under this share of the texture depth that carries load, or over this
    !> multiple of it.
    real(wp), parameter :: thin_film_share = 0.01_wp, deep_water_ratio = 2.0_wp
+   !> The paper's bearing at or below slow_kmh carrying more than
+   !> slow_film_share of the load is warned of (bearing_regime_warning).
+   real(wp), parameter :: slow_kmh = 1.0_wp, slow_film_share = 0.1_wp
    !> A run estimated to take this long (s) or more is announced before it starts.
    real(wp), parameter :: announce_seconds = 1.0_wp
    !> Largest plausible friction coefficient (DFT and skid testers read up to ~1.3).
@@ -485,9 +488,28 @@ contains
       real(wp), intent(in) :: mpd
       character(len=:), allocatable, intent(inout) :: warnings
       real(wp) :: depth, texture
+      integer :: j
       depth = scene%model%depth
       if (.not. depth > 0.0_wp .or. scene%model%wet_model /= "kane2017") return
       if (.not. any(res%wet_fraction > 0.0_wp)) return
+      ! the bearing at a walking pace or slower: Eq. 15's load falls with
+      ! V^beta but grows without bound as the film closes, so where the pad
+      ! can close its gaps the film keeps the load as V -> 0 and friction does
+      ! not return to dry (a 20 um RMS texture: 0.055 at 1e-6, 1e-3 and 1
+      ! km/h, 0.50 at 0; attack20). The slowest such speed is named.
+      if (allocated(res%film_load_share)) then
+         do j = 1, size(res%speed_kmh)
+            if (.not. (res%speed_kmh(j) > 0.0_wp .and. res%speed_kmh(j) <= slow_kmh)) cycle
+            if (.not. res%film_load_share(j) > slow_film_share) cycle
+            call add_warning(warnings, "&operation speeds_kmh(" // to_str(j) // ") = " // &
+               & to_str(res%speed_kmh(j)) // " km h-1: the film of wet_model = 'kane2017' " // &
+               & "carries " // to_str(nint(100.0_wp * res%film_load_share(j))) // " % of " // &
+               & "the load at this creeping speed (Eq. 15's load grows without bound as the " // &
+               & "film closes under the pad), so friction does not return to the dry value " // &
+               & "as the speed goes to 0 (docs/model.md); wet_model = 'squeeze' does")
+            exit
+         end do
+      end if
       if (has_texture) then
          texture = mpd
       else

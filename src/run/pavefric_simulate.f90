@@ -2113,7 +2113,10 @@ contains
       integer, parameter :: probe_positions = 1024, probe_runs_from = 2
       integer, parameter :: probe_window = 65536
       real(wp), parameter :: probe_worth = 1.0_wp
+      !> The most a probe may cost (seconds, bytes, as estimate_cost says).
+      real(wp), parameter :: probe_budget = 1.0_wp, probe_bytes = 256.0_wp * 2.0_wp**20
       type(model_type) :: mp
+      type(cost_estimate_type) :: probe
       type(sim_result_type) :: r
       type(error_type), allocatable :: err
       class(rubber_model), allocatable :: rubber
@@ -2147,11 +2150,20 @@ contains
       nw = min(size(z), probe_window)
       call element_grid(m, nw, dx, closed .and. nw == size(z), npw, dxw, phw, positions)
       mp%position_stride = max(1, positions / (phw * probe_positions))
-      call run_grids(mp, z(1:nw), dx, closed .and. nw == size(z), speeds_kmh, .false., r, err)
-      if (allocated(err)) return
       call make_components(m, rubber, film)
       friction_film = .false.
       if (allocated(film)) friction_film = film%changes_friction()
+      ! the probe's own cost bounded: its positions are few, but a pad of
+      ! millions of elements (&pad element_length = 1e-9 m) made it run for
+      ! minutes and take gigabytes before anything was announced or the
+      ! memory checked (attack20). Beyond probe_budget the refinement is
+      ! not foreseen: such a run is announced at its base cost, or refused
+      ! for its memory, at once.
+      probe = estimate_cost(mp, npw, dxw, closed .and. nw == size(z), size(speeds_kmh), &
+         & .false., friction_film, rubber%state_size())
+      if (probe%seconds > probe_budget .or. probe%bytes > probe_bytes) return
+      call run_grids(mp, z(1:nw), dx, closed .and. nw == size(z), speeds_kmh, .false., r, err)
+      if (allocated(err)) return
       fixed = sec_run + sec_point * real(npe, wp)
       extra = 0.0_wp
       allocate(c%refine_speeds(0))

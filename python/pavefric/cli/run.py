@@ -29,18 +29,28 @@ def main(args: argparse.Namespace) -> int:
     if args.plot:
         # checked before the run: a refused figure path costs no run
         _checked(args.plot, [args.scene, args.output])
-    with warnings.catch_warnings(record=True) as caught:
+    # every warning is shown as it comes (the cost warning is said before the
+    # run, so that an expensive run can be stopped: recorded and replayed, it
+    # came only once the run had finished, attack20); a batch's failed
+    # profiles are kept for the exit status
+    failed = []
+    with warnings.catch_warnings():
         warnings.simplefilter("always", ProfilesFailedWarning)
+        shown = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            if issubclass(category, ProfilesFailedWarning):
+                failed.append(message)
+            else:
+                shown(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show
         out = run(args.scene, args.output, progress=False if args.quiet else None)
-    failed = [w for w in caught if issubclass(w.category, ProfilesFailedWarning)]
-    for w in caught:
-        if w not in failed:
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     print(f"wrote {out}")
     if args.plot:
         print(f"wrote {plot_mu_speed([out], args.plot, inputs=[args.scene])}")
     if failed:
         # as the program: the batch finished, some profiles failed
-        print(f"pavefric: {failed[0].message}", file=sys.stderr)
+        print(f"pavefric: {failed[0]}", file=sys.stderr)
         return 4
     return 0
