@@ -223,8 +223,9 @@ def test_a_wet_model_is_one_module_and_its_registry_lines(tmp_path):
              "   use pavefric_cushion, only: cushion_entry, cushion_n_parameters\n"),
             ("& + reynolds_n_parameters",
              "& + reynolds_n_parameters + cushion_n_parameters"),
-            ("e = [pseudo_bearing_entry(), squeeze_entry(), reynolds_entry()]",
-             "e = [pseudo_bearing_entry(), squeeze_entry(), reynolds_entry(), cushion_entry()]")]:
+            ("      allocate(e(3))\n", "      allocate(e(4))\n"),
+            ("      e(3) = reynolds_entry()\n",
+             "      e(3) = reynolds_entry()\n      e(4) = cushion_entry()\n")]:
         assert text.count(old) == 1, old
         text = text.replace(old, new)
     registry.write_text(text)
