@@ -496,7 +496,7 @@ contains
       ! V^beta but grows without bound as the film closes, so where the pad
       ! can close its gaps the film keeps the load as V -> 0 and friction does
       ! not return to dry (a 20 um RMS texture: 0.055 at 1e-6, 1e-3 and 1
-      ! km/h, 0.50 at 0; attack20). The slowest such speed is named.
+      ! km/h, 0.50 at 0; attack20). The first such speed of the list is named.
       if (allocated(res%film_load_share)) then
          do j = 1, size(res%speed_kmh)
             if (.not. (res%speed_kmh(j) > 0.0_wp .and. res%speed_kmh(j) <= slow_kmh)) cycle
