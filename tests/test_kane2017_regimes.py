@@ -71,7 +71,7 @@ def test_a_film_that_keeps_the_load_at_a_creeping_speed_is_flagged(medium):
     """attack20: on a smooth texture the paper's bearing carries most of the
     load at 1e-3 and 1 km/h alike (Eq. 15's load grows without bound as the
     film closes), so friction does not return to dry as the speed goes to 0:
-    a warning names the slowest such speed. The default scene's texture at 1
+    a warning names the first such speed. The default scene's texture at 1
     km/h (its film carries 0.4 %) and the drainage model stay quiet."""
     from pavefric.surfaces import spectral_profile
 
