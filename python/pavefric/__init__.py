@@ -9,8 +9,8 @@ package wraps it for pre- and post-processing.
 """
 from .core import (ANNOUNCE_SECONDS, CTM_DX, PavefricCostWarning, PavefricError,
                    PavefricKeywordError, PavefricMemoryError, PavefricWarning, Profile,
-                   check_output, ProfilesFailedWarning, Scene, defaults, groups, layout, load_scene,
-                   open_dataset, parameters, run, simulate)
+                   check_output, ProfilesFailedWarning, Scene, defaults, groups, layout,
+                   load_scene, open_dataset, parameters, run, simulate)
 from .profiles import ProfileEntry, element_profile, list_profiles, read_profile, write_profiles
 from .plot import plot_mu_speed, plot_profile
 from .texture import ifi, texture

@@ -26,9 +26,6 @@ module pavefric_netcdf
    public :: write_results, temporary_name, commit_temporary, check_replaceable
    public :: check_text_replaceable, check_png_replaceable
 
-   !> What ends the name of every temporary a pavefric writer makes
-   !> (`<output>.tmp<PID>.pavefric`).
-
    !> What check_replaceable and check_text_replaceable advise when they
    !> refuse a file.
    character(len=*), parameter :: advice = "; pavefric replaces only its own outputs: " // &
