@@ -259,7 +259,8 @@ contains
          & "RMS height of the microtexture asperities (texture finer than dx) that pierce " // &
          & "the water film left under the contacts, for wet_model = 'squeeze': the share " // &
          & "erfc(h / (sqrt(2) microtexture_rms)) of mu_loc acts through a film h. The default " // &
-         & "is the single value fitted to the PIARC speed gradient (docs/speed_gradient.md). " // &
+         & "is the single value fitted to the PIARC speed gradient on its training " // &
+         & "profiles, rounded (38.8e-6 fitted; docs/speed_gradient.md). " // &
          & "With wet_model = 'reynolds' it sets the flow factors and the mean gap of a " // &
          & "contact (at least 1e-6 m is used there).", &
          & lower=0.0_wp, upper=1.0_wp, plausible_lower=1.0e-6_wp, plausible_upper=0.5e-3_wp, &
@@ -307,7 +308,9 @@ contains
       s(p_wet_tolerance) = real_param("numerics", "wet_tolerance", "1e-14", "1", "model", &
          & "the wet load balance stops when |residual| <= wet_tolerance x W (or when the " // &
          & "bracket has closed to adjacent doubles)", lower=epsilon(1.0_wp), upper=1.0_wp, &
-         & upper_strict=.true.)
+         & upper_strict=.true., plausible_lower=epsilon(1.0_wp), plausible_upper=1.0e-6_wp, &
+         & plausible_note="the balance's residual is then that share of the load, and " // &
+         & "the friction off by as much (max_balance_residual)")
 
       s(p_tolerance) = real_param("numerics", "tolerance", "0", "1", "model", &
          & "accuracy on demand: when > 0, the time step (substeps, from the value given) " // &
@@ -523,6 +526,9 @@ contains
       real(wp) :: v
 
       where_ = where(path, item%line)
+      ! (a file's line; text given through the API has no file: 0, which
+      ! also forgets the file's line of a value the API replaced)
+      set%v(id)%line = merge(item%line, 0, len(path) > 0)
       if (spec%kind /= kind_real_list) then
          if (assigned(id)) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // ": given twice " // &
@@ -1579,6 +1585,10 @@ contains
             & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' and 'reynolds' use the " // &
             & "microtexture)")
       end if
+      if (set%v(p_shape)%t /= "rounded" .and. given_other(specs(p_radius), set%v(p_radius))) &
+         & call add_warning(warnings, "&pad radius = " // to_str(set%v(p_radius)%r) // &
+         & " is not used with &pad shape = '" // set%v(p_shape)%t // "' (only a rounded " // &
+         & "pad has a radius; set shape = 'rounded' to use it)")
       ! 0 is the profile's own spacing (the plausible range starts there);
       ! a positive length finer than any profilometer samples makes a pad of
       ! tens of thousands of elements per centimetre
