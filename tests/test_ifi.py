@@ -45,6 +45,8 @@ def test_undefined_cases_write_nothing_rather_than_a_guess(medium):
     assert "speed_constant" not in one and "ifi_f60" not in one            # no 20, no line
     if float(dry["mu"][1]) >= float(dry["mu"][0]):
         assert "speed_constant" not in dry                                 # friction not falling
+    # the IFI indexes wet friction: a dry run's friction is not a DFT's
+    assert "mpd" in dry and "ifi_f60" not in dry and "ifi_sp" not in dry
     short = pavefric.simulate(medium[:60], 0.87e-3, [20.0, 60.0], mu_loc=0.6, closed=False)
     assert "ifi_f60" not in short                                          # no MPD (< 100 mm)
 

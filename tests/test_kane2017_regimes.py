@@ -90,3 +90,20 @@ def test_a_film_that_keeps_the_load_at_a_creeping_speed_is_flagged(medium):
     assert not [s for s in said if "creeping speed" in s], said
     _, said = run(smooth, [1e-3, 1.0], depth=1e-3, wet_model="squeeze")
     assert not [s for s in said if "creeping speed" in s], said
+
+
+def test_a_heavy_pad_whose_load_the_film_carries_is_flagged(medium):
+    """attack21: under a heavy pad (1,000 N; a car tyre's 4,000 N is within the
+    plausible range) Eq. 15's mean gap closes and the film carries 95 % of
+    the load while 97 % of the elements touch: mu falls as 1 / load, the
+    same at every speed, and nothing said so. A warning names &pad load, the
+    speed and both shares; the shipped load stays quiet."""
+    heavy, said = run(medium, [20.0, 60.0], depth=1e-3, load=1000.0)
+    share = heavy["film_load_share"].values
+    assert share[0] > 0.9 and heavy["contact_fraction"].values[0] > 0.5
+    seated = [s for s in said if s.startswith("&pad load = 1000 N")]
+    assert len(seated) == 1, said
+    assert f"carries {round(100 * share[0])} % of the load" in seated[0]
+    assert "at 20 km/h" in seated[0] and "mu falls as 1 / load" in seated[0]
+    _, said = run(medium, [20.0, 60.0, 80.0], depth=1e-3)
+    assert not [s for s in said if s.startswith("&pad load")], said

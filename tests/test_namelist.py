@@ -178,6 +178,39 @@ def test_water_depth_in_mm_by_mistake_warns(tmp_path, profile_m):
         assert "&water depth = 1 m" in ds.attrs["warnings"]
 
 
+def test_a_loose_wet_balance_and_an_unused_radius_warn(tmp_path, profile_m):
+    """attack21 and the fresh-user audit (2026-12-07): wet_tolerance = 0.5 (in its
+    range) left the balance off by half the load, and &pad radius on a flat
+    pad was ignored, both silently."""
+    scene = write_scene(tmp_path, profile=profile_m,
+                        groups={"water": "depth = 1e-3",
+                                "numerics": "wet_tolerance = 0.5",
+                                "pad": "radius = 0.005"})
+    mu, _, r = mu_of(tmp_path, scene)
+    assert "pavefric: warning: &numerics wet_tolerance = 0.5: outside the plausible range" \
+        in r.stderr, r.stderr
+    assert ("pavefric: warning: &pad radius = 0.005 is not used with &pad shape = 'flat'"
+            in r.stderr), r.stderr
+    rounded = write_scene(tmp_path / "r", profile=profile_m,
+                          groups={"pad": "shape = 'rounded', radius = 0.05"})
+    assert "radius" not in mu_of(tmp_path / "r", rounded)[2].stderr
+
+
+def test_a_check_across_variables_names_the_line(tmp_path):
+    """The checks across variables (here the WLF equation's range) named the
+    variable but not where the file gave it, as the checks of single values
+    do."""
+    scene = write_scene(tmp_path, groups={"rubber": "temperature = -90"})
+    r = run_program(scene, "-o", tmp_path / "o.nc")
+    assert r.returncode == 1
+    line = next(i for i, text in enumerate(scene.read_text().splitlines(), 1)
+                if "temperature = -90" in text)
+    assert r.stderr.startswith("pavefric: error: &rubber temperature = -90: ")
+    assert r.stderr.rstrip().endswith(f" at {scene.name}:{line}") or \
+        r.stderr.rstrip().endswith(f" at {scene}:{line}"), r.stderr
+    assert not (tmp_path / "o.nc").exists()
+
+
 def test_heights_in_metres_declared_as_mm_warns(tmp_path, profile_m):
     # heights written in metres, declared as mm: a micrometre texture
     prof = tmp_path / "m.txt"

@@ -35,6 +35,7 @@ import json
 import math
 import os
 import re
+import warnings
 from collections import OrderedDict
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -42,7 +43,7 @@ from typing import Sequence
 
 import numpy as np
 
-from .core import PavefricError
+from .core import PavefricError, PavefricWarning
 
 __all__ = ["CalibrationError", "FITTABLE", "Model", "Fit", "read_measurements", "fit",
            "profile_interval", "report_text", "main_calibrate"]
@@ -297,7 +298,15 @@ class Model:
             unique, inverse = np.unique(speeds, return_inverse=True)
             kw = self.surface_parameters(surface, params)
             try:
-                ds = self.scene(surface).simulate(speeds_kmh=unique, series=False, **kw)
+                # the run's warnings name the surface they are about
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always")
+                    ds = self.scene(surface).simulate(speeds_kmh=unique, series=False, **kw)
+                for w in caught:
+                    text = str(w.message)
+                    if issubclass(w.category, PavefricWarning):
+                        text = f"{surface}: {text}"
+                    warnings.warn(text, w.category, stacklevel=2)
             except PavefricError as exc:
                 shown = ", ".join(f"{k} = {v:.6g}" for k, v in params.items())
                 raise CalibrationError(f"the core failed on {surface} with {shown}: "

@@ -25,7 +25,8 @@ module pavefric
    use pavefric_texture, only: texture_type, texture_metrics, mean_profile_depth
    use pavefric_session, only: session_type, load_session, session_from_text, &
       & session_set_parameter, session_set_value, session_get_parameter, session_set_profile, &
-      & session_run, session_result_size, session_get_result, session_write, session_warnings
+      & session_run, session_result_size, session_get_result, session_write, session_warnings, &
+      & n_scene_results, scene_results
    implicit none
    private
 
@@ -48,6 +49,6 @@ module pavefric
    ! sessions (what a C API handle holds)
    public :: session_type, load_session, session_from_text, session_set_parameter
    public :: session_set_value, session_get_parameter, session_set_profile, session_run
-   public :: session_result_size
+   public :: session_result_size, n_scene_results, scene_results
    public :: session_get_result, session_write, session_warnings
 end module pavefric

@@ -127,13 +127,16 @@ void pavefric_run(pavefric_error error, pavefric_scene scene, double *mu);
 /* --- results of the last run ------------------------------------------- */
 
 /** Number of result names: speed_kmh, speed (m/s), position (m, series
- *  only), then every variable of the output file (docs/outputs.md). */
+ *  only), then every variable of the output file's table (docs/outputs.md),
+ *  then the file's scalars mpd, rms_height, rms_slope, ifi_f60, ifi_sp and
+ *  speed_constant (one value each, where the run has it). */
 int pavefric_get_result_count(void);
 /** Result name number index (0-based) into buffer[buffer_size]; returns its
  *  length (0 when index is out of range). */
 int pavefric_get_result_name(int index, char *buffer, int buffer_size);
 /** Number of values of result name after the last run: the speed count for
- *  per-speed variables, positions x speeds for series (&output series);
+ *  per-speed variables, positions x speeds for series (&output series), 1
+ *  for a scalar;
  *  0 when the run has no such variable or before a run; -1 (error set)
  *  for an unknown name. */
 int pavefric_get_result_size(pavefric_error error, pavefric_scene scene, const char *name);

@@ -22,7 +22,8 @@ module pavefric_api
    use pavefric_session, only: session_type, load_session, session_from_text, &
       & session_set_parameter, session_set_value, session_get_parameter, session_set_profile, &
       & session_run, &
-      & session_result_size, session_get_result, session_write, session_warnings
+      & session_result_size, session_get_result, session_write, session_warnings, &
+      & n_scene_results, scene_results
    use pavefric_outputs, only: output_var_type, output_table, n_outputs
    implicit none
    private
@@ -426,10 +427,11 @@ contains
    end subroutine run_api
 
    !> Number of result names: the coordinates speed_kmh, speed, position,
-   !> then every variable of the output table.
+   !> then every variable of the output table, then the scene's scalars
+   !> (mpd .. speed_constant: pavefric_session's scene_results).
    function get_result_count_api() result(n) bind(C, name="pavefric_get_result_count")
       integer(c_int) :: n
-      n = n_coordinates + n_outputs
+      n = n_coordinates + n_outputs + n_scene_results
    end function get_result_count_api
 
    !> Result name number `index` (0-based, < pavefric_get_result_count()),
@@ -442,15 +444,17 @@ contains
       type(output_var_type) :: table(n_outputs)
       character(len=:), allocatable :: name
       length = 0
-      if (index < 0 .or. index >= n_coordinates + n_outputs) then
+      if (index < 0 .or. index >= n_coordinates + n_outputs + n_scene_results) then
          call put_text("", buffer, buffer_size)
          return
       end if
       if (index < n_coordinates) then
          name = trim(coordinates(index + 1))
-      else
+      else if (index < n_coordinates + n_outputs) then
          table = output_table()
          name = table(index - n_coordinates + 1)%name
+      else
+         name = trim(scene_results(index - n_coordinates - n_outputs + 1))
       end if
       call put_text(name, buffer, buffer_size)
       length = clamp(len(name))

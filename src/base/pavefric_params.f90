@@ -60,6 +60,8 @@ module pavefric_params
       logical :: given = .false.
       !> Whether it has a value (false for an optional variable not given).
       logical :: set = .false.
+      !> The scene file's line that gave it (0: not from a file's line).
+      integer :: line = 0
    end type param_value_type
 
 contains

@@ -226,7 +226,12 @@ contains
       call lay_out(scene, specs)
       scene%model = model_from_parameters(scene%parameters)
       call validate_model(scene%model, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         ! the checks across variables name the first; where the file gave
+         ! it, say where, as the checks of single values do
+         call place_error(error, scene%parameters, specs, path)
+         return
+      end if
 
       if (only_profile) then
          if (len(scene%profile_file) == 0) then
@@ -311,5 +316,32 @@ contains
       end associate
       if (.not. allocated(scene%warnings)) scene%warnings = ""
    end subroutine lay_out
+
+   !> An error whose message begins "&group name" about a variable the
+   !> file `path` gave on a line: " at path:line" added.
+   pure subroutine place_error(error, set, specs, path)
+      type(error_type), intent(inout) :: error
+      type(param_set_type), intent(in) :: set
+      type(param_spec_type), intent(in) :: specs(:)
+      character(len=*), intent(in) :: path
+      integer :: k, n
+      character(len=:), allocatable :: head
+      if (len(path) == 0 .or. len(error%message) < 2) return
+      if (error%message(1:1) /= "&") return
+      do k = 1, size(specs)
+         if (k > size(set%v)) exit
+         head = "&" // specs(k)%group // " " // specs(k)%name
+         n = len(head)
+         if (len(error%message) < n) cycle
+         if (error%message(1:n) /= head) cycle
+         if (len(error%message) > n) then
+            ! (the name whole: "&pad length" is not "&pad length_x")
+            if (index(" =(:", error%message(n+1:n+1)) == 0) cycle
+         end if
+         if (set%v(k)%line > 0 .and. index(error%message, " at " // path // ":") == 0) &
+            & error%message = error%message // " at " // path // ":" // to_str(set%v(k)%line)
+         return
+      end do
+   end subroutine place_error
 
 end module pavefric_scene

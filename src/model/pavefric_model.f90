@@ -307,7 +307,9 @@ contains
       s(p_wet_tolerance) = real_param("numerics", "wet_tolerance", "1e-14", "1", "model", &
          & "the wet load balance stops when |residual| <= wet_tolerance x W (or when the " // &
          & "bracket has closed to adjacent doubles)", lower=epsilon(1.0_wp), upper=1.0_wp, &
-         & upper_strict=.true.)
+         & upper_strict=.true., plausible_lower=epsilon(1.0_wp), plausible_upper=1.0e-6_wp, &
+         & plausible_note="the balance's residual is then that share of the load, and " // &
+         & "the friction off by as much (max_balance_residual)")
 
       s(p_tolerance) = real_param("numerics", "tolerance", "0", "1", "model", &
          & "accuracy on demand: when > 0, the time step (substeps, from the value given) " // &
@@ -523,6 +525,7 @@ contains
       real(wp) :: v
 
       where_ = where(path, item%line)
+      set%v(id)%line = item%line
       if (spec%kind /= kind_real_list) then
          if (assigned(id)) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // ": given twice " // &
@@ -1579,6 +1582,10 @@ contains
             & set%v(p_wet_model)%t // "' (only wet_model = 'squeeze' and 'reynolds' use the " // &
             & "microtexture)")
       end if
+      if (set%v(p_shape)%t /= "rounded" .and. given_other(specs(p_radius), set%v(p_radius))) &
+         & call add_warning(warnings, "&pad radius = " // to_str(set%v(p_radius)%r) // &
+         & " is not used with &pad shape = '" // set%v(p_shape)%t // "' (only a rounded " // &
+         & "pad has a radius; set shape = 'rounded' to use it)")
       ! 0 is the profile's own spacing (the plausible range starts there);
       ! a positive length finer than any profilometer samples makes a pad of
       ! tens of thousands of elements per centimetre

@@ -41,6 +41,10 @@ module pavefric_run
    !> The paper's bearing at or below slow_kmh carrying more than
    !> slow_film_share of the load is warned of (bearing_regime_warning).
    real(wp), parameter :: slow_kmh = 1.0_wp, slow_film_share = 0.1_wp
+   !> kane2017 under a heavy pad: the film's share of the load and the share
+   !> of elements touching above which the seated pad's load is the film's
+   !> (bearing_regime_warning).
+   real(wp), parameter :: seated_film_share = 0.9_wp, seated_contact = 0.5_wp
    !> A run estimated to take this long (s) or more is announced before it starts.
    real(wp), parameter :: announce_seconds = 1.0_wp
    !> Largest plausible friction coefficient (DFT and skid testers read up to ~1.3).
@@ -441,7 +445,9 @@ contains
       ! What a road can be: the texture, and the results.
       call texture_warning(clean%z, meta%warnings)
       call result_warnings(scene, res, meta%has_texture, meta%texture%mpd, "", meta%warnings)
-      if (meta%has_texture) then
+      ! (the IFI indexes wet friction, measured with water on the road: a
+      ! dry run's friction taken for a DFT's would mislead, so no F60 there)
+      if (meta%has_texture .and. scene%model%depth > 0.0_wp) then
          meta%ifi = ifi_from_sweep(res%speed_kmh, res%mu, meta%texture%mpd)
       else
          meta%ifi = ifi_from_sweep(res%speed_kmh, res%mu, 0.0_wp)
@@ -507,6 +513,28 @@ contains
                & "the load at this creeping speed (Eq. 15's load grows without bound as the " // &
                & "film closes under the pad), so friction does not return to the dry value " // &
                & "as the speed goes to 0 (docs/model.md); wet_model = 'squeeze' does")
+            exit
+         end do
+      end if
+      ! a seated pad whose load the film carries: Eq. 15's mean gap under a
+      ! heavy pad closes as the pad sinks, and its load grows without bound,
+      ! so the film takes the load from elements that touch the road and mu
+      ! falls as 1 / load, the same at every speed (attack21: 1,000 N, 95 %
+      ! of the load on the film with 97 % of the elements touching, mu 0.033
+      ! at 20-80 km/h; 4,000 N, a car tyre's, 0.008). The first such speed.
+      if (allocated(res%film_load_share) .and. allocated(res%contact_fraction)) then
+         do j = 1, size(res%speed_kmh)
+            if (.not. res%speed_kmh(j) > slow_kmh) cycle
+            if (.not. (res%film_load_share(j) > seated_film_share .and. &
+               & res%contact_fraction(j) > seated_contact)) cycle
+            call add_warning(warnings, "&pad load = " // to_str(scene%model%load) // &
+               & " N: at " // to_str(res%speed_kmh(j)) // " km/h the film of wet_model = " // &
+               & "'kane2017' carries " // to_str(nint(100.0_wp * res%film_load_share(j))) // &
+               & " % of the load while " // &
+               & to_str(nint(100.0_wp * res%contact_fraction(j))) // " % of the pad's " // &
+               & "elements touch the road (Eq. 15's load grows without bound as the mean gap " // &
+               & "under a heavy pad closes), so mu falls as 1 / load instead of following the " // &
+               & "texture and the speed (docs/model.md); wet_model = 'squeeze' does not")
             exit
          end do
       end if

@@ -29,10 +29,18 @@ module pavefric_session
    public :: session_set_value
    public :: session_get_parameter, session_set_profile, session_run, session_result_size
    public :: session_get_result, session_write, session_warnings
-   public :: coordinate_names
+   public :: coordinate_names, n_scene_results, scene_results
 
    !> Result names besides the output table's: the coordinates of a run.
    character(len=*), parameter :: coordinate_names = "speed_kmh speed position"
+
+   !> Results of a run that are one value for the scene (the NetCDF file's
+   !> scalars; docs/outputs.md): the texture's metrics where the profile
+   !> has them, the IFI where its texture depth is known, the model's own
+   !> speed constant where friction falls over two speeds or more.
+   integer, parameter :: n_scene_results = 6
+   character(len=*), parameter :: scene_results(n_scene_results) = [character(len=14) :: &
+      & "mpd", "rms_height", "rms_slope", "ifi_f60", "ifi_sp", "speed_constant"]
 
    interface
       !> The lock around file I/O (pavefric_files_lock.c): one file cannot be
@@ -364,6 +372,18 @@ contains
             if (allocated(s%res%position)) n = size(s%res%position)
          end if
          return
+      case ("mpd", "rms_height", "rms_slope")
+         n = 0
+         if (s%has_results) n = merge(1, 0, s%meta%has_texture)
+         return
+      case ("ifi_f60", "ifi_sp")
+         n = 0
+         if (s%has_results) n = merge(1, 0, s%meta%ifi%has_f60)
+         return
+      case ("speed_constant")
+         n = 0
+         if (s%has_results) n = merge(1, 0, s%meta%ifi%has_speed_constant)
+         return
       end select
       table = output_table()
       do k = 1, n_outputs
@@ -390,13 +410,14 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(output_var_type) :: table(n_outputs)
       integer :: k, n
-      character(len=:), allocatable :: known
+      character(len=:), allocatable :: known, scalars
       n = session_result_size(s, name)
       if (n < 0) then
          table = output_table()
          call names(table, known)
+         call scene_names(scalars)
          call fatal_error(error, "result '" // trim(name) // "': no such variable (known: " // &
-            & coordinate_names // known // ")")
+            & coordinate_names // known // scalars // ")")
          return
       end if
       if (.not. s%has_results) then
@@ -407,7 +428,10 @@ contains
       if (n == 0) then
          call fatal_error(error, "result '" // trim(name) // "': not part of this run " // &
             & "(series variables need &output series = .true.; the squeeze-film ones a " // &
-            & "film that ran)")
+            & "film that ran; mpd, rms_height and rms_slope a profile of at least one " // &
+            & "100 mm segment; ifi_f60 and ifi_sp its texture depth and water on the road; " // &
+            & "speed_constant " // &
+            & "friction falling over two speeds or more)")
          return
       end if
       if (size(values) < n) then
@@ -422,6 +446,18 @@ contains
          values(1:n) = s%res%speed
       case ("position")
          values(1:n) = s%res%position
+      case ("mpd")
+         values(1) = s%meta%texture%mpd
+      case ("rms_height")
+         values(1) = s%meta%texture%rms_height
+      case ("rms_slope")
+         values(1) = s%meta%texture%rms_slope
+      case ("ifi_f60")
+         values(1) = s%meta%ifi%f60
+      case ("ifi_sp")
+         values(1) = s%meta%ifi%sp_texture
+      case ("speed_constant")
+         values(1) = s%meta%ifi%speed_constant
       case default
          table = output_table()
          do k = 1, n_outputs
@@ -429,6 +465,17 @@ contains
          end do
       end select
    contains
+      ! (subroutines, not functions of deferred length: gfortran keeps such
+      ! a result's length in a static variable)
+      pure subroutine scene_names(list)
+         character(len=:), allocatable, intent(out) :: list
+         integer :: j
+         list = ""
+         do j = 1, n_scene_results
+            list = list // " " // trim(scene_results(j))
+         end do
+      end subroutine scene_names
+
       pure subroutine names(t, list)
          type(output_var_type), intent(in) :: t(:)
          character(len=:), allocatable, intent(out) :: list

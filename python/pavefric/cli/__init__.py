@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 from pathlib import Path
 from types import ModuleType
 
@@ -69,6 +70,12 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, ModuleType]]:
     return parser, mods
 
 
+def _one_line(message, category, filename, lineno, line=None) -> str:
+    """warnings.formatwarning for the commands: 'pavefric: warning: ...'."""
+    sys.stdout.flush()
+    return f"pavefric: warning: {message}\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; return its exit status (0 done, 1 an error named in
     one line on stderr, 2 a maintainers' command outside a checkout, 4 a
@@ -87,8 +94,16 @@ def main(argv: list[str] | None = None) -> int:
     from ..core import PavefricError
     from ..merge import MergeError
 
+    # a warning is one line, as the program prints it (not the source line
+    # that raised it), after what the command has printed so far (stdout
+    # flushed first: redirected to a file, its buffer put each run's
+    # warnings above that run's own table)
+    formatted = warnings.formatwarning
+    warnings.formatwarning = _one_line
     try:
         return int(mod.main(args) or 0)
     except (PavefricError, MergeError) as exc:
         print(f"pavefric: error: {exc}", file=sys.stderr)
         return 1
+    finally:
+        warnings.formatwarning = formatted

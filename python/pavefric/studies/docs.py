@@ -210,11 +210,19 @@ def outputs_markdown() -> str:
         "`ifi_f60` (the computed friction at 20 km/h taken as a DFT value, carried to "
         "60 km/h: F60 = 0.081 + 0.732 mu20 exp(-40/Sp); mu20 on the least-squares line of "
         "ln mu against speed when 20 km/h was not run) and `ifi_sp` (km/h, Sp = 14.2 + "
-        "89.7 MPD in mm), when the texture depth is known; `speed_constant` (km/h), the "
+        "89.7 MPD in mm), when the texture depth is known and the road is wet (`&water "
+        "depth` > 0: the IFI indexes wet friction, so a dry run has neither); "
+        "`speed_constant` (km/h), the "
         "model's own: -1 / slope of ln mu fitted against speed, when friction falls over two "
         "speeds or more. Compare `speed_constant` with `ifi_sp` as PIARC would "
-        "(docs/speed_gradient.md). In the NetCDF file and `pavefric.simulate`, not (yet) "
-        "through the C API.",
+        "(docs/speed_gradient.md).",
+        "",
+        "These six scalars are in the NetCDF file, in `pavefric.simulate`'s dataset and "
+        "results of the C and Fortran APIs (`pavefric_get_result` and `session_get_result` "
+        "by name, one value; size 0 where the run has none). Texture metrics made from bare "
+        "heights (`pavefric.simulate`, `pavefric_set_profile`) know nothing of an "
+        "instrument file's quality flags, which the program and an API run that reads the "
+        "file itself apply, so on such files they may differ.",
         "",
         "## Global attributes",
         "",
