@@ -525,7 +525,9 @@ contains
       real(wp) :: v
 
       where_ = where(path, item%line)
-      set%v(id)%line = item%line
+      ! (a file's line; text given through the API has no file: 0, which
+      ! also forgets the file's line of a value the API replaced)
+      set%v(id)%line = merge(item%line, 0, len(path) > 0)
       if (spec%kind /= kind_real_list) then
          if (assigned(id)) then
             call fatal_error(error, "&" // spec%group // " " // spec%name // ": given twice " // &
