@@ -138,6 +138,9 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
         u = np.zeros(n)
         mus, deltas, whs, means, works, adhesions = [], [], [], [], [], []
         prev = None
+        # an open profile: the elements' work over each step (the descent
+        # not taken out) and their stored energy at the stretch's ends
+        elem_works, stored = [], []
         for j in speed_steps:
             k = (j + i - 1) % n_p if closed else j + i - 1
             u_free = decay * u
@@ -186,6 +189,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                         0.0, (u_old - decay * u_old) - pushes)
                     f_mean = np.where((f_old > 0) | (force > 0), f_mean, 0.0)
                     work = (f_mean * ((u - u_old) - (delta - d_old))).sum()
+                    elem_works.append((f_mean * (u - u_old)).sum())
                     # the load the elements did not carry, times the descent:
                     # on a closed profile whose state repeats at every step
                     # (the load's own work returns round the lap, so the
@@ -201,6 +205,7 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
             prev = (force, delta, wh)
             if closed and j < 1:
                 continue
+            stored.append(0.5 * width * dx * stiffness * (u ** 2).sum())
             mus.append(mu_j)
             means.append(mean_j)
             deltas.append(delta)
@@ -209,10 +214,15 @@ def simulate(z, dx, speeds_kmh, *, closed=True, mu_loc=0.5, length=0.020, width=
                 adhesions.append(adhesion)
                 if stepped:
                     works.append(mean_j - adhesion)
-        if friction_scheme != "paper" and not closed and len(works) < len(means):
-            # an open profile's first position has no step before it: the
-            # steps' work is over the steps there are (docs/model.md)
-            out_mu.append(np.mean(works) + np.mean(adhesions))
+        if friction_scheme != "paper" and not closed and elem_works:
+            # an open profile: the rubber's dissipation over its steps (the
+            # first position has none before it), the elements' work less
+            # their stored energy's change between the stretch's ends; an
+            # elastic rubber's is nil (docs/model.md)
+            dissipation = sum(elem_works) - (stored[-1] - stored[0])
+            if viscosity == 0 or v == 0:
+                dissipation = 0.0
+            out_mu.append(dissipation / (load * dx * len(elem_works)) + np.mean(adhesions))
         else:
             out_mu.append(np.mean(means))
         out_series.append((np.array(mus), np.array(deltas), np.array(whs)))

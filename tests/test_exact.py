@@ -195,10 +195,15 @@ def test_the_open_profiles_first_position_has_no_step():
                                substeps=substeps, **kw)
         return float(ds["mu_hysteresis"][0])
 
+    # (0.0440 and 0.043 before 2026-12-07, when an open profile's mean was
+    # the facets' work: on this one-step stretch that was nearly all the
+    # energy stored at its ends; it is now the rubber's dissipation)
     exact = hyst(24, "exact")
-    assert round(exact, 4) == 0.0440
-    one = hyst(24, "euler")
-    assert round(one, 3) == 0.043 and abs(one - exact) < 0.05 * exact
+    assert round(exact, 4) == 0.0034
+    assert abs(hyst(24, "euler", substeps=64) - exact) < 0.01 * exact
+    # a longer open stretch of the same heights: near the same heights closed
+    closed_100 = hyst(100, "exact", closed=True)
+    assert abs(hyst(100, "exact") - closed_100) < 0.1 * closed_100
     # closed, the same heights converge to the exact integrator's
     closed = hyst(100, "exact", closed=True)
     assert abs(hyst(100, "euler", closed=True, substeps=4096) - closed) < 1e-6
@@ -215,8 +220,8 @@ def test_backward_euler_converges_to_the_exact_integrator_on_open_profiles(n, vi
     left the exact one past a few hundred substeps (24 samples, C = 100:
     0.0409 at 256 and 0.0272 at 4096 against 0.0439; 100 samples: 0.00552
     and 0.00535 against 0.00557). Now it converges to it, first order:
-    each error below the one at 16 times fewer substeps, and within 1.0e-4
-    of the exact value (relative) at 4096 (measured: 2e-6 to 1.0e-4); the
+    each error below the one at 16 times fewer substeps, and within 1.2e-4
+    of the exact value (relative) at 4096 (measured: 1.3e-5 to 1.16e-4); the
     figures the page quotes for 24 samples at C = 100."""
     z = np.random.default_rng(1).normal(0.0, 0.6e-3, n)
     kw = dict(error_estimate=False, min_contacts=0, element_length=0.0, closed=False,
@@ -230,7 +235,7 @@ def test_backward_euler_converges_to_the_exact_integrator_on_open_profiles(n, vi
     euler = {s: hyst("euler", s) for s in (1, 16, 256, 4096)}
     errors = [abs(euler[s] - exact) for s in (16, 256, 4096)]
     assert errors[0] > errors[1] > errors[2], (exact, euler)
-    assert errors[2] < 1.05e-4 * abs(exact), (exact, euler)
+    assert errors[2] < 1.2e-4 * abs(exact), (exact, euler)
     if n == 24 and viscosity == 1e2:
-        assert [round(euler[s], 5) for s in (1, 16, 256)] == [0.04293, 0.04393, 0.04395]
-        assert round(euler[4096], 6) == round(exact, 6) == 0.043952
+        assert [round(euler[s], 5) for s in (1, 16, 256)] == [0.00245, 0.00337, 0.00341]
+        assert round(euler[4096], 6) == round(exact, 6) == 0.00341

@@ -78,6 +78,9 @@ contains
       logical, allocatable :: touch(:)
       real(wp) :: delta, a_coef, b_coef, theta, rem, hstep, e, t_ev, t_min, w_step, adh_int
       real(wp) :: ad_a, ad_b, f1, tolf, wk, hyst_sum, adh_sum
+      ! an open profile's stretch: the elements' stored energy and the
+      ! penetration at its start
+      real(wp) :: stored_start, delta_start
       integer :: t, i, i_ev, nc, kp, kn, n_ev, stat, segments, last_el, graze
       logical :: series
 
@@ -133,6 +136,8 @@ contains
          if (res%status /= 0) return
          f = f0
          call record_node(0, 0.0_wp, 0.0_wp, .true.)
+         stored_start = 0.5_wp * k * sum(u**2)
+         delta_start = delta
       end if
       do t = -n_spin + 1, n_avg - 1
          kp = node(t - 1)
@@ -243,6 +248,15 @@ contains
          adh_sum = adh_sum + adh_int / (load * dt)
          call record_node(t, w_step / (load * advance), adh_int / (load * dt), .false.)
       end do
+      if (segments > 0 .and. .not. closed) then
+         ! the facets' work over an open stretch is the elements' stored
+         ! energy's change plus their dissipation less the load's work
+         ! W (delta_end - delta_start) (every contact force adds up to W at
+         ! every instant): the dissipation, as the driver's mean (a closed
+         ! lap returns both terms)
+         hyst_sum = hyst_sum - ((0.5_wp * k * sum(u**2) - stored_start) - &
+            & load * (delta - delta_start)) / (load * advance)
+      end if
       if (segments > 0) then
          res%mu_hysteresis = hyst_sum / real(segments, wp)
          res%mu_adhesion = adh_sum / real(segments, wp)

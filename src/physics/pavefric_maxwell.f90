@@ -60,6 +60,7 @@ module pavefric_maxwell
       procedure :: update => mx_update
       procedure :: mean_push => mx_mean
       procedure :: memory_effect => mx_memory_effect
+      procedure :: stored_energy => mx_stored_energy
    end type maxwell_rubber
 
 contains
@@ -265,6 +266,42 @@ contains
       call mean_kernel(size(u_free), size(self%arm_stiffness), step%per_element, state, &
          & u_free, push, mean)
    end subroutine mx_mean
+
+   !> (K_inf u^2 + sum_k K_k (u - v_k)^2) / 2 per element, over k_eff.
+   pure subroutine mx_stored_energy(self, step, state, energy, known)
+      class(maxwell_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      real(wp), intent(out) :: energy(:)
+      logical, intent(out) :: known
+      integer :: nl, na
+      nl = size(energy)
+      na = size(self%arm_stiffness)
+      call energy_kernel(nl, size(state) / (nl * (1 + na)), na, self%stiffness, &
+         & self%arm_stiffness, step%k_eff, state, energy)
+      known = .true.
+   end subroutine mx_stored_energy
+
+   !> mx_stored_energy on the state as the kernels lay it out: (lanes x
+   !> elements, 1 + arms), lanes fastest.
+   pure subroutine energy_kernel(nl, n, na, k_inf, k_arm, k_eff, state, energy)
+      integer, intent(in) :: nl, n, na
+      real(wp), intent(in) :: k_inf, k_arm(na), k_eff(nl), state(nl, n, 1 + na)
+      real(wp), intent(out) :: energy(nl)
+      real(wp) :: e, w
+      integer :: i, j, k
+      do j = 1, nl
+         e = 0.0_wp
+         do i = 1, n
+            e = e + k_inf * state(j, i, 1)**2
+            do k = 1, na
+               w = state(j, i, 1) - state(j, i, 1 + k)
+               e = e + k_arm(k) * w * w
+            end do
+         end do
+         energy(j) = 0.5_wp * e / k_eff(j)
+      end do
+   end subroutine energy_kernel
 
    !> mx_mean over m = lanes x elements values, one loop per arm.
    pure subroutine mean_kernel(m, na, coef, state, u_free, push, mean)

@@ -119,6 +119,12 @@ module pavefric_rubber
       procedure(mean_interface), deferred :: mean_push
       !> The effect the element's memory stands for, for the output ('viscous_memory').
       procedure(name_interface), deferred :: memory_effect
+      !> Each lane's stored elastic energy, summed over the elements, in
+      !> units of k_eff (as push x compression: the energy over l dx k_eff),
+      !> from the state after an update; `known` false for a law that does
+      !> not say (the default). An open profile's mean then takes out the
+      !> energy stored at the ends of the stretch averaged.
+      procedure :: stored_energy => no_stored_energy
    end type rubber_model
 
    abstract interface
@@ -216,6 +222,7 @@ module pavefric_rubber
       procedure :: update => kv_update
       procedure :: mean_push => kv_mean
       procedure :: memory_effect => kv_memory_effect
+      procedure :: stored_energy => kv_stored_energy
    end type kelvin_voigt_rubber
 
 contains
@@ -378,6 +385,46 @@ contains
          state(p) = u_free(p) + push(p)
       end do
    end subroutine kv_update_kernel
+
+   !> A law that does not say what it stores.
+   pure subroutine no_stored_energy(self, step, state, energy, known)
+      class(rubber_model), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      !> (lanes)
+      real(wp), intent(out) :: energy(:)
+      logical, intent(out) :: known
+      energy = 0.0_wp
+      known = .false.
+   end subroutine no_stored_energy
+
+   !> K u^2 / 2 per element, over k_eff: (1 - b) u^2 / 2, b = coef 1.
+   pure subroutine kv_stored_energy(self, step, state, energy, known)
+      class(kelvin_voigt_rubber), intent(in) :: self
+      type(rubber_step_type), intent(in) :: step
+      real(wp), intent(in), contiguous :: state(:, :, :)
+      real(wp), intent(out) :: energy(:)
+      logical, intent(out) :: known
+      call kv_energy_kernel(size(energy), size(state) / size(energy), step%coef(:, 1), state, &
+         & energy)
+      known = .true.
+   end subroutine kv_stored_energy
+
+   pure subroutine kv_energy_kernel(nl, n, b, state, energy)
+      integer, intent(in) :: nl, n
+      real(wp), intent(in) :: b(nl), state(nl, n)
+      real(wp), intent(out) :: energy(nl)
+      integer :: i, j
+      energy = 0.0_wp
+      do i = 1, n
+         do j = 1, nl
+            energy(j) = energy(j) + state(j, i) * state(j, i)
+         end do
+      end do
+      do j = 1, nl
+         energy(j) = 0.5_wp * (1.0_wp - b(j)) * energy(j)
+      end do
+   end subroutine kv_energy_kernel
 
    pure subroutine kv_memory_effect(self, name)
       class(kelvin_voigt_rubber), intent(in) :: self
