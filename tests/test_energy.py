@@ -579,7 +579,8 @@ def test_an_open_profiles_hysteresis_is_the_rubbers_dissipation():
     3.5 times the closed one on this segment, and made friction out of an
     elastic pad)."""
     profile = pavefric.read_profile(ROOT / "inputs" / "batch_demo" / "seg_0011.txt")
-    z, dx = np.asarray(profile.heights), profile.dx
+    z = np.asarray(profile.heights)
+    assert profile.dx == pytest.approx(DX, rel=1e-12)           # run() takes DX
     speeds = [20.0, 40.0, 60.0, 80.0]
     for kw in (dict(), dict(depth=0.5e-3), dict(depth=1e-3, wet_model="squeeze"),
                dict(**compound(), temperature=20.0)):
