@@ -153,6 +153,9 @@ contains
       set = s%scene%parameters
       call typed_value(specs(id), set%v(id), error, r, i, b, t, list)
       if (allocated(error)) return
+      ! (no longer the file's value: a check across variables must not name
+      ! the file's line for it)
+      set%v(id)%line = 0
       call commit_change(s, set, "! set through the API: &" // specs(id)%group // " " // &
          & specs(id)%name // " = " // format_value(specs(id), set%v(id)) // " /", error)
    end subroutine session_set_value
