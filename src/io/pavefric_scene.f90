@@ -9,7 +9,7 @@ module pavefric_scene
    use pavefric_error, only: error_type, fatal_error, stat_memory
    use pavefric_format, only: to_str
    use pavefric_model, only: model_type, param_spec_type, param_set_type, parameter_table, &
-      & apply_typed, &
+      & apply_typed, find_parameter, &
       & default_parameters, apply_namelist, model_from_parameters, validate_model, &
       & plausibility_warnings, &
       & p_profile_file, p_profile_name, p_format, p_height_unit, p_x_column, p_z_column, &
@@ -324,24 +324,19 @@ contains
       type(param_set_type), intent(in) :: set
       type(param_spec_type), intent(in) :: specs(:)
       character(len=*), intent(in) :: path
-      integer :: k, n
-      character(len=:), allocatable :: head
+      integer :: space, stop, k
       if (len(path) == 0 .or. len(error%message) < 2) return
       if (error%message(1:1) /= "&") return
-      do k = 1, size(specs)
-         if (k > size(set%v)) exit
-         head = "&" // specs(k)%group // " " // specs(k)%name
-         n = len(head)
-         if (len(error%message) < n) cycle
-         if (error%message(1:n) /= head) cycle
-         if (len(error%message) > n) then
-            ! (the name whole: "&pad length" is not "&pad length_x")
-            if (index(" =(:", error%message(n+1:n+1)) == 0) cycle
-         end if
-         if (set%v(k)%line > 0 .and. index(error%message, " at " // path // ":") == 0) &
-            & error%message = error%message // " at " // path // ":" // to_str(set%v(k)%line)
-         return
-      end do
+      ! "&group name" and what follows the name (" =", "(", ":" or " ")
+      space = index(error%message, " ")
+      if (space < 3) return
+      stop = scan(error%message(space + 1:), " =(:")
+      if (stop == 0) stop = len(error%message) - space + 1
+      k = find_parameter(specs, error%message(2:space - 1), &
+         & error%message(space + 1:space + stop - 1))
+      if (k == 0 .or. k > size(set%v)) return
+      if (set%v(k)%line > 0 .and. index(error%message, " at " // path // ":") == 0) &
+         & error%message = error%message // " at " // path // ":" // to_str(set%v(k)%line)
    end subroutine place_error
 
 end module pavefric_scene

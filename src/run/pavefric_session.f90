@@ -357,11 +357,49 @@ contains
    !> variables and speed_kmh/speed, positions x speeds for series, positions
    !> for position; 0 when this run has no such variable (series not asked,
    !> a film that did not run); -1 when no variable has that name.
+   !> Whether `name` is one of scene_results, whether the last run has it
+   !> (docs/outputs.md says when each exists) and its value: the one place
+   !> session_result_size and session_get_result read them.
+   pure subroutine scene_scalar(s, name, is_scalar, has, value)
+      type(session_type), intent(in) :: s
+      character(len=*), intent(in) :: name
+      logical, intent(out) :: is_scalar, has
+      real(wp), intent(out) :: value
+      is_scalar = .true.
+      has = .false.
+      value = 0.0_wp
+      select case (trim(name))
+      case ("mpd")
+         has = s%meta%has_texture
+         value = s%meta%texture%mpd
+      case ("rms_height")
+         has = s%meta%has_texture
+         value = s%meta%texture%rms_height
+      case ("rms_slope")
+         has = s%meta%has_texture
+         value = s%meta%texture%rms_slope
+      case ("ifi_f60")
+         has = s%meta%ifi%has_f60
+         value = s%meta%ifi%f60
+      case ("ifi_sp")
+         has = s%meta%ifi%has_f60
+         value = s%meta%ifi%sp_texture
+      case ("speed_constant")
+         has = s%meta%ifi%has_speed_constant
+         value = s%meta%ifi%speed_constant
+      case default
+         is_scalar = .false.
+      end select
+      has = has .and. s%has_results
+   end subroutine scene_scalar
+
    pure integer function session_result_size(s, name) result(n)
       type(session_type), intent(in) :: s
       character(len=*), intent(in) :: name
       type(output_var_type) :: table(n_outputs)
       integer :: k, ns
+      logical :: is_scalar, has
+      real(wp) :: value
       n = -1
       ns = 0
       if (s%has_results) ns = size(s%res%mu)
@@ -375,19 +413,12 @@ contains
             if (allocated(s%res%position)) n = size(s%res%position)
          end if
          return
-      case ("mpd", "rms_height", "rms_slope")
-         n = 0
-         if (s%has_results) n = merge(1, 0, s%meta%has_texture)
-         return
-      case ("ifi_f60", "ifi_sp")
-         n = 0
-         if (s%has_results) n = merge(1, 0, s%meta%ifi%has_f60)
-         return
-      case ("speed_constant")
-         n = 0
-         if (s%has_results) n = merge(1, 0, s%meta%ifi%has_speed_constant)
-         return
       end select
+      call scene_scalar(s, name, is_scalar, has, value)
+      if (is_scalar) then
+         n = merge(1, 0, has)
+         return
+      end if
       table = output_table()
       do k = 1, n_outputs
          if (table(k)%name /= trim(name)) cycle
@@ -413,6 +444,8 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(output_var_type) :: table(n_outputs)
       integer :: k, n
+      logical :: is_scalar, has
+      real(wp) :: value
       character(len=:), allocatable :: known, scalars
       n = session_result_size(s, name)
       if (n < 0) then
@@ -449,19 +482,12 @@ contains
          values(1:n) = s%res%speed
       case ("position")
          values(1:n) = s%res%position
-      case ("mpd")
-         values(1) = s%meta%texture%mpd
-      case ("rms_height")
-         values(1) = s%meta%texture%rms_height
-      case ("rms_slope")
-         values(1) = s%meta%texture%rms_slope
-      case ("ifi_f60")
-         values(1) = s%meta%ifi%f60
-      case ("ifi_sp")
-         values(1) = s%meta%ifi%sp_texture
-      case ("speed_constant")
-         values(1) = s%meta%ifi%speed_constant
       case default
+         call scene_scalar(s, name, is_scalar, has, value)
+         if (is_scalar) then
+            values(1) = value
+            return
+         end if
          table = output_table()
          do k = 1, n_outputs
             if (table(k)%name == trim(name)) call output_values(s%res, k, values, table)

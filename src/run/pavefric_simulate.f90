@@ -1855,13 +1855,15 @@ contains
       ! (a very soft or very slow rubber creeping through the run), whose
       ! drift the energy balance counts. Finite, but not a friction: say so.
       negative = res%mu_hysteresis < -max(negative_hysteresis, negative_share * abs(res%mu))
+      if (any(negative)) then
+         j = findloc(negative, .true., dim=1)
+         call others_negative(j, others)
+      end if
       if (any(negative) .and. .not. geo%closed) then
          ! an open profile: the mean over its stretch holds the energy the
          ! elements store at its ends and the load's work between them (the
          ! fresh-user audit of 2026-12-07: the README's batch demo of 100 mm
          ! segments warned on 159 of 300 profiles, advising the rubber)
-         j = findloc(negative, .true., dim=1)
-         call others_negative(j, others)
          call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
             & " < 0 at " // to_str(speeds_kmh(j)) // " km/h on an open profile: the mean " // &
             & "over its " // to_str(geo%n_avg) // " positions holds the energy the elements " // &
@@ -1871,8 +1873,6 @@ contains
             & "limits'); a longer profile, or &surface closed = .true. for a closed track, " // &
             & "removes it" // others)
       else if (any(negative)) then
-         j = findloc(negative, .true., dim=1)
-         call others_negative(j, others)
          call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
             & " < 0 at " // to_str(speeds_kmh(j)) // " km/h: the rubber cannot dissipate " // &
             & "less than nothing, so the pad did not reach a state that repeats round the " // &
@@ -2594,6 +2594,7 @@ contains
       hyst_sum = 0.0_wp
       hyst_abs_sum = 0.0_wp
       open_work = 0.0_wp
+      mean_total = 0.0_wp
       stored_start = 0.0_wp
       stored_end = 0.0_wp
       step_descent = 0.0_wp
@@ -3209,11 +3210,8 @@ contains
             hyst_abs_sum(j) = hyst_abs_sum(j) + abs(hyst_j)
             ! an open profile's: the elements' work, the descent's term added
             ! back (mean_total is its factor in hyst)
-            if (open_energy .and. step_descent(j) /= 0.0_wp) then
-               open_work(j) = open_work(j) + kel(j) * (hyst(j) + mean_total(j) * step_descent(j))
-            else if (open_energy) then
-               open_work(j) = open_work(j) + kel(j) * hyst(j)
-            end if
+            if (open_energy) open_work(j) = open_work(j) + &
+               & kel(j) * (hyst(j) + mean_total(j) * step_descent(j))
             adh_sum(j) = adh_sum(j) + adh_j
             resid = abs(sum_f(j) + wh(j) - m%load) / m%load
             mu_sum(j) = mu_sum(j) + mu_j
