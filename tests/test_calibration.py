@@ -622,3 +622,16 @@ def test_cli_json_replaces_only_its_own_file(synthetic_csv, tmp_path):
     assert got["written_by"] == f"pavefric calibrate {pavefric.__version__}"
     assert list(got)[0] == "written_by"
     assert cli(*args, "-o", own).returncode == 0
+
+
+def test_a_runs_warnings_name_their_surface():
+    """The fresh-user audit (2026-12-07): `calibrate` printed each core run's
+    warnings without saying which surface they were about."""
+    from pavefric import calibrate as cal
+
+    model = cal.Model(SURFACES, {"depth": 1.0})          # 1 m of water: implausible
+    with pytest.warns(pavefric.PavefricWarning) as caught:
+        model.predict([{"surface": "GSP", "speed_kmh": 20.0}], {})
+    said = [str(w.message) for w in caught if issubclass(w.category, pavefric.PavefricWarning)]
+    assert any("&water depth = 1 m" in m for m in said), said
+    assert all(m.startswith("GSP: ") for m in said), said
