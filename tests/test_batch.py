@@ -33,7 +33,7 @@ def same_contents(a, b, ignore_attrs=("history",)):
                 assert np.array_equal(xv, yv), v
         for k in set(x.attrs) | set(y.attrs):
             if k not in ignore_attrs:
-                assert x.attrs[k] == y.attrs[k], k
+                assert np.array_equal(np.asarray(x.attrs[k]), np.asarray(y.attrs[k])), k
 
 
 def make_batch(tmp_path, n=24, broken=False, speeds="20, 60", depths="0.0, 1.0e-3"):

@@ -292,3 +292,32 @@ def test_plot_a_batch_file(batch_file, tmp_path):
         assert np.array_equal(curves[(1e-3, 42.0)], ds["mu"].values[:, 1, 1], equal_nan=True)
         assert np.isnan(curves[(0.0, 21.0)][2])           # the failed profile is a gap
 
+
+
+def test_a_batch_file_records_the_parameters_used(tmp_path):
+    """A batch file carries, as a scene's file does, every variable used
+    (`parameters`, defaults included) and each one typed (`param_*`): run as
+    a batch scene again, `parameters` gives the same numbers bit for bit."""
+    scene = list_batch(tmp_path, n=3, broken=0, chainage=False, speeds="30, 70")
+    out = tmp_path / "b.nc"
+    r = run_program(scene, "-o", out)
+    assert r.returncode == 0, r.stderr
+    with pavefric.open_dataset(out) as ds:
+        text = ds.attrs["parameters"]
+        assert ds.attrs["param_surface_mu_loc"] == 0.6
+        assert ds.attrs["param_surface_closed"] == 0
+        assert ds.attrs["param_batch_profile_list"] == "list.txt"
+        np.testing.assert_array_equal(np.atleast_1d(ds.attrs["param_batch_depths"]), [0.0, 1.0e-3])
+        np.testing.assert_array_equal(np.atleast_1d(ds.attrs["param_operation_speeds_kmh"]),
+                                      [30.0, 70.0])
+        # defaults the scene did not set are there too
+        assert ds.attrs["param_rubber_stiffness"] == 1.4e8
+        assert "&rubber" in text and "&batch" in text and "profile_list = 'list.txt'" in text
+        mu = ds["mu"].values.copy()
+    again = tmp_path / "again.nml"
+    again.write_text(text)
+    r = run_program(again, "-o", tmp_path / "again.nc")
+    assert r.returncode == 0, r.stderr
+    with pavefric.open_dataset(tmp_path / "again.nc") as ds:
+        np.testing.assert_array_equal(ds["mu"].values, mu)
+        assert ds.attrs["parameters"] == text

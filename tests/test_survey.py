@@ -58,9 +58,14 @@ def test_a_survey_in_parts_merges_to_the_whole_run(survey, tmp_path):
     r = subprocess.run([sys.executable, "-m", "pavefric", "merge", *map(str, parts), "-o",
                         str(merged)], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
-    # the parts' own scenes, titles and histories are theirs; everything else is equal
+    # the parts' own scenes, titles and histories are theirs (their profiles:
+    # &batch), everything else is equal
+    with xr.open_dataset(merged) as ds:
+        own = [k for k in ds.attrs if k.startswith(("param_batch_", "param_output_"))]
+        assert "param_batch_profiles" in own
     same_contents(survey / "all.nc", merged,
-                  ignore_attrs=("history", "title", "input_namelist", "merged_parts"))
+                  ignore_attrs=("history", "title", "input_namelist", "merged_parts",
+                                "parameters", *own))
     with xr.open_dataset(merged) as ds:
         assert ds.attrs["profiles_computed"] == 399 and ds.attrs["profiles_failed"] == 1
         assert "part0.nc" in ds.attrs["merged_parts"] and "part4.nc" in ds.attrs["merged_parts"]

@@ -18,9 +18,11 @@ from typing import Sequence
 
 import numpy as np
 
-# global attributes that differ from part to part by nature
-_PER_PART = {"history", "title", "input_namelist", "profiles_computed", "profiles_failed",
-             "profiles_with_warnings", "date_created"}
+# global attributes that differ from part to part by nature (the scenes,
+# compared by _physics; each part's own &batch and &output values)
+_PER_PART = {"history", "title", "input_namelist", "parameters", "profiles_computed",
+             "profiles_failed", "profiles_with_warnings", "date_created"}
+_PER_PART_PREFIXES = ("param_batch_", "param_output_")
 _COUNTS = ("profiles_computed", "profiles_failed", "profiles_with_warnings")
 
 
@@ -117,12 +119,12 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
         for p, ds in zip(paths, sets):
             if "profile" not in ds.dims:
                 raise MergeError(f"merge: '{p}' is not a batch output (no 'profile' dimension)")
-        phys = _physics(str(first.attrs.get("input_namelist", "")))
         names: dict[str, Path] = {}
         for p, ds in zip(paths, sets):
-            if _physics(str(ds.attrs.get("input_namelist", ""))) != phys:
-                raise MergeError(f"merge: '{p}' ran another scene than '{paths[0]}' (their "
-                                 "namelists differ outside &batch and &output)")
+            for key, what in (("input_namelist", "namelists"), ("parameters", "parameters used")):
+                if _physics(str(ds.attrs.get(key, ""))) != _physics(str(first.attrs.get(key, ""))):
+                    raise MergeError(f"merge: '{p}' ran another scene than '{paths[0]}' (their "
+                                     f"{what} differ outside &batch and &output)")
             for name in set(first.variables) ^ set(ds.variables):
                 raise MergeError(f"merge: '{name}' is in only one of '{paths[0]}' and '{p}'")
             for name, var in ds.variables.items():
@@ -131,7 +133,7 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
                 if not np.array_equal(var.values, first[name].values):
                     raise MergeError(f"merge: '{name}' differs between '{paths[0]}' and '{p}'")
             for name, value in ds.attrs.items():
-                if name in _PER_PART:
+                if name in _PER_PART or name.startswith(_PER_PART_PREFIXES):
                     continue
                 if str(first.attrs.get(name)) != str(value):
                     raise MergeError(f"merge: the attribute '{name}' differs between "

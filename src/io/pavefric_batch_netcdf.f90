@@ -6,7 +6,9 @@ module pavefric_batch_netcdf
    use pavefric_error, only: error_type, fatal_error, stat_io, stat_memory
    use pavefric_batch_types, only: batch_type, block_type, status_computed, status_failed, &
       & printable_utf8
-   use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary, check_replaceable
+   use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary, check_replaceable, &
+      & put_parameter_attributes
+   use pavefric_model, only: parameter_table, parameters_namelist_text
    implicit none
    private
 
@@ -57,7 +59,7 @@ contains
       logical, allocatable :: ok(:)
       character(len=:), allocatable :: names(:), msgs(:), warns(:)
       logical :: failed, any_failed
-      character(len=:), allocatable :: effects, profile_coords, result_coords
+      character(len=:), allocatable :: effects, profile_coords, result_coords, parameters_text
       integer(i8), allocatable :: c(:,:,:)
       real(wp), parameter :: fill = nf90_fill_double
       integer, parameter :: ifill = nf90_fill_int
@@ -294,6 +296,8 @@ contains
          call w%gatt("effects", effects)
          call w%gatt("warnings", batch%scene%warnings)
          call w%gatt("input_namelist", batch%scene%text)
+         call parameters_namelist_text(parameter_table(), batch%scene%parameters, parameters_text)
+         call put_parameter_attributes(w, batch%scene%parameters, parameters_text)
          call w%gatt("profiles_computed", count(ok))
          call w%gatt("profiles_failed", count([(blocks(i)%status == status_failed, i = 1, np)]))
          call w%gatt("profiles_with_warnings", count([(blocks(i)%n_warnings > 0, i = 1, np)]))

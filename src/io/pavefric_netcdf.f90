@@ -14,7 +14,7 @@ module pavefric_netcdf
    use pavefric_outputs, only: output_metadata_type, output_var_type, output_table, &
       & output_present, output_values, n_outputs, out_double, out_int64, out_int, out_flag, &
       & dim_speed
-   use pavefric_model, only: param_spec_type, parameter_table, kind_real, &
+   use pavefric_model, only: param_spec_type, param_set_type, parameter_table, kind_real, &
       & kind_integer, kind_logical, kind_text, kind_real_list
    use pavefric_fsys, only: rename_file, remove_file, register_temporary, &
       & release_temporary, test_pause, output_guard_type, check_output_path, &
@@ -24,7 +24,7 @@ module pavefric_netcdf
    private
 
    public :: write_results, temporary_name, commit_temporary, check_replaceable
-   public :: check_text_replaceable, check_png_replaceable
+   public :: check_text_replaceable, check_png_replaceable, put_parameter_attributes
 
    !> What check_replaceable and check_text_replaceable advise when they
    !> refuse a file.
@@ -666,19 +666,28 @@ contains
       end select
    end function xtype
 
-   !> The parameters used: the namelist text and one typed attribute each
-   !> (param_<group>_<name>), defaults included; optional ones not set are left out.
+   !> A scene's parameters used (put_parameter_attributes).
    subroutine put_parameters(w, meta)
       type(nc_writer_type), intent(inout) :: w
       type(output_metadata_type), intent(in) :: meta
+      if (.not. meta%has_parameters) return
+      call put_parameter_attributes(w, meta%parameters, meta%parameters_text)
+   end subroutine put_parameters
+
+   !> The parameters used: `text`, the namelist of `set`, as `parameters`, and
+   !> one typed attribute each (param_<group>_<name>), defaults included;
+   !> optional ones not set are left out. A scene's file and a batch's alike.
+   subroutine put_parameter_attributes(w, set, text)
+      type(nc_writer_type), intent(inout) :: w
+      type(param_set_type), intent(in) :: set
+      character(len=*), intent(in) :: text
       type(param_spec_type), allocatable :: specs(:)
       character(len=:), allocatable :: name
       integer :: k
-      if (.not. meta%has_parameters) return
-      call w%gatt("parameters", meta%parameters_text)
+      call w%gatt("parameters", text)
       specs = parameter_table()
       do k = 1, size(specs)
-         associate(v => meta%parameters%v(k))
+         associate(v => set%v(k))
             if (.not. v%set) cycle
             name = "param_" // specs(k)%group // "_" // specs(k)%name
             select case (specs(k)%kind)
@@ -698,6 +707,6 @@ contains
             end select
          end associate
       end do
-   end subroutine put_parameters
+   end subroutine put_parameter_attributes
 
 end module pavefric_netcdf
