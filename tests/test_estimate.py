@@ -5,6 +5,7 @@ the benchmark). Recorded in every output; printed by the program before a
 run estimated at a second or more, and by Python (PavefricCostWarning) before
 one estimated at ANNOUNCE_SECONDS or more."""
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -477,3 +478,19 @@ def test_a_tolerance_run_is_announced_by_its_refinements_guess():
     # would pass 4096)
     _, said = estimate(tolerance=1e-12, substeps=3)
     assert "may need substeps 3072," in said, said
+    # its memory: the last pass's, the first's times the substeps' ratio (the
+    # refined profile and the series grow with them; attack21: 1 MiB
+    # announced where the series of the passes took 2.3 GB)
+    for series in (False, True):
+        settings = {("surface", "dx"): _format(_spec("surface", "dx"), DX, "dx"),
+                    ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"),
+                                                         [20.0, 80.0], "speeds_kmh"),
+                    ("numerics", "tolerance"): _format(_spec("numerics", "tolerance"), 1e-12,
+                                                       "tolerance"),
+                    ("output", "series"): _format(_spec("output", "series"), series, "series")}
+        out, text, status, message = _core.pf_estimate(z, *_typed(settings))
+        assert status == 0, message
+        said = pavefric.core._text(text)
+        last = re.search(r"up to (\d+) MiB at the last pass", said)
+        assert last, said
+        assert int(last.group(1)) == max(1, round(float(out[1]) * 4096 / 2**20)), said

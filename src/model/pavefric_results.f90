@@ -30,10 +30,10 @@ module pavefric_results
       real(wp) :: refine_seconds = 0.0_wp
       real(wp), allocatable :: refine_speeds(:)
       !> With &numerics tolerance: a guess of the substeps the refinement
-      !> will reach and of the seconds of all its passes to there
-      !> (tolerance_guess), 0 without a tolerance.
+      !> will reach, of the seconds of all its passes to there and of the
+      !> bytes of its last pass (tolerance_guess), 0 without a tolerance.
       integer :: tolerance_substeps = 0
-      real(wp) :: tolerance_seconds = 0.0_wp
+      real(wp) :: tolerance_seconds = 0.0_wp, tolerance_bytes = 0.0_wp
    end type cost_estimate_type
 
 

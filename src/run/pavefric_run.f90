@@ -137,9 +137,11 @@ contains
          if (c%tolerance_substeps > 0) then
             write(sec, '(f0.1)') c%tolerance_seconds
             if (sec(1:1) == ".") sec = "0" // sec
+            write(mib, '(i0)') max(1_i8, nint(min(c%tolerance_bytes / 2.0_wp**20, 9.0e18_wp), i8))
             text = text // "; tolerance = " // to_str(tolerance) // " may need substeps " // &
-               & to_str(c%tolerance_substeps) // ", about " // trim(sec) // " s in all (a " // &
-               & "guess from how the default scenes converge)"
+               & to_str(c%tolerance_substeps) // ", about " // trim(sec) // " s in all and " // &
+               & "up to " // trim(mib) // " MiB at the last pass (a guess from how the " // &
+               & "default scenes converge)"
          end if
       end if
    end subroutine estimate_text

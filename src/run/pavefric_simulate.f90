@@ -2233,7 +2233,9 @@ contains
    !> the first two halvings. The substeps guessed: the power of two times
    !> the scene's substeps that meets the tolerance so, at least two
    !> halvings, at most max_substeps; the seconds: every pass to there, each
-   !> twice the one before (c%seconds the first's). A guess: a rough profile
+   !> twice the one before (c%seconds the first's); the bytes: the first
+   !> pass's times the substeps' ratio (its profile on the refined grid and
+   !> its series grow with them: an upper bound). A guess: a rough profile
    !> or a stiff compound converges slower, and speeds that meet the
    !> tolerance early stop.
    pure subroutine tolerance_guess(m, c)
@@ -2244,6 +2246,7 @@ contains
       integer :: s
       c%tolerance_substeps = 0
       c%tolerance_seconds = 0.0_wp
+      c%tolerance_bytes = 0.0_wp
       if (.not. (m%tolerance > 0.0_wp)) return
       needed = sqrt(err_richardson / m%tolerance)
       if (allocated(m%time_scheme)) then
@@ -2265,6 +2268,7 @@ contains
       end do
       c%tolerance_substeps = s
       c%tolerance_seconds = c%seconds * real(2 * (s / m%substeps) - 1, wp)
+      c%tolerance_bytes = c%bytes * real(s / m%substeps, wp)
    end subroutine tolerance_guess
 
    !> Refuse a run, before allocating, whose estimated memory exceeds what

@@ -183,7 +183,7 @@ subroutine pf_estimate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    !> Element-steps, bytes, seconds on one thread, and the seconds of them
    !> that refine the pad (pf_simulate's `forecast`: the probe then runs once).
    real(c_double), intent(out) :: estimate(4)
-   character(len=512), intent(out) :: text
+   character(len=1024), intent(out) :: text
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
    type(scene_type) :: scene
@@ -355,7 +355,7 @@ subroutine pf_scene_estimate(path, estimate, text, status, message)
    implicit none
    character(len=*), intent(in) :: path
    real(c_double), intent(out) :: estimate(4)
-   character(len=512), intent(out) :: text
+   character(len=1024), intent(out) :: text
    integer(c_int), intent(out) :: status
    character(len=2048), intent(out) :: message
    type(scene_type) :: scene
