@@ -132,6 +132,14 @@ def test_python_cli_run_and_plot(tmp_path):
     assert png.stat().st_size > 10_000 and png.read_bytes()[:4] == b"\x89PNG"
     ds = pavefric.open(out)
     assert ds.attrs["history"].split(": ", 1)[1].startswith("python -m pavefric run")
+    # the friction table, as the program prints it (it printed only 'wrote')
+    p = subprocess.run([program(), str(ROOT / "inputs" / "ctm_wet.nml"), "-o",
+                        str(tmp_path / "p.nc")], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    table = p.stdout[p.stdout.index("  speed_kmh"):]
+    assert table.count("\n") == 11                     # header and 10 speeds
+    assert table in r.stdout, (table, r.stdout)
+    assert f"effects: {ds.attrs['effects']}" in r.stdout
 
 
 def test_the_table_keeps_its_columns_for_a_huge_mu(tmp_path):

@@ -47,6 +47,7 @@ def main(args: argparse.Namespace) -> int:
         warnings.showwarning = show
         out = run(args.scene, args.output, progress=False if args.quiet else None)
     print(f"wrote {out}")
+    _print_table(out)
     if args.plot:
         print(f"wrote {plot_mu_speed([out], args.plot, inputs=[args.scene])}")
     if failed:
@@ -54,3 +55,25 @@ def main(args: argparse.Namespace) -> int:
         print(f"pavefric: {failed[0]}", file=sys.stderr)
         return 4
     return 0
+
+
+def _print_table(path) -> None:
+    """A single scene's friction against speed, as the program prints it
+    (a batch's file is a cube: `python -m pavefric plot` shows it)."""
+    from ..core import open_dataset
+
+    with open_dataset(path) as ds:
+        if "profile" in ds.dims or "mu" not in ds:
+            return
+        err = ds["mu_error_estimate"].values if "mu_error_estimate" in ds else None
+        print(f"  effects: {ds.attrs.get('effects', '')}")
+        print("  speed_kmh          mu   wet_fraction  hydroplaning" +
+              ("  mu_error_estimate" if err is not None else ""))
+        for j, v in enumerate(ds["speed_kmh"].values):
+            mu = float(ds["mu"].values[j])
+            mu_text = f"{mu:12.5f}" if abs(mu) < 1e4 else f"{mu:12.4e}"
+            line = (f"{float(v):11.3f}{mu_text}{float(ds['wet_fraction'].values[j]):15.4f}"
+                    f"{float(ds['hydroplaning_fraction'].values[j]):14.4f}")
+            if err is not None:
+                line += f"{float(err[j]):19.2E}"
+            print(line)
