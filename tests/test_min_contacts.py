@@ -242,7 +242,8 @@ def test_the_program_writes_it(tmp_path):
     with xr.open_dataset(tmp_path / "out.nc") as ds:
         var = ds["elements_per_sample_used"]
         assert var.dims == ds["mu"].dims
-        assert "min_contacts" in var.attrs["long_name"]
+        assert "min_contacts" in var.attrs["comment"]
+        assert var.attrs["long_name"] == "elements_per_sample of the run each speed's results come from"
         assert np.all(var.values >= 1)
 
 

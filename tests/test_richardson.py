@@ -145,16 +145,22 @@ def test_output_descriptions_are_whole(tmp_path):
             if name not in ds.variables or "long_name" not in var.ncattrs():
                 continue
             assert ds[name].attrs["long_name"] == var.long_name, name
+            assert ds[name].attrs.get("comment") == getattr(var, "comment", None), name
+            # long_name a few words (xarray's axis label), the rest in comment
+            assert len(var.long_name) <= 80, name
+            if "comment" in var.ncattrs():
+                assert var.comment != var.long_name, name
             compared += 1
     assert compared > 20
-    assert len(ds["mu_error_estimate"].attrs["long_name"]) > 300
+    assert ds["mu_error_estimate"].attrs["long_name"] == "estimated error of mu"
+    assert len(ds["mu_error_estimate"].attrs["comment"]) > 300
     # and nothing the tables hold reaches the interface's buffers (4096
     # characters; a text that long would be cut without a word)
     import pavefric.core as core
 
     params, groups, outputs = core._tables()
     assert max(len(p.meaning) for p in params) < 4000
-    assert max(len(o[2]) for o in outputs) < 4000
+    assert max(len(o[7]) for o in outputs) < 4000
     assert any(len(p.meaning) > 1000 for p in params)     # the old 1024 was near
 
 

@@ -368,9 +368,10 @@ def _tables() -> tuple:
     n_out = int(_core.pf_output_count())
     outputs = []
     for i in range(1, n_out + 1):
-        name, units, long_name, var_type, dims, written, owner = _core.pf_output_info(i)
+        (name, units, long_name, description, var_type, dims, written,
+         owner) = _core.pf_output_info(i)
         outputs.append((_text(name), _text(units), _text(long_name), int(var_type), int(dims),
-                        _text(written), _text(owner)))
+                        _text(written), _text(owner), _text(description)))
     return tuple(params), tuple(groups), tuple(outputs)
 
 
@@ -671,12 +672,15 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     dtypes = {1: np.float64, 2: np.int64, 3: np.int32, 4: np.int8}
     data = {}
     slot = -1
-    for k, (name, units, long_name, var_type, dims, _, _) in enumerate(outputs):
+    for k, (name, units, long_name, var_type, dims, _, _, description) in enumerate(outputs):
         if not present[k]:
             continue
         if dims != 1:
             slot += 1
+        # as the program's file: a few words, the whole description beside
         attrs = {"long_name": long_name}
+        if description != long_name:
+            attrs["comment"] = description
         if units:
             attrs["units"] = units
         if var_type == 4:
@@ -691,7 +695,8 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
     n_el, n_pos, n_spin, has_texture, n_seg, n_valid = (int(c) for c in counts)
     if has_texture:
         data["mpd"] = ((), float(texture[0]), {"units": "m", "long_name": "mean profile depth "
-                       "(ISO 13473-1 / ASTM E1845, 100 mm segments, slope suppression)",
+                       "(ISO 13473-1 / ASTM E1845)", "comment": "100 mm segments, slope "
+                       "suppression",
                        "n_segments": n_seg, "n_valid_segments": n_valid})
         data["rms_height"] = ((), float(texture[1]), {"units": "m", "long_name": "RMS profile "
                               "height about the mean"})
@@ -699,14 +704,17 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                              "between neighbouring samples at the profile spacing"})
     if ifi[0]:
         data["ifi_f60"] = ((), float(ifi[1]), {"units": "1", "long_name": "International "
-                           "Friction Index F60 (ASTM E1960): the computed friction at 20 km/h "
-                           "as a DFT value, carried to 60 km/h with ifi_sp"})
+                           "Friction Index F60 (ASTM E1960)", "comment": "the computed "
+                           "friction at 20 km/h as a DFT value, carried to 60 km/h with "
+                           "ifi_sp"})
         data["ifi_sp"] = ((), float(ifi[2]), {"units": "km h-1", "long_name": "speed constant "
-                          "Sp of ASTM E1960 from the mean profile depth (14.2 + 89.7 MPD in mm)"})
+                          "Sp of ASTM E1960 from the mean profile depth",
+                          "comment": "14.2 + 89.7 MPD in mm"})
     if ifi[3]:
         data["speed_constant"] = ((), float(ifi[4]), {"units": "km h-1", "long_name": "the "
-                                  "model's own speed constant: -1 / slope of ln(mu) fitted by "
-                                  "least squares against speed (to compare with ifi_sp)"})
+                                  "model's own speed constant", "comment": "-1 / slope of "
+                                  "ln(mu) fitted by least squares against speed (to compare "
+                                  "with ifi_sp)"})
     attrs = {
         "effects": effects,
         "warnings": warning_text,

@@ -20,6 +20,7 @@ module pavefric_netcdf
       & release_temporary, test_pause, output_guard_type, check_output_path, &
       & remove_stale_temporaries, setting, temporary_path
    use pavefric_format, only: to_str
+   use pavefric_output_spec, only: short_long_name
    implicit none
    private
 
@@ -127,18 +128,24 @@ contains
       if (status == nf90_enomem) stat = stat_memory
    end function stat_of
 
-   !> Define a variable with its units (none if empty) and long name.
+   !> Define a variable with its units (none if empty) and long name: a
+   !> description longer than a name (short_long_name) gives its first
+   !> words as long_name (xarray's axis label) and is whole in comment.
    subroutine writer_def(w, name, xtype, dims, units, long_name, varid)
       class(nc_writer_type), intent(inout) :: w
       character(len=*), intent(in) :: name, units, long_name
       integer, intent(in) :: xtype, dims(:)
       integer, intent(out) :: varid
+      character(len=:), allocatable :: short
       varid = -1
       if (allocated(w%error)) return
       call w%check(nf90_def_var(w%ncid, name, xtype, dims, varid), "variable " // name)
       if (len(units) > 0) call w%check(nf90_put_att(w%ncid, varid, "units", units), &
          & name // " units")
-      call w%check(nf90_put_att(w%ncid, varid, "long_name", long_name), name // " long_name")
+      call short_long_name(long_name, short)
+      call w%check(nf90_put_att(w%ncid, varid, "long_name", short), name // " long_name")
+      if (short /= long_name) call w%check(nf90_put_att(w%ncid, varid, "comment", long_name), &
+         & name // " comment")
    end subroutine writer_def
 
    !> A global text attribute; a text longer than long_text_limit becomes a
@@ -526,11 +533,15 @@ contains
       do k = 1, n_outputs
          if (.not. output_present(res, k, table)) cycle
          associate(v => table(k))
+            ! long_name: a few words (xarray's axis label); the whole
+            ! description in comment where it says more
             if (v%dims == dim_speed) then
-               call w%def(v%name, xtype(v%type), [d_speed], v%units, v%long_name, ids(k))
+               call w%def(v%name, xtype(v%type), [d_speed], v%units, v%short, ids(k))
             else
-               call w%def(v%name, xtype(v%type), [d_pos, d_speed], v%units, v%long_name, ids(k))
+               call w%def(v%name, xtype(v%type), [d_pos, d_speed], v%units, v%short, ids(k))
             end if
+            if (v%short /= v%long_name) call w%check(nf90_put_att(w%ncid, ids(k), "comment", &
+               & v%long_name), v%name // " comment")
             call w%check(nf90_put_att(w%ncid, ids(k), "coordinates", "speed"), v%name)
             if (v%type == out_flag) then
                call w%check(nf90_put_att(w%ncid, ids(k), "flag_values", [0_1, 1_1]), v%name)
@@ -540,18 +551,24 @@ contains
       end do
       if (meta%ifi%has_f60) then
          call w%def("ifi_f60", nf90_double, [integer ::], "1", "International Friction " // &
-            & "Index F60 (ASTM E1960): the computed friction at 20 km/h as a DFT value, " // &
-            & "carried to 60 km/h with ifi_sp", v_f60)
+            & "Index F60 (ASTM E1960)", v_f60)
+         call w%check(nf90_put_att(w%ncid, v_f60, "comment", "the computed friction at " // &
+            & "20 km/h as a DFT value, carried to 60 km/h with ifi_sp"), "ifi_f60")
          call w%def("ifi_sp", nf90_double, [integer ::], "km h-1", "speed constant Sp of " // &
-            & "ASTM E1960 from the mean profile depth (14.2 + 89.7 MPD in mm)", v_sp)
+            & "ASTM E1960 from the mean profile depth", v_sp)
+         call w%check(nf90_put_att(w%ncid, v_sp, "comment", "14.2 + 89.7 MPD in mm"), "ifi_sp")
       end if
-      if (meta%ifi%has_speed_constant) call w%def("speed_constant", nf90_double, &
-         & [integer ::], "km h-1", "the model's own speed constant: -1 / slope of ln(mu) " // &
-         & "fitted by least squares against speed (to compare with ifi_sp)", v_spm)
+      if (meta%ifi%has_speed_constant) then
+         call w%def("speed_constant", nf90_double, [integer ::], "km h-1", &
+            & "the model's own speed constant", v_spm)
+         call w%check(nf90_put_att(w%ncid, v_spm, "comment", "-1 / slope of ln(mu) fitted " // &
+            & "by least squares against speed (to compare with ifi_sp)"), "speed_constant")
+      end if
       if (meta%has_texture) then
          call w%def("mpd", nf90_double, [integer ::], "m", &
-            & "mean profile depth (ISO 13473-1 / ASTM E1845, 100 mm segments, slope " // &
-            & "suppression)", v_mpd)
+            & "mean profile depth (ISO 13473-1 / ASTM E1845)", v_mpd)
+         call w%check(nf90_put_att(w%ncid, v_mpd, "comment", "100 mm segments, slope " // &
+            & "suppression"), "mpd")
          call w%check(nf90_put_att(w%ncid, v_mpd, "n_segments", meta%texture%n_segments), "mpd")
          call w%check(nf90_put_att(w%ncid, v_mpd, "n_valid_segments", meta%texture%n_valid), "mpd")
          call w%def("rms_height", nf90_double, [integer ::], "m", &

@@ -155,7 +155,8 @@ contains
          & "the correction it made. " // &
          & "With &numerics tolerance: twice the larger of its last " // &
          & "two changes as the step was halved, or where mu is extrapolated, the larger of " // &
-         & "the extrapolated value's change and the last change", when=when_error_estimate)
+         & "the extrapolated value's change and the last change", when=when_error_estimate, &
+         & short="estimated error of mu")
       t(2) = output_var("numerics", "substeps_used", "1", "time steps per element spacing " // &
          & "of the reported mu: the tolerance's choice, or substeps as given at tolerance " // &
          & "= 0", out_int64, when=when_error_estimate)
@@ -163,7 +164,7 @@ contains
          & "the Richardson value 2 mu(s) - mu(s/2) of two Euler passes (with a tolerance: " // &
          & "the last two; time_scheme 'richardson' at tolerance = 0: the run and its error " // &
          & "estimate's pass), 0 where it is one pass's own", out_int64, &
-         & when=when_error_estimate)
+         & when=when_error_estimate, short="whether mu is the Richardson value of two passes")
       t(4) = output_var("numerics", "exact_integrator_ran", "", "whether the rubber was " // &
          & "integrated exactly in time, from contact event to event (&numerics time_scheme " // &
          & "= 'auto' or 'exact': a Kelvin-Voigt rubber with memory on a road " // &

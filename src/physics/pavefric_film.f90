@@ -246,7 +246,8 @@ contains
          & "have jumped to another root (wet_model = 'reynolds'; counted only for films " // &
          & "whose load may not be monotone, 0 for the others). Where it is not 0, mu " // &
          & "depends on the time step and may have no converged value; a warning says so " // &
-         & "(docs/model.md)", out_int64)
+         & "(docs/model.md)", out_int64, &
+         & short="averaged positions where the wet balance's root may have jumped")
    end function film_outputs
 
    pure function pseudo_bearing_entry() result(e)

@@ -170,6 +170,10 @@ def outputs_markdown() -> str:
         "with the same variables, values and attributes, bit for bit "
         "(tests/test_boundaries.py).",
         "",
+        "Each variable's `long_name` is its name in a few words (at most 80 characters: "
+        "xarray's axis label); where the meaning below says more, the whole text is its "
+        "`comment` attribute.",
+        "",
         "## Dimensions and coordinates",
         "",
         "| name | dims | units | meaning |",
@@ -186,11 +190,11 @@ def outputs_markdown() -> str:
         lines += [f"## {title}", "",
                   "| name | type | units | meaning | written | declared by |",
                   "|---|---|---|---|---|---|"]
-        for name, units, long_name, var_type, d, written, owner in outputs:
+        for name, units, _, var_type, d, written, owner, description in outputs:
             if d != dims:
                 continue
             lines.append(f"| `{name}` | {_TYPE.get(var_type, '?')} | {units or '—'} | "
-                         f"{long_name.replace('|', chr(92) + '|')} | {written} | {owner} |")
+                         f"{description.replace('|', chr(92) + '|')} | {written} | {owner} |")
         lines.append("")
     lines += [
         "Series are stored `(speed_kmh, position)`. A speed at which a film or the "

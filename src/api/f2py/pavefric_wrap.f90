@@ -99,22 +99,26 @@ subroutine pf_output_count(n)
    n = n_outputs
 end subroutine pf_output_count
 
-!> Result variable i (1-based): name, units, long name, type (1 double,
-!> 2 int64, 3 int, 4 flag), dimensions (1 speed, 2 position x speed), when
-!> it is written and the component that declares it.
-subroutine pf_output_info(i, name, units, long_name, var_type, dims, written, owner)
+!> Result variable i (1-based): name, units, long name (a few words, the
+!> NetCDF long_name), description (whole, the NetCDF comment where longer),
+!> type (1 double, 2 int64, 3 int, 4 flag), dimensions (1 speed, 2 position
+!> x speed), when it is written and the component that declares it.
+subroutine pf_output_info(i, name, units, long_name, description, var_type, dims, written, &
+      & owner)
    use, intrinsic :: iso_c_binding, only: c_int
    use pavefric_outputs, only: output_var_type, output_table, n_outputs, output_condition
    implicit none
    integer(c_int), intent(in) :: i
    character(len=64), intent(out) :: name, units, owner
-   character(len=4096), intent(out) :: long_name, written
+   character(len=4096), intent(out) :: long_name, description, written
    integer(c_int), intent(out) :: var_type, dims
    type(output_var_type) :: t(n_outputs)
-   name = ""; units = ""; long_name = ""; var_type = 0; dims = 0; written = ""; owner = ""
+   name = ""; units = ""; long_name = ""; description = ""; var_type = 0; dims = 0
+   written = ""; owner = ""
    if (i < 1 .or. i > n_outputs) return
    t = output_table()
-   name = t(i)%name; units = t(i)%units; long_name = t(i)%long_name; owner = t(i)%owner
+   name = t(i)%name; units = t(i)%units; long_name = t(i)%short; owner = t(i)%owner
+   description = t(i)%long_name
    var_type = t(i)%type; dims = t(i)%dims
    written = output_condition(i)
 end subroutine pf_output_info
