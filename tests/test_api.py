@@ -324,6 +324,9 @@ def test_c_api_bad_input_sets_the_error_and_goes_on(tmp_path, pc_env):
     assert "null_error_handle: check=2 load=1" in proc.stdout
     assert "run first" in msg["result_before_run"] and "run first" in msg["write_before_run"]
     assert "unknown_result_size: -1" in proc.stdout and "no such variable" in msg["unknown_result"]
+    assert "blank_result_size: -1" in proc.stdout
+    assert "the name 'mpd ' begins or ends with a blank" in msg["blank_result"]
+    assert "the name 'depth ' begins or ends with a blank" in msg["blank_parameter"]
     assert msg["small_array"] == "result 'mu': 10 values, room for 1 given"
     assert "'no/such/dir/out.nc' failed (No such file or directory)" in msg["unwritable_output"]
     # a too small buffer: 7 bytes and the NUL; the length says how much room

@@ -250,8 +250,8 @@ contains
       character(len=:), allocatable :: fgroup, fname, fvalue
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      if (.not. get_text(group, "pavefric_set_parameter: the group", fgroup, error)) return
-      if (.not. get_text(name, "pavefric_set_parameter: the name", fname, error)) return
+      if (.not. get_name(group, "pavefric_set_parameter: the group", fgroup, error)) return
+      if (.not. get_name(name, "pavefric_set_parameter: the name", fname, error)) return
       if (.not. get_text(value, "pavefric_set_parameter: the value", fvalue, error)) return
       call session_set_parameter(scene%ptr, fgroup, fname, fvalue, error%ptr)
    end subroutine set_parameter_api
@@ -352,8 +352,8 @@ contains
       open_typed = .false.
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      if (.not. get_text(group, what // ": the group", fgroup, error)) return
-      if (.not. get_text(name, what // ": the name", fname, error)) return
+      if (.not. get_name(group, what // ": the group", fgroup, error)) return
+      if (.not. get_name(name, what // ": the name", fname, error)) return
       open_typed = .true.
    end function open_typed
 
@@ -371,8 +371,8 @@ contains
       length = 0
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      if (.not. get_text(group, "pavefric_get_parameter: the group", fgroup, error)) return
-      if (.not. get_text(name, "pavefric_get_parameter: the name", fname, error)) return
+      if (.not. get_name(group, "pavefric_get_parameter: the group", fgroup, error)) return
+      if (.not. get_name(name, "pavefric_get_parameter: the name", fname, error)) return
       call session_get_parameter(scene%ptr, fgroup, fname, fvalue, error%ptr)
       if (allocated(error%ptr)) return
       call put_text(fvalue, buffer, buffer_size)
@@ -474,7 +474,7 @@ contains
       n = -1
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      if (.not. get_text(name, "pavefric_get_result_size: the name", fname, error)) return
+      if (.not. get_name(name, "pavefric_get_result_size: the name", fname, error)) return
       n = clamp(session_result_size(scene%ptr, fname))
       if (n < 0) call session_get_result(scene%ptr, fname, none, error%ptr)
    end function get_result_size_api
@@ -494,7 +494,7 @@ contains
       integer :: n
       if (.not. open_error(verror, error)) return
       if (.not. open_scene(vscene, scene, error)) return
-      if (.not. get_text(name, "pavefric_get_result: the name", fname, error)) return
+      if (.not. get_name(name, "pavefric_get_result: the name", fname, error)) return
       n = session_result_size(scene%ptr, fname)
       if (n <= 0) then
          ! the session names what is wrong
@@ -600,6 +600,24 @@ contains
          text(k:k) = chars(k)
       end do
    end function get_text
+
+   !> A name (of a group, a variable or a result) from C: get_text's, refused
+   !> when it begins or ends with a blank (Fortran's comparison would ignore
+   !> trailing blanks: "mpd " read as "mpd").
+   logical function get_name(cstr, what, text, error)
+      type(c_ptr), intent(in) :: cstr
+      character(len=*), intent(in) :: what
+      character(len=:), allocatable, intent(out) :: text
+      type(vp_error), intent(inout) :: error
+      get_name = get_text(cstr, what, text, error)
+      if (.not. get_name) return
+      if (len(text) == 0) return
+      if (text(1:1) == " " .or. text(len(text):len(text)) == " ") then
+         call fatal_error(error%ptr, what // " '" // text // "' begins or ends with a " // &
+            & "blank: a name has none")
+         get_name = .false.
+      end if
+   end function get_name
 
    !> Copy text into a C buffer of `size` bytes, NUL-terminated, truncated.
    subroutine put_text(text, buffer, size_)

@@ -188,6 +188,12 @@ static int bad(char **argv)
     report("result_before_run", error);
     printf("unknown_result_size: %d\n", pavefric_get_result_size(error, scene, "friction"));
     report("unknown_result", error);
+    /* a name with a blank at its end is not the name (attack22: "mpd "
+       was read as "mpd", Fortran's comparison ignoring trailing blanks) */
+    printf("blank_result_size: %d\n", pavefric_get_result_size(error, scene, "mpd "));
+    report("blank_result", error);
+    pavefric_set_parameter(error, scene, "water", "depth ", "1e-3");
+    report("blank_parameter", error);
     pavefric_write_output(error, scene, "never.nc");
     report("write_before_run", error);
 
