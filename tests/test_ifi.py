@@ -43,6 +43,17 @@ def test_undefined_cases_write_nothing_rather_than_a_guess(medium):
     dry = pavefric.simulate(medium, 0.87e-3, [20.0, 60.0], mu_loc=0.6)        # flat in speed?
     one = pavefric.simulate(medium, 0.87e-3, [60.0], mu_loc=0.6, depth=1e-3)
     assert "speed_constant" not in one and "ifi_f60" not in one            # no 20, no line
+    # Sp needs only the texture and water (attack22: it went with F60)
+    assert float(one["ifi_sp"]) == pytest.approx(14.2 + 89.7 * float(one["mpd"]) * 1e3,
+                                                 rel=1e-12)
+    # F60 from a line far from 20 km/h would be a guess (attack22: F60 0.0997
+    # from 99,999 and 100,000 km/h): the line reaches at most 20 km/h beyond
+    far = pavefric.simulate(medium, 0.87e-3, [45.0, 80.0], mu_loc=0.6, depth=1e-3,
+                            wet_model="squeeze")
+    assert "ifi_f60" not in far and "ifi_sp" in far and "speed_constant" in far
+    near = pavefric.simulate(medium, 0.87e-3, [40.0, 80.0], mu_loc=0.6, depth=1e-3,
+                             wet_model="squeeze")
+    assert "ifi_f60" in near
     if float(dry["mu"][1]) >= float(dry["mu"][0]):
         assert "speed_constant" not in dry                                 # friction not falling
     # the IFI indexes wet friction: a dry run's friction is not a DFT's

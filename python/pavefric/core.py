@@ -707,6 +707,7 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                            "Friction Index F60 (ASTM E1960)", "comment": "the computed "
                            "friction at 20 km/h as a DFT value, carried to 60 km/h with "
                            "ifi_sp"})
+    if ifi[5]:
         data["ifi_sp"] = ((), float(ifi[2]), {"units": "km h-1", "long_name": "speed constant "
                           "Sp of ASTM E1960 from the mean profile depth",
                           "comment": "14.2 + 89.7 MPD in mm"})

@@ -554,6 +554,8 @@ contains
             & "Index F60 (ASTM E1960)", v_f60)
          call w%check(nf90_put_att(w%ncid, v_f60, "comment", "the computed friction at " // &
             & "20 km/h as a DFT value, carried to 60 km/h with ifi_sp"), "ifi_f60")
+      end if
+      if (meta%ifi%has_sp) then
          call w%def("ifi_sp", nf90_double, [integer ::], "km h-1", "speed constant Sp of " // &
             & "ASTM E1960 from the mean profile depth", v_sp)
          call w%check(nf90_put_att(w%ncid, v_sp, "comment", "14.2 + 89.7 MPD in mm"), "ifi_sp")
@@ -653,10 +655,9 @@ contains
             end select
          end associate
       end do
-      if (meta%ifi%has_f60) then
-         call w%check(nf90_put_var(w%ncid, v_f60, meta%ifi%f60), "ifi_f60")
-         call w%check(nf90_put_var(w%ncid, v_sp, meta%ifi%sp_texture), "ifi_sp")
-      end if
+      if (meta%ifi%has_f60) call w%check(nf90_put_var(w%ncid, v_f60, meta%ifi%f60), "ifi_f60")
+      if (meta%ifi%has_sp) call w%check(nf90_put_var(w%ncid, v_sp, meta%ifi%sp_texture), &
+         & "ifi_sp")
       if (meta%ifi%has_speed_constant) call w%check(nf90_put_var(w%ncid, v_spm, &
          & meta%ifi%speed_constant), "speed_constant")
       if (meta%has_texture) then

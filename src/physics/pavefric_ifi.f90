@@ -23,10 +23,12 @@ module pavefric_ifi
 
    !> The index and the model's speed constant of one speed sweep.
    type :: ifi_type
-      !> Whether F60 could be formed (a texture depth and friction at 20 km/h).
-      logical :: has_f60 = .false.
+      !> Whether Sp could be formed (a texture depth), and F60 (with it,
+      !> friction at 20 km/h).
+      logical :: has_sp = .false., has_f60 = .false.
       !> Sp from the texture (km/h), friction at 20 km/h (computed, or on the
-      !> fitted line when 20 km/h was not run) and F60.
+      !> fitted line when 20 km/h was not run and the line's speeds reach
+      !> within 20 km/h of it) and F60.
       real(wp) :: sp_texture = 0.0_wp, mu20 = 0.0_wp, f60 = 0.0_wp
       !> Whether friction falls with speed over two speeds or more; then the
       !> model's speed constant (km/h).
@@ -66,6 +68,8 @@ contains
          end if
       end if
       if (.not. mpd > 0.0_wp) return
+      r%sp_texture = sp_a + sp_b * mpd * 1.0e3_wp
+      r%has_sp = .true.
       at20 = 0
       do j = 1, size(mu)
          if (speeds_kmh(j) == 20.0_wp) at20 = j
@@ -73,11 +77,13 @@ contains
       if (at20 > 0) then
          r%mu20 = mu(at20)
       else if (fitted) then
+         ! the line carried at most 20 km/h beyond the speeds it was fitted
+         ! on (attack22: F60 from 99,999 and 100,000 km/h)
+         if (minval(speeds_kmh, mask=use) > 40.0_wp) return
          r%mu20 = exp(intercept + 20.0_wp * slope)
       else
          return
       end if
-      r%sp_texture = sp_a + sp_b * mpd * 1.0e3_wp
       r%f60 = f60_a + f60_b * r%mu20 * exp(-40.0_wp / r%sp_texture)
       r%has_f60 = .true.
    end function ifi_from_sweep

@@ -382,7 +382,7 @@ contains
          has = s%meta%ifi%has_f60
          value = s%meta%ifi%f60
       case ("ifi_sp")
-         has = s%meta%ifi%has_f60
+         has = s%meta%ifi%has_sp
          value = s%meta%ifi%sp_texture
       case ("speed_constant")
          has = s%meta%ifi%has_speed_constant
@@ -465,7 +465,8 @@ contains
          call fatal_error(error, "result '" // trim(name) // "': not part of this run " // &
             & "(series variables need &output series = .true.; the squeeze-film ones a " // &
             & "film that ran; mpd, rms_height and rms_slope a profile of at least one " // &
-            & "100 mm segment; ifi_f60 and ifi_sp its texture depth and water on the road; " // &
+            & "100 mm segment; ifi_sp its texture depth and water on the road, ifi_f60 " // &
+            & "also friction at 20 km/h or a line of it reaching within 20 km/h; " // &
             & "speed_constant " // &
             & "friction falling over two speeds or more)")
          return

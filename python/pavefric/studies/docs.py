@@ -211,11 +211,13 @@ def outputs_markdown() -> str:
         "",
         "## International Friction Index (ASTM E1960)",
         "",
-        "`ifi_f60` (the computed friction at 20 km/h taken as a DFT value, carried to "
-        "60 km/h: F60 = 0.081 + 0.732 mu20 exp(-40/Sp); mu20 on the least-squares line of "
-        "ln mu against speed when 20 km/h was not run) and `ifi_sp` (km/h, Sp = 14.2 + "
-        "89.7 MPD in mm), when the texture depth is known and the road is wet (`&water "
-        "depth` > 0: the IFI indexes wet friction, so a dry run has neither); "
+        "`ifi_sp` (km/h, Sp = 14.2 + 89.7 MPD in mm) when the texture depth is known and "
+        "the road is wet (`&water depth` > 0: the IFI indexes wet friction, so a dry run "
+        "has none), and with it `ifi_f60` (the computed friction at 20 km/h taken as a DFT "
+        "value, carried to 60 km/h: F60 = 0.081 + 0.732 mu20 exp(-40/Sp)) where mu20 is "
+        "known: run at 20 km/h, or on the least-squares line of ln mu against speed over "
+        "two speeds or more, the lowest at most 40 km/h (the line carried at most 20 km/h "
+        "beyond them); "
         "`speed_constant` (km/h), the "
         "model's own: -1 / slope of ln mu fitted against speed, when friction falls over two "
         "speeds or more. Compare `speed_constant` with `ifi_sp` as PIARC would "

@@ -259,7 +259,7 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    real(c_double), intent(out) :: estimate(4)
    !> ASTM E1960: has F60 (1/0), F60, Sp from MPD (km/h), has the model's
    !> speed constant (1/0), that constant (km/h).
-   real(c_double), intent(out) :: ifi(5)
+   real(c_double), intent(out) :: ifi(6)
    integer(c_int), intent(out) :: present(nout), counts(6), text_lengths(3), status
    character, intent(out) :: texts(ntext)
    character(len=2048), intent(out) :: message
@@ -328,7 +328,7 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
       & res%estimate%seconds, real(res%element_spacing, c_double)]
    ifi = [merge(1.0_c_double, 0.0_c_double, meta%ifi%has_f60), meta%ifi%f60, &
       & meta%ifi%sp_texture, merge(1.0_c_double, 0.0_c_double, meta%ifi%has_speed_constant), &
-      & meta%ifi%speed_constant]
+      & meta%ifi%speed_constant, merge(1.0_c_double, 0.0_c_double, meta%ifi%has_sp)]
    if (meta%has_texture) texture = [meta%texture%mpd, meta%texture%rms_height, &
       & meta%texture%rms_slope]
    joined = res%effects // meta%warnings // meta%parameters_text
