@@ -203,7 +203,7 @@ def test_progress_lines(tmp_path):
     assert "profiles/s" in lines[-1] and "s left" in lines[-1]
     results = r.stdout.splitlines()
     assert len(results) == 1 and ": batch " in results[0], r.stdout
-    assert "20 profiles: 20 computed in this run" in results[0]
+    assert "20 profiles: 20 done in this run (failed included)" in results[0]
 
 
 def test_batch_bad_input(tmp_path):

@@ -209,7 +209,7 @@ def test_long_profile_list(tmp_path):
                      "&operation speeds_kmh = 20 /\n")
     r = run_program(scene, "-o", tmp_path / "o.nc", "--max-profiles", "2")
     assert r.returncode == 3, r.stderr
-    assert "40000 profiles: 2 computed in this run" in r.stdout and "39998 left" in r.stdout
+    assert "40000 profiles: 2 done in this run (failed included)" in r.stdout and "39998 left" in r.stdout
     r = run_program(scene, "-o", tmp_path / "o.nc", "--max-profiles", "1")
     assert r.returncode == 3 and "resuming: 2 of 40000 profiles already done" in r.stderr
 
@@ -223,7 +223,7 @@ def test_failed_batch_does_not_look_like_success(tmp_path):
     r = run_program(scene, "-o", out)
     assert r.returncode == 4, r.stdout + r.stderr
     assert "5/5 profiles (100.0 %, 5 failed)" in r.stderr
-    assert f"-> {out}: 5 profiles: 5 computed in this run, 0 taken from the journal, " \
+    assert f"-> {out}: 5 profiles: 5 done in this run (failed included), 0 taken from the journal, " \
            "5 failed" in r.stdout
     assert "pavefric: profile seg_0001: " in r.stderr and "'abc'" in r.stderr
     assert "5 of 5 profiles failed" in r.stderr

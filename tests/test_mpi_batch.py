@@ -73,7 +73,7 @@ def test_mixed_tiny_batch_equals_serial_every_time(tmp_path):
         r = mpirun(scene, "-o", out)
         assert r.returncode == 4, r.stdout[-2000:] + r.stderr[-2000:]
         assert "--max-profiles" not in r.stderr
-        assert "301 profiles: 301 computed in this run, 0 taken from the journal, 2 failed" \
+        assert "301 profiles: 301 done in this run (failed included), 0 taken from the journal, 2 failed" \
             in r.stdout
         same_contents(serial, out)
     with xr.open_dataset(serial) as ds:
@@ -136,13 +136,13 @@ def test_every_rank_exits_alike(tmp_path):
     out = tmp_path / "mpi.nc"
     r = mpirun(scene, "-o", out, "--max-profiles", "15", wrap_exit=True)
     assert rank_exits(r) == ["3", "3"], r.stdout + r.stderr
-    assert "15 computed in this run" in r.stdout and "25 left" in r.stdout
+    assert "15 done in this run (failed included)" in r.stdout and "25 left" in r.stdout
     journal = (tmp_path / "mpi.nc.journal").read_text()
     assert journal.count("\nP ") == 15
     r = mpirun(scene, "-o", out, wrap_exit=True)
     assert rank_exits(r) == ["4", "4"], r.stdout + r.stderr
     assert "resuming: 15 of 40 profiles already done" in r.stderr
-    assert "40 profiles: 25 computed in this run, 15 taken from the journal, 1 failed" in r.stdout
+    assert "40 profiles: 25 done in this run (failed included), 15 taken from the journal, 1 failed" in r.stdout
     same_contents(serial, out)
 
 

@@ -92,6 +92,29 @@ def test_merge_refuses_parts_that_do_not_belong_together(survey, tmp_path):
     assert r.returncode == 1 and "the profile 'seg_0019' is in both" in r.stderr
     r = _merge(a, other_mu, "-o", tmp_path / "m.nc")
     assert r.returncode == 1 and "ran another scene" in r.stderr
+    assert "(&pad length: 0.02 against 0.01)" in r.stderr, r.stderr    # what differs
+    # the same values written otherwise are the same scene (attack22: refused
+    # by the text), and a part whose profiles all failed ran no effects but
+    # belongs to the survey (attack22: refused, 'effects' differs)
+    (tmp_path / "spelled.nml").write_text(SCENE.format(
+        pattern=str(survey / "profiles" / "seg_003*.txt")).replace("mu_loc = 0.6",
+                                                                    "mu_loc = 6.0e-1"))
+    spelled = tmp_path / "spelled.nc"
+    assert run_program(tmp_path / "spelled.nml", "-o", spelled).returncode in (0, 4)
+    (tmp_path / "none.txt").write_text("nope_1.txt\nnope_2.txt\n")
+    (tmp_path / "failed.nml").write_text(SCENE.format(pattern="x").replace(
+        "profiles = 'x'", f"profile_list = '{tmp_path / 'none.txt'}'"))
+    failed = tmp_path / "failed.nc"
+    assert run_program(tmp_path / "failed.nml", "-o", failed).returncode == 4
+    r = _merge(a, spelled, failed, "-o", tmp_path / "m3.nc")
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(tmp_path / "m3.nc") as m, xr.open_dataset(a) as first:
+        assert m.sizes["profile"] == 9 + 10 + 2             # seg_0001-9, seg_003x, 2 failed
+        assert m.attrs["effects"] == first.attrs["effects"] != ""
+    r = _merge(failed, a, "-o", tmp_path / "m4.nc")         # the failed part first
+    assert r.returncode == 0, r.stderr
+    with xr.open_dataset(tmp_path / "m4.nc") as m, xr.open_dataset(a) as first:
+        assert m.attrs["effects"] == first.attrs["effects"]
     before = a.read_bytes()
     r = _merge(a, b, "-o", a)
     assert r.returncode == 1 and "would destroy an input" in r.stderr, r.stderr

@@ -5,8 +5,11 @@ A survey split in parts (each a batch scene over its own profiles, with the
 same physics, depths and speeds) gives one output per part; this joins them
 along ``profile``, in the order given. It is bookkeeping, not physics: every
 value is copied, none computed. It refuses parts that ran other physics
-(their scenes differ outside ``&batch`` and ``&output``), other depths or
-speeds, or that share a profile name, naming the files and what differs.
+(the parameters they used differ outside ``&batch`` and ``&output``: the
+core's text of each value, so two spellings of one number agree; the
+variable is named), other depths or speeds, or that share a profile name,
+naming the files and what differs. A part whose profiles all failed ran no
+effects; the merged file's ``effects`` are those of the parts that ran.
 docs/cluster.md ("A survey of a million profiles") shows where it fits.
 """
 from __future__ import annotations
@@ -120,11 +123,14 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             if "profile" not in ds.dims:
                 raise MergeError(f"merge: '{p}' is not a batch output (no 'profile' dimension)")
         names: dict[str, Path] = {}
+        # the effects that ran: those of the parts that computed a profile (a
+        # part whose profiles all failed ran none)
+        ran = [ds for ds in sets if int(ds.attrs.get("profiles_computed", 1)) > 0] or sets
+        ran_ids = {id(ds) for ds in ran}
         for p, ds in zip(paths, sets):
-            for key, what in (("input_namelist", "namelists"), ("parameters", "parameters used")):
-                if _physics(str(ds.attrs.get(key, ""))) != _physics(str(first.attrs.get(key, ""))):
-                    raise MergeError(f"merge: '{p}' ran another scene than '{paths[0]}' (their "
-                                     f"{what} differ outside &batch and &output)")
+            why = _scene_difference(first, ds)
+            if why:
+                raise MergeError(f"merge: '{p}' ran another scene than '{paths[0]}' ({why})")
             for name in set(first.variables) ^ set(ds.variables):
                 raise MergeError(f"merge: '{name}' is in only one of '{paths[0]}' and '{p}'")
             for name, var in ds.variables.items():
@@ -134,6 +140,8 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
                     raise MergeError(f"merge: '{name}' differs between '{paths[0]}' and '{p}'")
             for name, value in ds.attrs.items():
                 if name in _PER_PART or name.startswith(_PER_PART_PREFIXES):
+                    continue
+                if name == "effects" and not {id(ds), id(first)} <= ran_ids:
                     continue
                 if str(first.attrs.get(name)) != str(value):
                     raise MergeError(f"merge: the attribute '{name}' differs between "
@@ -168,6 +176,8 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             if merged[name].dtype.kind in "SU":
                 merged[name].encoding.pop("dtype", None)
         merged.attrs = dict(first.attrs)
+        if "effects" in ran[0].attrs:
+            merged.attrs["effects"] = ran[0].attrs["effects"]
         for key in _COUNTS:
             if key in first.attrs:
                 merged.attrs[key] = int(sum(int(ds.attrs.get(key, 0)) for ds in sets))
@@ -182,6 +192,37 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
         for ds in opened:
             ds.close()
     return out
+
+
+def _scene_difference(a, b) -> str:
+    """How two parts' scenes differ outside &batch and &output ('' where they
+    do not). By the parameters used where both parts record them: the
+    core's own text of every value, so `0.6000000000000001` and
+    `6.000000000000001e-1` agree, and the variable that differs is named;
+    else (files of versions before them) by the scenes' text."""
+    if "parameters" in a.attrs and "parameters" in b.attrs:
+        if _physics(str(a.attrs["parameters"])) == _physics(str(b.attrs["parameters"])):
+            return ""
+        typed = [k for k in set(a.attrs) | set(b.attrs)
+                 if k.startswith("param_") and not k.startswith(_PER_PART_PREFIXES)]
+        for key in sorted(typed):
+            if key not in a.attrs or key not in b.attrs or not np.array_equal(
+                    np.asarray(a.attrs[key]), np.asarray(b.attrs[key])):
+                group, name = key[len("param_"):].split("_", 1)
+                return (f"&{group} {name}: {_shown(a.attrs.get(key))} against "
+                        f"{_shown(b.attrs.get(key))}")
+        return "their parameters used differ outside &batch and &output"
+    if _physics(str(a.attrs.get("input_namelist", ""))) != \
+            _physics(str(b.attrs.get("input_namelist", ""))):
+        return "their namelists differ outside &batch and &output"
+    return ""
+
+
+def _shown(value) -> str:
+    if value is None:
+        return "not set"
+    v = np.asarray(value)
+    return str(v.tolist()) if v.ndim else str(v.item())
 
 
 def _profile_names(ds) -> list[str]:

@@ -120,7 +120,7 @@ contains
       integer :: k
       character(len=:), allocatable :: counts
       counts = to_str(summary%total) // " profiles: " // to_str(summary%computed) // &
-         & " computed in this run, " // to_str(summary%from_journal) // &
+         & " done in this run (failed included), " // to_str(summary%from_journal) // &
          & " taken from the journal, " // to_str(summary%failed) // " failed, " // &
          & to_str(summary%warned) // " with warnings"
       if (summary%finished) then

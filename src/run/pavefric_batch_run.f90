@@ -32,7 +32,7 @@ module pavefric_batch_run
 
    !> What a batch run did: the program's summary line and exit status.
    type :: batch_summary_type
-      !> Profiles in the batch, computed in this run, taken from the journal,
+      !> Profiles in the batch, done in this run (failed included), taken from the journal,
       !> still to compute, and failed (among all done).
       integer :: total = 0, computed = 0, from_journal = 0, left = 0, failed = 0
       !> Computed profiles with warnings (recorded in the output's n_warnings
