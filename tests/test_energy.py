@@ -359,6 +359,24 @@ def test_the_negative_hysteresis_of_a_pad_that_never_repeats_is_named(model):
     assert not any("mu_hysteresis" in str(w.message) for w in caught)
 
 
+def test_the_paper_schemes_negative_friction_is_blamed_on_the_scheme():
+    """attack22: an elastic pad (viscosity 0, mu_loc 0) on a closed sawtooth
+    under friction_scheme = 'paper' read mu -0.24, warned as a pad that did
+    not repeat and told to check &rubber viscosity, which is 0. The cause is
+    the paper's facet forces (Eq. 10), which do not balance the rubber's
+    energy: the warning names the scheme; the default scheme gives 0."""
+    z = np.tile(np.arange(7) * 0.3e-3, 15)
+    with pytest.warns(pavefric.PavefricWarning,
+                      match=r"mu_hysteresis = .* < 0 at 20 km/h under &numerics "
+                            r"friction_scheme = 'paper'"):
+        ds = pavefric.simulate(z, DX, [20.0], mu_loc=0.0, viscosity=0.0,
+                               friction_scheme="paper")
+    assert float(ds["mu"][0]) < -0.1
+    assert "check &rubber" not in ds.attrs["warnings"]
+    energy = pavefric.simulate(z, DX, [20.0], mu_loc=0.0, viscosity=0.0)
+    assert abs(float(energy["mu"][0])) < 1e-9
+
+
 def stiff_pad_under_a_tiny_load():
     """An attack's scene (2026-12-06, fifteenth session): a nearly elastic,
     very stiff pad (K 9.8e10 N m-3, retardation time 1e-7 s against a step of
