@@ -434,6 +434,16 @@ def test_c_scene_from_text_agrees_with_python_simulate(tmp_path, pc_env, profile
     assert written.attrs["param_surface_dx"] == 0.87e-3 and written.attrs["profile_closed"] == 0
     for name in ds.data_vars:
         assert same_bits(written[name].values, ds[name].values), name
+    # Sp without F60 (speeds far from 20 km/h): the C API has the one, not
+    # the other, as the file and Python
+    far = text.replace("15, 45, 75", "45, 75")
+    got = dumped(_run([exe, "dump", far, tmp_path / "far.nc", heights, "0.87e-3", "0"],
+                      cwd=tmp_path).stdout)
+    ds = pavefric.simulate(profile_m, 0.87e-3, [45, 75], closed=False, series=True,
+                           mu_loc=0.55, depth=0.8e-3)
+    assert "ifi_sp" in got and "ifi_f60" not in got and "ifi_f60" not in ds
+    assert same_bits(got["ifi_sp"], ds["ifi_sp"].values)
+    assert "ifi_f60" not in pavefric.open_dataset(tmp_path / "far.nc")
     # without heights there is nothing to run, and the error says so
     proc = subprocess.run([str(exe), "dump", text, "-"], capture_output=True, text=True)
     assert proc.returncode == 1

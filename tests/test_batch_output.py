@@ -321,3 +321,21 @@ def test_a_batch_file_records_the_parameters_used(tmp_path):
     with pavefric.open_dataset(tmp_path / "again.nc") as ds:
         np.testing.assert_array_equal(ds["mu"].values, mu)
         assert ds.attrs["parameters"] == text
+
+
+def test_a_batch_names_its_variables_as_a_scene_does(batch_file, profile_m):
+    """The variables a batch's file shares with a scene's carry the same
+    long_name (the review: 'mpd' read "mean profile depth" in a batch and
+    "mean profile depth (ISO 13473-1 / ASTM E1845)" in a scene); the batch's
+    own description is whole in comment where it says more."""
+    scene = pavefric.simulate(profile_m, 0.87e-3, [20.0, 60.0], depth=1e-3)
+    with xr.open_dataset(batch_file) as ds:
+        shared = [v for v in ds.variables if v in scene.variables and v not in
+                  ("speed", "speed_kmh")]
+        assert {"mu", "mu_hysteresis", "mu_error_estimate", "elements_per_sample_used",
+                "mpd", "rms_slope", "wet_fraction"} <= set(shared)
+        for v in shared:
+            assert ds[v].attrs["long_name"] == scene[v].attrs["long_name"], v
+            assert len(ds[v].attrs["long_name"]) <= 80, v
+            if "comment" in ds[v].attrs:
+                assert ds[v].attrs["comment"] != ds[v].attrs["long_name"], v

@@ -491,6 +491,6 @@ def test_a_tolerance_run_is_announced_by_its_refinements_guess():
         out, text, status, message = _core.pf_estimate(z, *_typed(settings))
         assert status == 0, message
         said = pavefric.core._text(text)
-        last = re.search(r"up to (\d+) MiB at the last pass", said)
+        last = re.search(r"about (\d+) MiB at the last pass", said)
         assert last, said
         assert int(last.group(1)) == max(1, round(float(out[1]) * 4096 / 2**20)), said

@@ -77,3 +77,25 @@ def test_a_sweep_of_scene_files_sorts_by_its_typed_parameters(tmp_path, profile_
     assert all("depth = " in r[3] for r in runs)
     # dry friction above wet, read off the sorted runs
     assert ordered[0][2] > ordered[1][2]
+
+
+def test_a_copy_of_a_scene_file_opens_for_writing(scene_file, tmp_path):
+    """docs/outputs.md: netCDF-C 4.9 opens pavefric's files (built in memory
+    by nc_create_mem, whose root group has no link creation order) for
+    reading only; a copy written by xarray opens for writing, with every
+    value and attribute kept. Should netCDF-C lift the limit, the first
+    assertion fails and the docs' paragraph goes."""
+    import netCDF4
+
+    with pytest.raises(OSError, match="Can't write file"):
+        netCDF4.Dataset(scene_file, "a").close()
+    copy = tmp_path / "annotated.nc"
+    with xr.open_dataset(scene_file) as ds:
+        ds.to_netcdf(copy)
+    with netCDF4.Dataset(copy, "a") as nc:
+        nc.setncattr("site", "A1 northbound, km 12.4")
+    with xr.open_dataset(scene_file) as a, xr.open_dataset(copy) as b:
+        assert b.attrs["site"] == "A1 northbound, km 12.4"
+        assert {k: v for k, v in b.attrs.items() if k != "site"}.keys() == a.attrs.keys()
+        for name in a.variables:
+            np.testing.assert_array_equal(a[name].values, b[name].values)

@@ -115,6 +115,25 @@ def test_merge_refuses_parts_that_do_not_belong_together(survey, tmp_path):
     assert r.returncode == 0, r.stderr
     with xr.open_dataset(tmp_path / "m4.nc") as m, xr.open_dataset(a) as first:
         assert m.attrs["effects"] == first.attrs["effects"]
+    # a part written before the parameters were recorded is compared by its
+    # scene's text, in either order (the review: refused when it came first,
+    # its missing param_* read as a difference)
+    import netCDF4
+
+    # (pavefric's files open read-only in netCDF-C: docs/outputs.md; nccopy's
+    # copy opens for writing)
+    old = tmp_path / "old.nc"
+    subprocess.run(["nccopy", str(b), str(old)], check=True)
+    with netCDF4.Dataset(old, "a") as nc:
+        for name in [k for k in nc.ncattrs() if k == "parameters" or k.startswith("param_")]:
+            nc.delncattr(name)
+    for order in ((a, old), (old, a)):
+        r = _merge(*order, "-o", tmp_path / "m5.nc")
+        assert r.returncode == 0, r.stderr
+    with netCDF4.Dataset(old, "a") as nc:          # and it still tells other physics
+        nc.input_namelist = nc.input_namelist.replace("mu_loc = 0.6", "mu_loc = 0.5")
+    r = _merge(old, a, "-o", tmp_path / "m6.nc")
+    assert r.returncode == 1 and "their namelists differ" in r.stderr, r.stderr
     before = a.read_bytes()
     r = _merge(a, b, "-o", a)
     assert r.returncode == 1 and "would destroy an input" in r.stderr, r.stderr

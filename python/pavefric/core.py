@@ -375,6 +375,18 @@ def _tables() -> tuple:
     return tuple(params), tuple(groups), tuple(outputs)
 
 
+@functools.lru_cache(maxsize=1)
+def _scalar_table() -> tuple:
+    """The scalars of a scene's file: (name, units, long_name, description)
+    each, from the core (pavefric_outputs' scalar_table)."""
+    rows, i, n = [], 1, 1
+    while i <= n:
+        n, name, units, long_name, description = _core.pf_scalar_info(i)
+        rows.append((_text(name), _text(units), _text(long_name), _text(description)))
+        i += 1
+    return tuple(rows)
+
+
 def parameters() -> tuple:
     """Every namelist variable's declaration, from the core.
 
@@ -693,29 +705,23 @@ def simulate(heights_m: Iterable[float], dx: float, speeds_kmh: Iterable[float] 
                               dtypes[var_type]),
                           attrs)
     n_el, n_pos, n_spin, has_texture, n_seg, n_valid = (int(c) for c in counts)
-    if has_texture:
-        data["mpd"] = ((), float(texture[0]), {"units": "m", "long_name": "mean profile depth "
-                       "(ISO 13473-1 / ASTM E1845)", "comment": "100 mm segments, slope "
-                       "suppression",
-                       "n_segments": n_seg, "n_valid_segments": n_valid})
-        data["rms_height"] = ((), float(texture[1]), {"units": "m", "long_name": "RMS profile "
-                              "height about the mean"})
-        data["rms_slope"] = ((), float(texture[2]), {"units": "1", "long_name": "RMS slope "
-                             "between neighbouring samples at the profile spacing"})
-    if ifi[0]:
-        data["ifi_f60"] = ((), float(ifi[1]), {"units": "1", "long_name": "International "
-                           "Friction Index F60 (ASTM E1960)", "comment": "the computed "
-                           "friction at 20 km/h as a DFT value, carried to 60 km/h with "
-                           "ifi_sp"})
-    if ifi[5]:
-        data["ifi_sp"] = ((), float(ifi[2]), {"units": "km h-1", "long_name": "speed constant "
-                          "Sp of ASTM E1960 from the mean profile depth",
-                          "comment": "14.2 + 89.7 MPD in mm"})
-    if ifi[3]:
-        data["speed_constant"] = ((), float(ifi[4]), {"units": "km h-1", "long_name": "the "
-                                  "model's own speed constant", "comment": "-1 / slope of "
-                                  "ln(mu) fitted by least squares against speed (to compare "
-                                  "with ifi_sp)"})
+    # the scalars, as the core's scalar table declares them (the program's
+    # file alike): mpd, rms_height, rms_slope, ifi_f60, ifi_sp, speed_constant
+    scalars = dict(zip(("mpd", "rms_height", "rms_slope", "ifi_f60", "ifi_sp",
+                        "speed_constant"),
+                       ((has_texture, texture[0]), (has_texture, texture[1]),
+                        (has_texture, texture[2]), (ifi[0], ifi[1]), (ifi[5], ifi[2]),
+                        (ifi[3], ifi[4]))))
+    for name, units, long_name, description in _scalar_table():
+        present_, value = scalars[name]
+        if not present_:
+            continue
+        attrs = {"units": units, "long_name": long_name}
+        if description != long_name:
+            attrs["comment"] = description
+        if name == "mpd":
+            attrs.update(n_segments=n_seg, n_valid_segments=n_valid)
+        data[name] = ((), float(value), attrs)
     attrs = {
         "effects": effects,
         "warnings": warning_text,

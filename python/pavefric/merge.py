@@ -8,8 +8,8 @@ value is copied, none computed. It refuses parts that ran other physics
 (the parameters they used differ outside ``&batch`` and ``&output``: the
 core's text of each value, so two spellings of one number agree; the
 variable is named), other depths or speeds, or that share a profile name,
-naming the files and what differs. A part whose profiles all failed ran no
-effects; the merged file's ``effects`` are those of the parts that ran.
+naming the files and what differs. The merged file's ``effects`` are those
+that ran in any part (a part whose profiles all failed ran none).
 docs/cluster.md ("A survey of a million profiles") shows where it fits.
 """
 from __future__ import annotations
@@ -21,10 +21,11 @@ from typing import Sequence
 
 import numpy as np
 
-# global attributes that differ from part to part by nature (the scenes,
-# compared by _physics; each part's own &batch and &output values)
+# global attributes that differ from part to part by nature (the scenes and
+# the parameters used, compared by _scene_difference; the effects that ran,
+# which depend on the profiles: joined)
 _PER_PART = {"history", "title", "input_namelist", "parameters", "profiles_computed",
-             "profiles_failed", "profiles_with_warnings", "date_created"}
+             "profiles_failed", "profiles_with_warnings", "date_created", "effects"}
 _PER_PART_PREFIXES = ("param_batch_", "param_output_")
 _COUNTS = ("profiles_computed", "profiles_failed", "profiles_with_warnings")
 
@@ -123,10 +124,6 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             if "profile" not in ds.dims:
                 raise MergeError(f"merge: '{p}' is not a batch output (no 'profile' dimension)")
         names: dict[str, Path] = {}
-        # the effects that ran: those of the parts that computed a profile (a
-        # part whose profiles all failed ran none)
-        ran = [ds for ds in sets if int(ds.attrs.get("profiles_computed", 1)) > 0] or sets
-        ran_ids = {id(ds) for ds in ran}
         for p, ds in zip(paths, sets):
             why = _scene_difference(first, ds)
             if why:
@@ -139,9 +136,9 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
                 if not np.array_equal(var.values, first[name].values):
                     raise MergeError(f"merge: '{name}' differs between '{paths[0]}' and '{p}'")
             for name, value in ds.attrs.items():
-                if name in _PER_PART or name.startswith(_PER_PART_PREFIXES):
-                    continue
-                if name == "effects" and not {id(ds), id(first)} <= ran_ids:
+                # (param_*: the parameters used, compared above; a part
+                # written before they were recorded has none)
+                if name in _PER_PART or name.startswith("param_"):
                     continue
                 if str(first.attrs.get(name)) != str(value):
                     raise MergeError(f"merge: the attribute '{name}' differs between "
@@ -176,8 +173,14 @@ def merge(parts: Sequence[str | os.PathLike], output: str | os.PathLike) -> Path
             if merged[name].dtype.kind in "SU":
                 merged[name].encoding.pop("dtype", None)
         merged.attrs = dict(first.attrs)
-        if "effects" in ran[0].attrs:
-            merged.attrs["effects"] = ran[0].attrs["effects"]
+        # the effects that ran in any part (a film or the rubber's memory
+        # runs only where a profile calls for it; a part whose profiles all
+        # failed ran none), in the order they first appear
+        effects: list[str] = []
+        for ds in sets:
+            effects += [e for e in str(ds.attrs.get("effects", "")).split(",")
+                        if e and e not in effects]
+        merged.attrs["effects"] = ",".join(effects)
         for key in _COUNTS:
             if key in first.attrs:
                 merged.attrs[key] = int(sum(int(ds.attrs.get(key, 0)) for ds in sets))

@@ -10,7 +10,7 @@
 program pavefric_main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use pavefric, only: pavefric_version, error_type, sim_result_type, run_scene, effects_text
-   use pavefric_format, only: to_str
+   use pavefric_format, only: to_str, friction_table_text
    use pavefric_numbers, only: parse_integer
    use pavefric_scene, only: scene_type, read_scene
    use pavefric_batch_run, only: batch_summary_type
@@ -195,36 +195,21 @@ contains
    end subroutine print_warnings
 
    subroutine report_scene()
-   character(len=12) :: mu_text
+   character(len=:), allocatable :: table
 
    call print_warnings(warnings)
    write(output_unit, '(a)') "pavefric " // pavefric_version // ": " // scene_path // " -> " // &
       & out_path
-   write(output_unit, '(a, i0, a, i0, a)') "  pad elements: ", res%n_elements, &
-      & ", averaged positions: ", res%n_positions, ", effects: " // effects_text(res)
-   ! the last column: mu's estimated error from the time step, when the run made one
+   ! the last column: mu's estimated error, when the run made one
    if (allocated(res%mu_error)) then
-      write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning  " // &
-         & "mu_error_estimate"
+      call friction_table_text(res%n_elements, res%n_positions, effects_text(res), &
+         & res%speed_kmh, res%mu, res%wet_fraction, res%hydroplaning_fraction, table, &
+         & res%mu_error)
    else
-      write(output_unit, '(a)') "  speed_kmh          mu   wet_fraction  hydroplaning"
+      call friction_table_text(res%n_elements, res%n_positions, effects_text(res), &
+         & res%speed_kmh, res%mu, res%wet_fraction, res%hydroplaning_fraction, table)
    end if
-   do j = 1, size(res%mu)
-      ! mu in 12 columns: fixed point, or exponent form from 1e4 on (a
-      ! wider number ran into the speed's column)
-      if (abs(res%mu(j)) < 1.0d4) then
-         write(mu_text, '(f12.5)') res%mu(j)
-      else
-         write(mu_text, '(es12.4e3)') res%mu(j)
-      end if
-      if (allocated(res%mu_error)) then
-         write(output_unit, '(f11.3, a12, f15.4, f14.4, es19.2)') res%speed_kmh(j), &
-            & mu_text, res%wet_fraction(j), res%hydroplaning_fraction(j), res%mu_error(j)
-      else
-         write(output_unit, '(f11.3, a12, f15.4, f14.4)') res%speed_kmh(j), mu_text, &
-            & res%wet_fraction(j), res%hydroplaning_fraction(j)
-      end if
-   end do
+   write(output_unit, '(a)', advance='no') table
    end subroutine report_scene
 
    subroutine get_arg(k, value)
@@ -272,8 +257,8 @@ contains
          & "", &
          & "A scene with a &batch group runs many profiles into one NetCDF file;", &
          & "under mpirun the profiles are shared among the ranks (docs/cluster.md).", &
-         & "A batch ends with a summary line: profiles computed, taken from the", &
-         & "journal of an earlier run, failed, with warnings, and the output file.", &
+         & "A batch ends with a summary line: profiles done in this run, taken from", &
+         & "the journal of an earlier run, failed, with warnings, and the output file.", &
          & "", &
          & "Results (the friction table, a batch's summary line) go to stdout;", &
          & "progress (the cost estimate of a run of a second or more, a batch's", &

@@ -5,7 +5,7 @@ module pavefric_format
    implicit none
    private
 
-   public :: to_str, to_lower, round_sig, real_to_str_text
+   public :: to_str, to_lower, round_sig, real_to_str_text, friction_table_text
 
    !> Shortest faithful text of a number.
    interface to_str
@@ -215,5 +215,43 @@ contains
          s = ".false."
       end if
    end subroutine logical_to_str_text
+
+   !> A scene's run and its friction against speed as the program prints
+   !> them (and `python -m pavefric run`): the pad's elements, the averaged
+   !> positions and the effects that ran, a header and one line a speed,
+   !> each line ending in a newline; the last column where `err` is given
+   !> (mu's estimated error). mu in 12 columns: fixed point, or exponent form
+   !> from 1e4 on (a wider number ran into the speed's column).
+   pure subroutine friction_table_text(elements, positions, effects, speed_kmh, mu, wet, &
+         & hydroplaning, text, err)
+      integer, intent(in) :: elements, positions
+      character(len=*), intent(in) :: effects
+      real(wp), intent(in) :: speed_kmh(:), mu(:), wet(:), hydroplaning(:)
+      real(wp), intent(in), optional :: err(:)
+      character(len=:), allocatable, intent(out) :: text
+      character(len=12) :: mu_text
+      character(len=80) :: line
+      integer :: j
+      text = "  pad elements: " // to_str(elements) // ", averaged positions: " // &
+         & to_str(positions) // ", effects: " // effects // achar(10)
+      text = text // "  speed_kmh          mu   wet_fraction  hydroplaning"
+      if (present(err)) text = text // "  mu_error_estimate"
+      text = text // achar(10)
+      do j = 1, size(mu)
+         if (abs(mu(j)) < 1.0e4_wp) then
+            write(mu_text, '(f12.5)') mu(j)
+         else
+            write(mu_text, '(es12.4e3)') mu(j)
+         end if
+         if (present(err)) then
+            write(line, '(f11.3, a12, f15.4, f14.4, es19.2)') speed_kmh(j), mu_text, wet(j), &
+               & hydroplaning(j), err(j)
+         else
+            write(line, '(f11.3, a12, f15.4, f14.4)') speed_kmh(j), mu_text, wet(j), &
+               & hydroplaning(j)
+         end if
+         text = text // trim(line) // achar(10)
+      end do
+   end subroutine friction_table_text
 
 end module pavefric_format

@@ -9,6 +9,7 @@ module pavefric_batch_netcdf
    use pavefric_netcdf, only: nc_writer_type, temporary_name, commit_temporary, check_replaceable, &
       & put_parameter_attributes
    use pavefric_model, only: parameter_table, parameters_namelist_text
+   use pavefric_outputs, only: output_short_name
    implicit none
    private
 
@@ -168,46 +169,60 @@ contains
 
       !> The per-speed, per-depth, per-profile results.
       subroutine define_results()
-         call w%def("mu", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("mu", nf90_double, [d_s, d_d, d_p], "1", &
             & "friction coefficient averaged over the profile (Kane et al. 2017, Eq. 12)", v_mu)
-         call w%def("mu_hysteresis", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("mu_hysteresis", nf90_double, [d_s, d_d, d_p], "1", &
             & "the rubber's part of mu: its dissipation per unit load and distance slid", v_muh)
-         call w%def("mu_adhesion", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("mu_adhesion", nf90_double, [d_s, d_d, d_p], "1", &
             & "the local friction's part of mu: mu_loc's work on the facets per unit load " // &
             & "and distance slid (mu = mu_hysteresis + mu_adhesion)", v_mua)
-         call w%def("mu_error_estimate", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("mu_error_estimate", nf90_double, [d_s, d_d, d_p], "1", &
             & "estimated error of mu from the time step and the pad's elements (&numerics " // &
             & "error_estimate, as in a single scene, docs/outputs.md; or the tolerance's " // &
             & "estimate); " // &
             & "missing where none was made", v_mue)
-         call w%def("estimate_elements_per_sample", nf90_int64, [d_s, d_d, d_p], "1", &
+         call def_as_scene("estimate_elements_per_sample", nf90_int64, [d_s, d_d, d_p], "1", &
             & "elements_per_sample of the finest pass mu_error_estimate was made from (as in " // &
             & "a single scene, docs/outputs.md): the scene's where it halved the time step " // &
             & "only, more where the pad's elements were halved (it stood on fewer than 4 " // &
             & "elements in contact, or the exact integrator ran); missing where no estimate " // &
             & "was made", v_eps)
-         call w%def("elements_per_sample_used", nf90_int64, [d_s, d_d, d_p], "1", &
+         call def_as_scene("elements_per_sample_used", nf90_int64, [d_s, d_d, d_p], "1", &
             & "elements_per_sample of the run the results come from (as in a single scene, " // &
             & "docs/outputs.md): the scene's, or more where &numerics min_contacts halved " // &
             & "the pad's elements until it stood on that many in contact; missing where the " // &
             & "profile failed", v_used)
-         call w%def("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("wet_fraction", nf90_double, [d_s, d_d, d_p], "1", &
             & "share of averaged positions where the hydrodynamic bearing carried load", v_wet)
-         call w%def("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("hydroplaning_fraction", nf90_double, [d_s, d_d, d_p], "1", &
             & "share of averaged positions where no element touched the profile", v_hyd)
-         call w%def("max_balance_residual", nf90_double, [d_s, d_d, d_p], "1", &
+         call def_as_scene("max_balance_residual", nf90_double, [d_s, d_d, d_p], "1", &
             & "largest |sum F + Wh - W| / W over averaged positions", v_res)
-         call w%def("n_clamped", nf90_int64, [d_s, d_d, d_p], "1", &
+         call def_as_scene("n_clamped", nf90_int64, [d_s, d_d, d_p], "1", &
             & "contacts on facets clamped at theta_max, summed over averaged positions", v_ncl)
       end subroutine define_results
+
+      !> A variable a scene's file has too, under the same long_name (the
+      !> scene's few words, output_short_name); the batch's description
+      !> whole in comment.
+      subroutine def_as_scene(name, xtype, dims, units, description, varid)
+         character(len=*), intent(in) :: name, units, description
+         integer, intent(in) :: xtype, dims(:)
+         integer, intent(out) :: varid
+         character(len=:), allocatable :: label
+         call output_short_name(name, label)
+         call w%def(name, xtype, dims, units, description, varid, label)
+      end subroutine def_as_scene
 
       !> Per profile: texture, status, messages, warnings and the
       !> preprocessing record (as a scene file's preprocess_* attributes).
       subroutine define_profile_record()
-         call w%def("mpd", nf90_double, [d_p], "m", "mean profile depth (ISO 13473-1 / " // &
-            & "ASTM E1845, 100 mm segments, slope suppression)", v_mpd)
-         call w%def("rms_height", nf90_double, [d_p], "m", "RMS profile height about the mean", v_rh)
-         call w%def("rms_slope", nf90_double, [d_p], "1", "RMS slope at the profile spacing", v_rs)
+         call def_as_scene("mpd", nf90_double, [d_p], "m", "mean profile depth (ISO " // &
+            & "13473-1 / ASTM E1845, 100 mm segments, slope suppression)", v_mpd)
+         call def_as_scene("rms_height", nf90_double, [d_p], "m", &
+            & "RMS profile height about the mean", v_rh)
+         call def_as_scene("rms_slope", nf90_double, [d_p], "1", &
+            & "RMS slope between neighbouring samples at the profile spacing", v_rs)
          call w%def("status", nf90_byte, [d_p], "", "whether the profile was computed", v_status)
          call w%check(nf90_put_att(w%ncid, v_status, "flag_values", [1_1, 2_1]), "flags")
          call w%check(nf90_put_att(w%ncid, v_status, "flag_meanings", "computed failed"), "flags")

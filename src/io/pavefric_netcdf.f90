@@ -13,7 +13,7 @@ module pavefric_netcdf
    use pavefric_results, only: sim_result_type
    use pavefric_outputs, only: output_metadata_type, output_var_type, output_table, &
       & output_present, output_values, n_outputs, out_double, out_int64, out_int, out_flag, &
-      & dim_speed
+      & dim_speed, scalar_table, n_scalar_outputs
    use pavefric_model, only: param_spec_type, param_set_type, parameter_table, kind_real, &
       & kind_integer, kind_logical, kind_text, kind_real_list
    use pavefric_fsys, only: rename_file, remove_file, register_temporary, &
@@ -129,22 +129,29 @@ contains
    end function stat_of
 
    !> Define a variable with its units (none if empty) and long name: a
-   !> description longer than a name (short_long_name) gives its first
-   !> words as long_name (xarray's axis label) and is whole in comment.
-   subroutine writer_def(w, name, xtype, dims, units, long_name, varid)
+   !> description longer than a name gives its first words as long_name
+   !> (xarray's axis label: `short`, else short_long_name's) and is whole in
+   !> comment.
+   subroutine writer_def(w, name, xtype, dims, units, long_name, varid, short)
       class(nc_writer_type), intent(inout) :: w
       character(len=*), intent(in) :: name, units, long_name
       integer, intent(in) :: xtype, dims(:)
       integer, intent(out) :: varid
-      character(len=:), allocatable :: short
+      character(len=*), intent(in), optional :: short
+      character(len=:), allocatable :: label
       varid = -1
       if (allocated(w%error)) return
       call w%check(nf90_def_var(w%ncid, name, xtype, dims, varid), "variable " // name)
       if (len(units) > 0) call w%check(nf90_put_att(w%ncid, varid, "units", units), &
          & name // " units")
-      call short_long_name(long_name, short)
-      call w%check(nf90_put_att(w%ncid, varid, "long_name", short), name // " long_name")
-      if (short /= long_name) call w%check(nf90_put_att(w%ncid, varid, "comment", long_name), &
+      if (present(short)) then
+         label = short
+      else
+         call short_long_name(long_name, label)
+      end if
+      if (len(label) == 0) call short_long_name(long_name, label)
+      call w%check(nf90_put_att(w%ncid, varid, "long_name", label), name // " long_name")
+      if (label /= long_name) call w%check(nf90_put_att(w%ncid, varid, "comment", long_name), &
          & name // " comment")
    end subroutine writer_def
 
@@ -507,7 +514,7 @@ contains
       type(output_metadata_type), intent(in) :: meta
       type(error_type), allocatable, intent(out) :: error
       type(nc_writer_type) :: w
-      type(output_var_type) :: table(n_outputs)
+      type(output_var_type) :: table(n_outputs), sc(n_scalar_outputs)
       integer :: d_speed, d_pos, stat, k, ns, np
       integer :: v_speed, v_kmh, v_pos, v_mpd, v_rh, v_rs, ids(n_outputs), v_f60, v_sp, v_spm
       real(wp), allocatable :: values(:)
@@ -536,12 +543,12 @@ contains
             ! long_name: a few words (xarray's axis label); the whole
             ! description in comment where it says more
             if (v%dims == dim_speed) then
-               call w%def(v%name, xtype(v%type), [d_speed], v%units, v%short, ids(k))
+               call w%def(v%name, xtype(v%type), [d_speed], v%units, v%long_name, ids(k), &
+                  & v%short)
             else
-               call w%def(v%name, xtype(v%type), [d_pos, d_speed], v%units, v%short, ids(k))
+               call w%def(v%name, xtype(v%type), [d_pos, d_speed], v%units, v%long_name, &
+                  & ids(k), v%short)
             end if
-            if (v%short /= v%long_name) call w%check(nf90_put_att(w%ncid, ids(k), "comment", &
-               & v%long_name), v%name // " comment")
             call w%check(nf90_put_att(w%ncid, ids(k), "coordinates", "speed"), v%name)
             if (v%type == out_flag) then
                call w%check(nf90_put_att(w%ncid, ids(k), "flag_values", [0_1, 1_1]), v%name)
@@ -549,34 +556,17 @@ contains
             end if
          end associate
       end do
-      if (meta%ifi%has_f60) then
-         call w%def("ifi_f60", nf90_double, [integer ::], "1", "International Friction " // &
-            & "Index F60 (ASTM E1960)", v_f60)
-         call w%check(nf90_put_att(w%ncid, v_f60, "comment", "the computed friction at " // &
-            & "20 km/h as a DFT value, carried to 60 km/h with ifi_sp"), "ifi_f60")
-      end if
-      if (meta%ifi%has_sp) then
-         call w%def("ifi_sp", nf90_double, [integer ::], "km h-1", "speed constant Sp of " // &
-            & "ASTM E1960 from the mean profile depth", v_sp)
-         call w%check(nf90_put_att(w%ncid, v_sp, "comment", "14.2 + 89.7 MPD in mm"), "ifi_sp")
-      end if
-      if (meta%ifi%has_speed_constant) then
-         call w%def("speed_constant", nf90_double, [integer ::], "km h-1", &
-            & "the model's own speed constant", v_spm)
-         call w%check(nf90_put_att(w%ncid, v_spm, "comment", "-1 / slope of ln(mu) fitted " // &
-            & "by least squares against speed (to compare with ifi_sp)"), "speed_constant")
-      end if
+      ! the scalars, each as the scalar table declares it
+      sc = scalar_table()
+      if (meta%ifi%has_f60) call def_scalar(sc(4), v_f60)
+      if (meta%ifi%has_sp) call def_scalar(sc(5), v_sp)
+      if (meta%ifi%has_speed_constant) call def_scalar(sc(6), v_spm)
       if (meta%has_texture) then
-         call w%def("mpd", nf90_double, [integer ::], "m", &
-            & "mean profile depth (ISO 13473-1 / ASTM E1845)", v_mpd)
-         call w%check(nf90_put_att(w%ncid, v_mpd, "comment", "100 mm segments, slope " // &
-            & "suppression"), "mpd")
+         call def_scalar(sc(1), v_mpd)
          call w%check(nf90_put_att(w%ncid, v_mpd, "n_segments", meta%texture%n_segments), "mpd")
          call w%check(nf90_put_att(w%ncid, v_mpd, "n_valid_segments", meta%texture%n_valid), "mpd")
-         call w%def("rms_height", nf90_double, [integer ::], "m", &
-            & "RMS profile height about the mean", v_rh)
-         call w%def("rms_slope", nf90_double, [integer ::], "1", &
-            & "RMS slope between neighbouring samples at the profile spacing", v_rs)
+         call def_scalar(sc(2), v_rh)
+         call def_scalar(sc(3), v_rs)
       end if
       if (allocated(w%error)) goto 99
 
@@ -667,6 +657,13 @@ contains
       end if
 99    continue
       call w%close(error)
+   contains
+      !> A scalar as the scalar table declares it.
+      subroutine def_scalar(v, varid)
+         type(output_var_type), intent(in) :: v
+         integer, intent(out) :: varid
+         call w%def(v%name, nf90_double, [integer ::], v%units, v%long_name, varid, v%short)
+      end subroutine def_scalar
    end subroutine write_file
 
    !> The NetCDF type of an output type.

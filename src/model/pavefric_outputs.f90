@@ -29,7 +29,11 @@ module pavefric_outputs
    public :: output_var_type, output_table, output_present, output_values, n_outputs
    public :: output_metadata_type, series_count
    public :: out_double, out_int64, out_int, out_flag, dim_speed, dim_position_speed
-   public :: output_condition
+   public :: output_condition, scalar_table, n_scalar_outputs, output_short_name
+
+   !> The scalars of a scene's file (and results of the C and Fortran APIs):
+   !> the texture's and the friction index's (scalar_table).
+   integer, parameter :: n_scalar_outputs = 6
 
    !> The variables the pad, its balance and the numerics declare (below).
    integer, parameter :: n_pad_outputs = 7, n_numerics_outputs = 6
@@ -121,6 +125,48 @@ contains
          call move_alloc(grown, list)
       end subroutine append
    end function output_table
+
+   !> The file's scalars, in its order: mpd, rms_height, rms_slope (when the
+   !> profile holds a 100 mm segment), ifi_f60, ifi_sp, speed_constant
+   !> (when pavefric_ifi forms them); the program's writer and Python's
+   !> dataset take their names, units and descriptions from here.
+   pure function scalar_table() result(t)
+      type(output_var_type) :: t(n_scalar_outputs)
+      t(1) = output_var("texture", "mpd", "m", "mean profile depth (ISO 13473-1 / " // &
+         & "ASTM E1845, 100 mm segments, slope suppression)", &
+         & short="mean profile depth (ISO 13473-1 / ASTM E1845)")
+      t(2) = output_var("texture", "rms_height", "m", "RMS profile height about the mean")
+      t(3) = output_var("texture", "rms_slope", "1", "RMS slope between neighbouring " // &
+         & "samples at the profile spacing")
+      t(4) = output_var("ifi", "ifi_f60", "1", "International Friction Index F60 (ASTM " // &
+         & "E1960): the computed friction at 20 km/h as a DFT value, carried to 60 km/h " // &
+         & "with ifi_sp", short="International Friction Index F60 (ASTM E1960)")
+      t(5) = output_var("ifi", "ifi_sp", "km h-1", "speed constant Sp of ASTM E1960 from " // &
+         & "the mean profile depth (14.2 + 89.7 MPD in mm)", &
+         & short="speed constant Sp of ASTM E1960 from the mean profile depth")
+      t(6) = output_var("ifi", "speed_constant", "km h-1", "the model's own speed " // &
+         & "constant: -1 / slope of ln(mu) fitted by least squares against speed (to " // &
+         & "compare with ifi_sp)")
+   end function scalar_table
+
+   !> The long_name (a few words) of result or scalar `name`, as a scene's
+   !> file gives it ('' for a name of neither table): a batch's file names
+   !> the same variables alike.
+   pure subroutine output_short_name(name, short)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable, intent(out) :: short
+      type(output_var_type) :: t(n_outputs), s(n_scalar_outputs)
+      integer :: k
+      short = ""
+      t = output_table()
+      do k = 1, n_outputs
+         if (t(k)%name == name) short = t(k)%short
+      end do
+      s = scalar_table()
+      do k = 1, n_scalar_outputs
+         if (s(k)%name == name) short = s(k)%short
+      end do
+   end subroutine output_short_name
 
    !> What the pad and its load balance report.
    pure function pad_outputs() result(t)

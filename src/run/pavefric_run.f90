@@ -140,7 +140,7 @@ contains
             write(mib, '(i0)') max(1_i8, nint(min(c%tolerance_bytes / 2.0_wp**20, 9.0e18_wp), i8))
             text = text // "; tolerance = " // to_str(tolerance) // " may need substeps " // &
                & to_str(c%tolerance_substeps) // ", about " // trim(sec) // " s in all and " // &
-               & "up to " // trim(mib) // " MiB at the last pass (a guess from how the " // &
+               & "about " // trim(mib) // " MiB at the last pass (a guess from how the " // &
                & "default scenes converge)"
          end if
       end if
@@ -148,11 +148,22 @@ contains
 
    !> Speeds as "20, 50 and 80" (a subroutine: no deferred-length function
    !> results in the library, docs/api.md).
+   !> More than 8 speeds: the first 6, "...", the last and how many in all
+   !> (the estimate's line must fit Python's 1024 characters).
    pure subroutine speeds_list(v, text)
       real(wp), intent(in) :: v(:)
       character(len=:), allocatable, intent(out) :: text
+      integer, parameter :: most = 8
       integer :: k
       text = ""
+      if (size(v) > most) then
+         do k = 1, most - 2
+            text = text // to_str(v(k)) // ", "
+         end do
+         text = text // "... and " // to_str(v(size(v))) // " (" // to_str(size(v)) // &
+            & " speeds)"
+         return
+      end if
       do k = 1, size(v)
          if (k > 1 .and. k == size(v)) then
             text = text // " and "

@@ -1879,12 +1879,11 @@ contains
          ! energy far larger than the dissipation
          call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
             & " < 0 at " // to_str(speeds_kmh(j)) // " km/h on an open profile: the " // &
-            & "rubber's dissipation over its " // to_str(geo%n_avg) // " positions, the " // &
-            & "change of the energy the elements store taken out, cannot be negative; " // &
-            & "here that change outweighs the dissipation beyond rounding, so mu = " // &
-            & to_str(res%mu(j)) // " there is not a friction (docs/model.md, 'Known " // &
-            & "limits'); a longer profile, or &surface closed = .true. for a closed track, " // &
-            & "avoids it" // others)
+            & "rubber cannot dissipate less than nothing, so the energy the elements " // &
+            & "store at the ends of its " // to_str(geo%n_avg) // " positions (or their " // &
+            & "rounding) outweighs what it dissipated, and mu = " // to_str(res%mu(j)) // &
+            & " there is not a friction (docs/model.md, 'Known limits'); a longer " // &
+            & "profile, or &surface closed = .true. for a closed track, avoids it" // others)
       else if (any(negative)) then
          call add_warning(res%warnings, "mu_hysteresis = " // to_str(res%mu_hysteresis(j)) // &
             & " < 0 at " // to_str(speeds_kmh(j)) // " km/h: the rubber cannot dissipate " // &
@@ -2248,7 +2247,8 @@ contains
    !> halvings, at most max_substeps; the seconds: every pass to there, each
    !> twice the one before (c%seconds the first's); the bytes: the first
    !> pass's times the substeps' ratio (its profile on the refined grid and
-   !> its series grow with them: an upper bound). A guess: a rough profile
+   !> its series grow with them; at the scene's elements: a pass that
+   !> min_contacts refined holds more). A guess: a rough profile
    !> or a stiff compound converges slower, and speeds that meet the
    !> tolerance early stop.
    pure subroutine tolerance_guess(m, c)

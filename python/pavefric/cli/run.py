@@ -59,21 +59,27 @@ def main(args: argparse.Namespace) -> int:
 
 def _print_table(path) -> None:
     """A single scene's friction against speed, as the program prints it
-    (a batch's file is a cube: `python -m pavefric plot` shows it)."""
+    (the core's text: pf_friction_table); a batch's file is a cube, which
+    `python -m pavefric plot` shows."""
+    from .. import _core
     from ..core import open_dataset
 
     with open_dataset(path) as ds:
         if "profile" in ds.dims or "mu" not in ds:
             return
-        err = ds["mu_error_estimate"].values if "mu_error_estimate" in ds else None
-        print(f"  effects: {ds.attrs.get('effects', '')}")
-        print("  speed_kmh          mu   wet_fraction  hydroplaning" +
-              ("  mu_error_estimate" if err is not None else ""))
-        for j, v in enumerate(ds["speed_kmh"].values):
-            mu = float(ds["mu"].values[j])
-            mu_text = f"{mu:12.5f}" if abs(mu) < 1e4 else f"{mu:12.4e}"
-            line = (f"{float(v):11.3f}{mu_text}{float(ds['wet_fraction'].values[j]):15.4f}"
-                    f"{float(ds['hydroplaning_fraction'].values[j]):14.4f}")
-            if err is not None:
-                line += f"{float(err[j]):19.2E}"
-            print(line)
+        has_err = "mu_error_estimate" in ds
+        columns = [ds[v].values.astype(float) for v in ("speed_kmh", "mu", "wet_fraction",
+                                                         "hydroplaning_fraction")]
+        err = ds["mu_error_estimate"].values.astype(float) if has_err else 0.0 * columns[0]
+        head = (int(ds.attrs["pad_elements"]), int(ds.attrs["averaged_positions"]),
+                str(ds.attrs.get("effects", "")))
+    lines = []
+    for start in range(0, columns[0].size, 100):      # (the interface's text holds 8192)
+        part = slice(start, start + 100)
+        text, length = _core.pf_friction_table(*head, *(c[part] for c in columns), err[part],
+                                               int(has_err))
+        raw = text.tobytes() if hasattr(text, "tobytes") else text
+        raw = raw if isinstance(raw, bytes) else str(raw).encode("utf-8")
+        chunk = raw[:int(length)].decode("utf-8", "replace").splitlines()
+        lines += chunk if start == 0 else chunk[2:]
+    print("\n".join(lines))

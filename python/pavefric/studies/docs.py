@@ -170,6 +170,17 @@ def outputs_markdown() -> str:
         "with the same variables, values and attributes, bit for bit "
         "(tests/test_boundaries.py).",
         "",
+        "The files open for reading anywhere, but netCDF-C 4.9 opens them read-only: "
+        "`nc_open(..., NC_WRITE)` (so netCDF4-python's mode 'a', xarray's "
+        "`to_netcdf(mode='a')`, NCO's `ncatted` on the file itself) fails with 'NetCDF: "
+        "Can't write file'. A file netCDF-C builds in memory (`nc_create_mem`, which "
+        "pavefric uses so that a full disk is an ordinary error, not a crash inside HDF5: "
+        "src/io/pavefric_ncmem.c) has no link creation order on its root group, and "
+        "netCDF-C writes only to groups that have it. To add to a result, write a copy "
+        "(`nccopy out.nc annotated.nc`, then annotate the copy; or xarray's "
+        "`to_netcdf` to a new path); tests/test_scene_output.py checks that the copy "
+        "opens for writing.",
+        "",
         "Each variable's `long_name` is its name in a few words (at most 80 characters: "
         "xarray's axis label); where the meaning below says more, the whole text is its "
         "`comment` attribute.",

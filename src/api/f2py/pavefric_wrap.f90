@@ -123,6 +123,51 @@ subroutine pf_output_info(i, name, units, long_name, description, var_type, dims
    written = output_condition(i)
 end subroutine pf_output_info
 
+!> Scalar i (1-based) of a scene's file (pavefric_outputs' scalar_table:
+!> mpd, rms_height, rms_slope, ifi_f60, ifi_sp, speed_constant): name,
+!> units, long name (a few words) and description (whole); n the count.
+subroutine pf_scalar_info(i, n, name, units, long_name, description)
+   use, intrinsic :: iso_c_binding, only: c_int
+   use pavefric_outputs, only: output_var_type, scalar_table, n_scalar_outputs
+   implicit none
+   integer(c_int), intent(in) :: i
+   integer(c_int), intent(out) :: n
+   character(len=64), intent(out) :: name, units
+   character(len=1024), intent(out) :: long_name, description
+   type(output_var_type) :: t(n_scalar_outputs)
+   n = n_scalar_outputs
+   name = ""; units = ""; long_name = ""; description = ""
+   if (i < 1 .or. i > n_scalar_outputs) return
+   t = scalar_table()
+   name = t(i)%name; units = t(i)%units; long_name = t(i)%short
+   description = t(i)%long_name
+end subroutine pf_scalar_info
+
+!> The friction table the program prints for a scene (pavefric_format's
+!> friction_table_text), from a scene file's values: `python -m pavefric run`
+!> prints the same text. has_err: the last column (err) is printed.
+subroutine pf_friction_table(ns, elements, positions, effects, speed_kmh, mu, wet, &
+      & hydroplaning, err, has_err, text, length)
+   use, intrinsic :: iso_c_binding, only: c_double, c_int
+   use pavefric_format, only: friction_table_text
+   implicit none
+   integer(c_int), intent(in) :: ns, elements, positions, has_err
+   character(len=*), intent(in) :: effects
+   real(c_double), intent(in) :: speed_kmh(ns), mu(ns), wet(ns), hydroplaning(ns), err(ns)
+   character(len=8192), intent(out) :: text
+   integer(c_int), intent(out) :: length
+   character(len=:), allocatable :: table
+   if (has_err /= 0) then
+      call friction_table_text(elements, positions, effects, speed_kmh, mu, wet, &
+         & hydroplaning, table, err)
+   else
+      call friction_table_text(elements, positions, effects, speed_kmh, mu, wet, &
+         & hydroplaning, table)
+   end if
+   length = len(table)
+   text = table
+end subroutine pf_friction_table
+
 !> Pad elements and averaged positions of a profile of np points for the
 !> settings (typed items, as pf_simulate takes them), and the number of
 !> series variables such a run produces, to size the series.
@@ -258,7 +303,7 @@ subroutine pf_simulate(np, z, t_n, t_ids, t_kinds, t_counts, t_lengths, t_nreal,
    !> elements (m, &pad element_length as resampled).
    real(c_double), intent(out) :: estimate(4)
    !> ASTM E1960: has F60 (1/0), F60, Sp from MPD (km/h), has the model's
-   !> speed constant (1/0), that constant (km/h).
+   !> speed constant (1/0), that constant (km/h), has Sp (1/0).
    real(c_double), intent(out) :: ifi(6)
    integer(c_int), intent(out) :: present(nout), counts(6), text_lengths(3), status
    character, intent(out) :: texts(ntext)
