@@ -99,3 +99,26 @@ def test_a_copy_of_a_scene_file_opens_for_writing(scene_file, tmp_path):
         assert {k: v for k, v in b.attrs.items() if k != "site"}.keys() == a.attrs.keys()
         for name in a.variables:
             np.testing.assert_array_equal(a[name].values, b[name].values)
+
+
+def test_the_typed_parameters_are_those_of_the_parameters_text(scene_file):
+    """param_<group>_<name> holds the groups `parameters` holds: a scene's
+    file leaves &batch out of both (it listed param_batch_* defaults beside
+    a text without &batch), and every variable of the text has its typed
+    attribute (lists too, as Python's dataset has them)."""
+    import re
+
+    with xr.open_dataset(scene_file) as ds:
+        text = ds.attrs["parameters"]
+        groups = set(re.findall(r"^&(\w+)$", text, flags=re.M))
+        typed = [k for k in ds.attrs if k.startswith("param_")]
+    assert "batch" not in groups and "rubber" in groups
+    assert {k.split("_")[1] for k in typed} == groups
+    current = None
+    names = set()
+    for line in text.splitlines():
+        if line.startswith("&"):
+            current = line[1:]
+        elif " = " in line and current:
+            names.add(f"param_{current}_{line.split(' = ')[0].strip()}")
+    assert names == set(typed)

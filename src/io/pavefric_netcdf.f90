@@ -690,8 +690,9 @@ contains
    end subroutine put_parameters
 
    !> The parameters used: `text`, the namelist of `set`, as `parameters`, and
-   !> one typed attribute each (param_<group>_<name>), defaults included;
-   !> optional ones not set are left out. A scene's file and a batch's alike.
+   !> one typed attribute each (param_<group>_<name>) of the groups `text`
+   !> holds (a scene's leaves &batch out), defaults included; optional ones
+   !> not set are left out. A scene's file and a batch's alike.
    subroutine put_parameter_attributes(w, set, text)
       type(nc_writer_type), intent(inout) :: w
       type(param_set_type), intent(in) :: set
@@ -704,6 +705,7 @@ contains
       do k = 1, size(specs)
          associate(v => set%v(k))
             if (.not. v%set) cycle
+            if (index(text, "&" // specs(k)%group // achar(10)) == 0) cycle
             name = "param_" // specs(k)%group // "_" // specs(k)%name
             select case (specs(k)%kind)
             case (kind_real)
