@@ -27,7 +27,7 @@ program pavefric_main
    !> --quiet: no progress lines and no estimate (warnings and errors stay).
    logical :: quiet
    character(len=:), allocatable :: scene_path, out_override, out_path, arg, command, warnings
-   integer :: i, nargs, j
+   integer :: i, nargs
 
    max_profiles = 0
    quiet = .false.

@@ -130,8 +130,8 @@ contains
 
    !> Define a variable with its units (none if empty) and long name: a
    !> description longer than a name gives its first words as long_name
-   !> (xarray's axis label: `short`, else short_long_name's) and is whole in
-   !> comment.
+   !> (xarray's axis label: `short`, else, absent or empty, short_long_name's)
+   !> and is whole in comment.
    subroutine writer_def(w, name, xtype, dims, units, long_name, varid, short)
       class(nc_writer_type), intent(inout) :: w
       character(len=*), intent(in) :: name, units, long_name
@@ -144,11 +144,8 @@ contains
       call w%check(nf90_def_var(w%ncid, name, xtype, dims, varid), "variable " // name)
       if (len(units) > 0) call w%check(nf90_put_att(w%ncid, varid, "units", units), &
          & name // " units")
-      if (present(short)) then
-         label = short
-      else
-         call short_long_name(long_name, label)
-      end if
+      label = ""
+      if (present(short)) label = short
       if (len(label) == 0) call short_long_name(long_name, label)
       call w%check(nf90_put_att(w%ncid, varid, "long_name", label), name // " long_name")
       if (label /= long_name) call w%check(nf90_put_att(w%ncid, varid, "comment", long_name), &
