@@ -1,7 +1,9 @@
 """The figures of docs/model.md's "Friction", "The pad's own scale" and
-"Temperature" paragraphs (issue 20), printed as text:
+"Temperature" paragraphs (issue 20), and its "Known limits" figures of an
+open profile's settling, printed as text:
 
     python -m pavefric.studies.energy_report
+    python -m pavefric.studies.energy_report --open-settling   # that section alone
 
 Runs only the core (pavefric.simulate); nothing is fitted here.
 """
@@ -93,9 +95,40 @@ def at_tolerance(z, rubber: dict, temperatures, tolerance: float = 1e-3,
     return rows, seconds / default_seconds
 
 
+def open_settling(z, rubber: dict, loads=(11.8, 1000.0), lengths=(60, 115, 230, 460, 1024),
+                  speeds=(1.0, 20.0, 80.0)) -> list[tuple]:
+    """docs/model.md, Known limits: an open profile's mu_hysteresis on the
+    first n points against the whole profile closed, the compound at 20 C,
+    mu_loc = 0, dry, per load: (load, [open rows a length], closed row)."""
+    rows = []
+    for load in loads:
+        kw = dict(load=load, mu_loc=0.0, temperature=20.0, **rubber)
+        opened = [pavefric.simulate(z[:n], DX, list(speeds), closed=False, **kw)
+                  ["mu_hysteresis"].values for n in lengths]
+        closed = pavefric.simulate(z, DX, list(speeds), closed=True, **kw)["mu_hysteresis"].values
+        rows.append((load, opened, closed))
+    return rows
+
+
+def print_open_settling(z, rubber: dict) -> None:
+    lengths = (60, 115, 230, 460, 1024)
+    print("An open profile's settling: the compound at 20 C, mu_loc = 0, dry, mu_hysteresis "
+          "at 1, 20 and 80 km/h on the first n points (open) against the whole profile "
+          "closed")
+    for load, opened, closed in open_settling(z, rubber, lengths=lengths):
+        print(f"  load {load} N: " + "; ".join(
+            f"n = {n} {np.round(v, 4).tolist()}" for n, v in zip(lengths, opened)) +
+            f"; closed {np.round(closed, 4).tolist()}")
+
+
 def main() -> None:
+    import sys
+
     warnings.simplefilter("ignore", pavefric.PavefricWarning)
     z = medium_profile()
+    if "--open-settling" in sys.argv[1:]:       # that section alone
+        print_open_settling(z, compound())
+        return
     print("Friction schemes, inputs/profiles/ctm_medium.txt, paper rubber, dry")
     for kw in (dict(mu_loc=0.5), dict(mu_loc=0.0, viscosity=0.0)):
         for scheme in ("energy", "paper"):
@@ -184,6 +217,7 @@ def main() -> None:
             comp.append(e.imag / abs(e) ** 2)
         print(f"  {f:6.0f} Hz: tan delta peaks at {temps[np.argmax(tand)]:.0f} C, "
               f"loss compliance at {temps[np.argmax(comp)]:.0f} C")
+    print_open_settling(z, rubber)
     for station in (0, 1):
         profile = pavefric.read_profile(
             _repo_file("inputs", "data", "captif",
