@@ -143,6 +143,21 @@ def test_the_estimate_foresees_the_pad_refined_under_a_film(monkeypatch):
     dry, line = run([20.0, 80.0])
     assert "refining" not in line and dry.attrs["estimated_seconds"] < slow.attrs[
         "estimated_seconds"]
+    # many speeds refined: the list is shortened (the line must fit the
+    # interface's 1024 characters; the review of 2026-12-07)
+    from pavefric import _core
+    from pavefric.core import _format, _spec, _typed
+
+    speeds = [80.0 + 5.0 * k for k in range(13)]
+    settings = {("surface", "dx"): _format(_spec("surface", "dx"), DX, "dx"),
+                ("surface", "closed"): _format(_spec("surface", "closed"), False, "closed"),
+                ("operation", "speeds_kmh"): _format(_spec("operation", "speeds_kmh"), speeds,
+                                                     "speeds_kmh"),
+                ("water", "depth"): _format(_spec("water", "depth"), 1e-3, "depth")}
+    _, text, status, message = _core.pf_estimate(z, *_typed(settings))
+    assert status == 0, message
+    assert ("refining the pad at 80, 85, 90, 95, 100, 105, ... and 140 (13 speeds) km/h, "
+            "where a probe") in pavefric.core._text(text)
     # without the passes that refine, no probe and no refinement costed
     plain, line = run([20.0, 80.0], depth=1e-3, min_contacts=0, error_estimate=False)
     assert "refining" not in line
