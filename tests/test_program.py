@@ -175,3 +175,26 @@ def test_the_table_keeps_its_columns_for_a_huge_mu(tmp_path):
                          str(tmp_path / "py.nc")], capture_output=True, text=True)
     assert py.returncode == 0, py.stderr
     assert r.stdout[r.stdout.index("  pad elements"):] in py.stdout, (r.stdout, py.stdout)
+
+
+def test_python_run_prints_a_long_table_whole(tmp_path):
+    """More speeds than the interface's text holds at once (8192 characters,
+    read 100 speeds a call): python -m pavefric run prints the program's
+    table whole, once its header."""
+    import sys
+
+    z = np.random.default_rng(2).normal(0.0, 0.4e-3, 256)
+    prof = tmp_path / "p.txt"
+    np.savetxt(prof, z)
+    speeds = ", ".join(f"{0.5 * k:g}" for k in range(1, 251))
+    scene = tmp_path / "s.nml"
+    scene.write_text(f"&surface profile_file = '{prof}', height_unit = 'm', dx = 0.87e-3, "
+                     f"closed = .true., mu_loc = 0.6 /\n&operation speeds_kmh = {speeds} /\n")
+    r = run_program(scene, "-o", tmp_path / "r.nc")
+    assert r.returncode == 0, r.stderr
+    py = subprocess.run([sys.executable, "-m", "pavefric", "run", str(scene), "-o",
+                         str(tmp_path / "py.nc")], capture_output=True, text=True)
+    assert py.returncode == 0, py.stderr
+    table = r.stdout[r.stdout.index("  pad elements"):]
+    assert table.count("\n") == 252 and table in py.stdout
+    assert py.stdout.count("speed_kmh") == 1
