@@ -2,7 +2,6 @@
 output is written, in the program and in Python, and out of memory in
 Python. A full disk is simulated without root: RLIMIT_FSIZE (ulimit -f)
 makes every write past the limit fail with EFBIG, as ENOSPC would."""
-import os
 import resource
 import signal
 import subprocess
@@ -11,7 +10,6 @@ import textwrap
 
 import pytest
 
-import pavefric
 from conftest import program, write_scene
 from pavefric.core import PavefricError, _check
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import pavefric
-from conftest import DX, program, run_program, write_scene
+from conftest import DX, run_program
 
 HEIGHTS = [f"{math.sin(i) * 0.5:.3f}" for i in range(100)]
 

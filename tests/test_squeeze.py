@@ -120,6 +120,7 @@ def test_squeeze_closed_form_on_a_flat_profile():
                            wet_model="squeeze", microtexture_rms=sigma, viscosity=0.0,
                            series=True)
     N = ds.attrs["pad_elements"]
+    assert abs(N * DX - L) <= DX                       # the pad: N elements over L
     p = W / (l * N * DX)
     b = min(N * DX, l)
     dt = DX / V

@@ -1,7 +1,5 @@
 """Texture metrics (core) against hand-worked cases and captif-slp, and the
 ASTM E1960 International Friction Index."""
-from pathlib import Path
-
 import numpy as np
 import pytest
 
