@@ -349,11 +349,16 @@ contains
          & "contacts on the paper's surfaces (docs/accuracy.md, ""The pad's resolution"")", &
          & 0, 1000)
       s(p_time_scheme) = text("numerics", "time_scheme", "extrapolated", "", "model", &
-         & "'auto': 'exact' where it applies (the Kelvin-Voigt rubber on a dry road, " // &
-         & "position_stride = 1, friction_scheme = 'energy'), else 'extrapolated', with no " // &
-         & "warning; exact_integrator_ran says which ran. 'exact': a Kelvin-Voigt rubber on a road " // &
-         & "without a film is integrated exactly in time, from contact event to event " // &
-         & "(other rubbers and films run backward Euler, with a warning); needs " // &
+         & "'auto': 'exact' where it applies (the Kelvin-Voigt rubber on a dry road or " // &
+         & "under wet_model = 'kane2017', position_stride = 1, friction_scheme = 'energy'), " // &
+         & "else 'extrapolated', with no warning; exact_integrator_ran says which ran. " // &
+         & "'exact': a Kelvin-Voigt rubber is integrated in closed form from contact event " // &
+         & "to event: exactly in time on a dry road; under the paper's film with the " // &
+         & "film's load linearised in the mean gap over each part of a step, an error " // &
+         & "of second order in the step (about 1e-4 of mu at one step per sample on " // &
+         & "inputs/ctm_wet.nml, where backward Euler's is 8e-3); other rubbers and films, " // &
+         & "and a film it declines (docs/numerics.md), run backward Euler, with a warning; " // &
+         & "needs " // &
          & "position_stride = 1. With tolerance > 0, 'extrapolated' reports the Richardson " // &
          & "value of the last two backward-Euler passes, 2 mu(s) - mu(s/2), where the " // &
          & "passes are in their first-order range and its estimate is the smaller " // &

@@ -304,7 +304,8 @@ def _write_accuracy_markdown(report: Path, tables, rec, png: Path, scenes, speed
                      f"{r[1]:.2g}, {r[at8]:.2g} | {o['floor']:.1g} | "
                      f"{o.get('one_pass_s', float('nan')):.3g} | "
                      + (f"{o['exact_error']:.1g}, {o['exact_cost']:.2g}x |" if o["exact_ran"]
-                        else "(backward Euler: a film or a Maxwell rubber) |"))
+                        else "(backward Euler: the drainage or Reynolds film, or a Maxwell "
+                             "rubber) |"))
     lines += ["", *_order_summary(orders)]
     if any(o["wet_model"] == "reynolds" for o in orders):
         lines += [

@@ -1,9 +1,10 @@
 """The observed order of backward Euler's time step on a scene.
 
     python -m pavefric.studies.step_orders [scene.nml] [--speeds 20,60] [--levels 10]
+                                           [--scheme euler|exact]
 
 runs the scene (default ``inputs/ctm_wet.nml``, at 20 and 60 km/h) with
-``time_scheme = 'euler'``, one pass per ``substeps`` = 1, 2, 4, ... (no
+``time_scheme = 'euler'`` (or the one given), one pass per ``substeps`` = 1, 2, 4, ... (no
 error estimate, no refinement of the pad: ``min_contacts = 0``) and prints,
 per speed, mu, its change from the pass before, the ratio of two successive
 changes (2 for an error falling as the step, 4 as its square) and the
@@ -25,10 +26,10 @@ import pavefric
 from .energy_report import _repo_file
 
 
-def sequence(scene, speeds, levels: int) -> list[tuple[int, np.ndarray]]:
+def sequence(scene, speeds, levels: int, scheme: str = "euler") -> list[tuple[int, np.ndarray]]:
     """(substeps, mu per speed) for substeps = 1, 2, ..., 2**(levels - 1)."""
     kw = dict(scene.parameters)
-    kw.update(time_scheme="euler", min_contacts=0, error_estimate=False, tolerance=0.0)
+    kw.update(time_scheme=scheme, min_contacts=0, error_estimate=False, tolerance=0.0)
     rows = []
     for level in range(levels):
         kw["substeps"] = 2 ** level
@@ -55,7 +56,11 @@ def ratios(rows: list[tuple[int, np.ndarray]]) -> list[tuple[int, np.ndarray, np
 
 def main(argv: list[str] | None = None) -> None:
     args = list(sys.argv[1:] if argv is None else argv)
-    speeds, levels = [20.0, 60.0], 10
+    speeds, levels, scheme = [20.0, 60.0], 10, "euler"
+    if "--scheme" in args:
+        i = args.index("--scheme")
+        scheme = args[i + 1]
+        del args[i:i + 2]
     if "--speeds" in args:
         i = args.index("--speeds")
         speeds = [float(v) for v in args[i + 1].split(",")]
@@ -67,8 +72,9 @@ def main(argv: list[str] | None = None) -> None:
     path = args[0] if args else _repo_file("inputs", "ctm_wet.nml")
     warnings.simplefilter("ignore", pavefric.PavefricWarning)
     scene = pavefric.load_scene(path)
-    rows = sequence(scene, speeds, levels)
-    print(f"backward Euler on {path}: mu per substeps (min_contacts = 0, no error estimate)")
+    rows = sequence(scene, speeds, levels, scheme)
+    print(f"time_scheme = '{scheme}' on {path}: mu per substeps (min_contacts = 0, no error "
+          "estimate)")
     print("substeps  " + "  ".join(f"{'mu at ' + format(v, 'g') + ' km/h':>16s}"
                                    f"{'change':>11s}{'ratio':>7s}{'order':>6s}" for v in speeds))
     table = {s: (d, r, o) for s, d, r, o in ratios(rows)}
